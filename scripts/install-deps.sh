@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Installs the Debian packages arcpress builds and tests with. Idempotent: does nothing
+# when everything is already installed. Run as root (or through sudo).
+set -euo pipefail
+packages=(g++ cmake make libeigen3-dev libcgal-dev libcli11-dev libfmt-dev catch2 libtomlplusplus-dev)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+echo "install-deps: installing ${missing[*]}"
+sudo=""; [ "$(id -u)" -ne 0 ] && sudo="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "install-deps: done"

@@ -1,0 +1,31 @@
+#include "arcpress/api/arcpress.hpp"
+
+#include "arcpress/extract/run.hpp"
+#include "arcpress/fit/fitter.hpp"
+#include "arcpress/lex/lexer.hpp"
+#include "arcpress/model/interpreter.hpp"
+
+namespace arcpress {
+
+CompressResult compress(const std::string& name, std::string text, const CompressOptions& opt,
+                        DiagnosticSink& sink) {
+  sink.set_strict(opt.strict);
+  CompressResult r;
+  r.bytes_in = text.size();
+  Program prog = lex(name, std::move(text), sink);
+  r.blocks_in = prog.blocks.size();
+  Interpretation in = interpret(prog, sink);
+  if (sink.error_count() > 0) return r;
+  std::vector<Run> runs;
+  std::vector<FitResult> fits;
+  if (!opt.passthrough) {
+    runs = extract_runs(in);
+    fits.reserve(runs.size());
+    for (const Run& run : runs) fits.push_back(fit_run(in, run, opt.fit));
+  }
+  r.output = emit_program(prog, in, runs, fits, &r.stats);
+  r.ok = true;
+  return r;
+}
+
+}  // namespace arcpress

@@ -1,0 +1,43 @@
+#pragma once
+// Small geometry vocabulary shared by all stages. Lengths are millimetres unless a name
+// says otherwise; angles are radians unless a name ends in _deg.
+#include <Eigen/Core>
+#include <cmath>
+#include <numbers>
+
+namespace arcpress {
+
+using Vec2 = Eigen::Vector2d;
+using Vec3 = Eigen::Vector3d;
+
+/// Floating-point noise floor for lengths in mm: "is this zero?". Never a user tolerance.
+inline constexpr double kLengthEpsMm = 1e-9;
+
+inline constexpr double kPi = std::numbers::pi;
+inline double deg_to_rad(double deg) { return deg * kPi / 180.0; }
+inline double rad_to_deg(double rad) { return rad * 180.0 / kPi; }
+
+/// z-component of the 2D cross product: > 0 when b turns left of a.
+inline double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+inline Vec2 left_normal(const Vec2& t) { return {-t.y(), t.x()}; }
+
+/// Working plane of an arc: the two in-plane axes and the normal axis (indices into XYZ),
+/// oriented as RS274 defines G17/G18/G19 (G18's first axis is Z, so CCW is seen from +Y).
+enum class Plane : uint8_t { XY, ZX, YZ };
+struct PlaneAxes {
+  int first, second, normal;
+};
+inline PlaneAxes axes_of(Plane p) {
+  switch (p) {
+    case Plane::XY: return {0, 1, 2};
+    case Plane::ZX: return {2, 0, 1};
+    case Plane::YZ: return {1, 2, 0};
+  }
+  return {0, 1, 2};
+}
+inline Vec2 project(const Vec3& v, Plane p) {
+  auto a = axes_of(p);
+  return {v[a.first], v[a.second]};
+}
+
+}  // namespace arcpress

@@ -1,0 +1,41 @@
+#pragma once
+// The fitter's vocabulary: a run is replaced by primitives (lines and arcs) whose end points
+// are vertices of the run, so positions, E and extra axes at every joint are the input's own.
+#include <cstdint>
+#include <vector>
+
+#include "arcpress/core/geometry.hpp"
+
+namespace arcpress {
+
+struct Primitive {
+  enum class Kind : uint8_t { Line, Arc };
+  uint32_t end_vertex = 0;  ///< the primitive runs from the previous one's end (or vertex 0) to here
+  Kind kind = Kind::Line;
+  bool ccw = false;         ///< arcs: counter-clockwise seen from the plane's normal (G3)
+  Vec2 center{0, 0};        ///< arcs: centre in the run's plane coordinates, mm
+  double radius_mm = 0;     ///< arcs
+};
+
+/// What the fitter may do and the band it must stay in. Every length is in mm.
+struct FitOptions {
+  enum class Method : uint8_t {
+    Keep,  ///< every G1 stays as it is (the pipeline without fitting)
+    Arcs,  ///< G1-continuous lines and arcs (default)
+  };
+  Method method = Method::Arcs;
+  double tolerance_mm = 0.01;      ///< max distance between fitted path and input path, both ways
+  double g1_angle_deg = 0.5;       ///< max tangent change at a joint where the input is smooth
+  double corner_angle_deg = 30.0;  ///< an input turn sharper than this is a corner kept sharp
+  double min_radius_mm = 0.05;     ///< smaller arcs become lines
+  double max_radius_mm = 1000.0;   ///< larger arcs become lines
+  double max_sweep_deg = 180.0;    ///< per block
+  double min_arc_length_mm = 0.0;  ///< shorter arcs become lines (firmware re-segmentation)
+  bool helical = true;             ///< arcs may move along the plane's normal axis
+};
+
+struct FitResult {
+  std::vector<Primitive> prims;
+};
+
+}  // namespace arcpress

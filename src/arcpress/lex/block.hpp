@@ -1,0 +1,73 @@
+#pragma once
+// Blocks: one per input line, holding the parsed words and the exact raw bytes so that a
+// block that is not rewritten is written back byte for byte.
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "arcpress/core/diagnostic.hpp"
+
+namespace arcpress {
+
+/// One address word: a letter and its value. `letter` is upper case.
+struct Word {
+  double value = 0;      ///< meaningless when is_expr
+  uint32_t col = 0;      ///< 1-based column of the letter
+  uint16_t length = 0;   ///< raw bytes from the letter to the end of the value
+  char letter = 0;
+  bool is_expr = false;  ///< value is `[expression]` or `#parameter`: not evaluable here
+  uint8_t decimals = 0;  ///< digits written after the decimal point
+  bool has_point = false;
+  bool flag = false;     ///< a letter without a number (firmware flags: `M84 X Y E`); value 0
+};
+
+/// What kind of line a block is. Everything but Code is passed through untouched and is a
+/// barrier for fitting.
+enum class BlockKind : uint8_t {
+  Empty,        ///< only white space and/or comments
+  Code,         ///< ordinary words
+  Percent,      ///< a `%` tape mark line
+  Control,      ///< LinuxCNC O-word flow control: `O100 sub`, `o<x> if [...]`, ...
+  Macro,        ///< parameter assignment `#1=...` or Fanuc macro line (IF/GOTO/WHILE/END)
+  HostCommand,  ///< sender/firmware commands: `$H`, `?`, `M117 text`, Klipper `SET_FAN ...`
+  Opaque,       ///< not understood; kept verbatim, reported once per kind
+};
+
+struct Block {
+  uint32_t begin = 0;       ///< offset of the raw text (line without its end-of-line)
+  uint32_t length = 0;
+  uint32_t line = 0;        ///< 1-based
+  uint32_t first_word = 0;  ///< index into Program::words
+  uint16_t word_count = 0;
+  uint8_t eol_length = 0;   ///< 0 (last line, no newline), 1 ("\n") or 2 ("\r\n")
+  BlockKind kind = BlockKind::Empty;
+  bool block_delete = false;  ///< starts with `/`
+  bool has_comment = false;   ///< `( )` or `;` comment anywhere on the line
+  bool has_checksum = false;  ///< `*NN`
+  bool has_expr = false;      ///< a word value is an expression or parameter
+};
+
+/// A lexed program: the bytes, the blocks and all words (blocks index into `words`).
+struct Program {
+  std::string name;  ///< file name for diagnostics
+  std::string text;
+  std::vector<Block> blocks;
+  std::vector<Word> words;
+
+  std::string_view raw(const Block& b) const { return std::string_view(text).substr(b.begin, b.length); }
+  std::string_view eol(const Block& b) const {
+    return std::string_view(text).substr(b.begin + b.length, b.eol_length);
+  }
+  const Word* words_begin(const Block& b) const { return words.data() + b.first_word; }
+  const Word* words_end(const Block& b) const { return words.data() + b.first_word + b.word_count; }
+  /// First word with `letter` in the block, or nullptr.
+  std::string_view raw(const Block& b, const Word& w) const { return raw(b).substr(w.col - 1, w.length); }
+  const Word* find(const Block& b, char letter) const {
+    for (auto* w = words_begin(b); w != words_end(b); ++w)
+      if (w->letter == letter) return w;
+    return nullptr;
+  }
+};
+
+}  // namespace arcpress

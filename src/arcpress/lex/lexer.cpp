@@ -1,0 +1,290 @@
+#include "arcpress/lex/lexer.hpp"
+
+#include <fmt/format.h>
+
+#include <charconv>
+#include <cstdlib>
+#include <string>
+
+namespace arcpress {
+namespace {
+
+constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                             1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+
+inline bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+inline bool is_digit(char c) { return c >= '0' && c <= '9'; }
+inline bool is_alpha(char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); }
+inline char upper(char c) { return (c >= 'a' && c <= 'z') ? char(c - 32) : c; }
+
+/// M-codes whose argument is free text (firmware messages and SD-card file names).
+bool is_text_mcode(double v) {
+  return v == 117 || v == 118 || v == 23 || v == 28 || v == 32 || v == 928;
+}
+
+class LineLexer {
+ public:
+  LineLexer(Program& prog, Block& blk, DiagnosticSink& sink)
+      : p_(prog), b_(blk), sink_(sink), s_(prog.text.data() + blk.begin), n_(blk.length) {}
+
+  void run() {
+    size_t i = 0;
+    if (b_.line == 1 && n_ >= 3 && s_[0] == '\xEF' && s_[1] == '\xBB' && s_[2] == '\xBF') i = 3;  // UTF-8 BOM
+    i = skip_space(i);
+    if (i < n_ && s_[i] == '%') {
+      b_.kind = BlockKind::Percent;
+      return;
+    }
+    if (i < n_ && s_[i] == '/') {
+      b_.block_delete = true;
+      ++i;
+      while (i < n_ && is_digit(s_[i])) ++i;  // Fanuc /1 ... /9
+    }
+    bool first_token = true;
+    while (true) {
+      i = skip_space(i);
+      if (i >= n_) break;
+      char c = s_[i];
+      if (c == '(') {
+        size_t close = i + 1;
+        while (close < n_ && s_[close] != ')') ++close;
+        b_.has_comment = true;
+        if (close >= n_) {
+          opaque(i, "E-LEX-COMMENT", "comment '(' is not closed on this line");
+          return;
+        }
+        i = close + 1;
+        continue;
+      }
+      if (c == ';') {
+        b_.has_comment = true;
+        break;
+      }
+      if (c == '*') {
+        b_.has_checksum = true;
+        ++i;
+        while (i < n_ && is_digit(s_[i])) ++i;
+        continue;
+      }
+      if (c == '#') {
+        set_kind(BlockKind::Macro);
+        return;
+      }
+      if (first_token && (c == '$' || c == '?' || c == '!' || c == '~')) {
+        set_kind(BlockKind::HostCommand);
+        return;
+      }
+      if (!is_alpha(c)) {
+        opaque(i, "E-LEX-CHAR", fmt::format("unexpected character '{}' (byte 0x{:02X})", printable(c), uint8_t(c)));
+        return;
+      }
+      // A letter: an address word, or the start of a multi-letter keyword.
+      size_t j = skip_space(i + 1);
+      if (i + 1 < n_ && (is_alpha(s_[i + 1]) || s_[i + 1] == '_')) {
+        keyword(i, first_token);
+        return;
+      }
+      if (upper(c) == 'O' && j < n_ && s_[j] == '<') {  // o<name> ...
+        set_kind(BlockKind::Control);
+        return;
+      }
+      if (!word(i, j)) return;
+      first_token = false;
+      const Word& w = p_.words.back();
+      if (w.letter == 'M' && !w.is_expr && (is_text_mcode(w.value) || w.value == 486 || (w.value >= 862 && w.value < 863))) {
+        set_kind(BlockKind::HostCommand);
+        return;
+      }
+      i = after_;
+      if (w.letter == 'O') {
+        // `O100 sub`, `O100 if [...]`: flow control follows the number.
+        size_t k = skip_space(i);
+        if (k < n_ && is_alpha(s_[k])) {
+          set_kind(BlockKind::Control);
+          return;
+        }
+      }
+    }
+    if (b_.word_count > 0 && b_.kind == BlockKind::Empty) b_.kind = BlockKind::Code;
+  }
+
+ private:
+  static char printable(char c) { return (uint8_t(c) >= 32 && uint8_t(c) < 127) ? c : '?'; }
+
+  size_t skip_space(size_t i) const {
+    while (i < n_ && is_space(s_[i])) ++i;
+    return i;
+  }
+
+  void set_kind(BlockKind k) { b_.kind = k; }
+
+  void opaque(size_t i, std::string_view code, std::string msg) {
+    b_.kind = BlockKind::Opaque;
+    sink_.problem({b_.line, uint32_t(i + 1)}, code, std::move(msg));
+  }
+
+  void keyword(size_t i, bool first_token) {
+    size_t e = i;
+    while (e < n_ && (is_alpha(s_[e]) || is_digit(s_[e]) || s_[e] == '_')) ++e;
+    std::string kw;
+    for (size_t k = i; k < e; ++k) kw += upper(s_[k]);
+    if (kw == "IF" || kw == "WHILE" || kw == "GOTO" || kw == "END" || kw.rfind("END", 0) == 0 ||
+        kw.rfind("DO", 0) == 0 || kw == "THEN") {
+      set_kind(BlockKind::Macro);
+      return;
+    }
+    if (first_token && (e >= n_ || is_space(s_[e]) || s_[e] == '=' || s_[e] == ';')) {
+      set_kind(BlockKind::HostCommand);  // Klipper/RepRap style extended command
+      return;
+    }
+    opaque(i, "E-LEX-KEYWORD", fmt::format("unknown keyword '{}'", kw));
+  }
+
+  /// Lexes the word whose letter is at `i`; `j` is the first non-space after the letter.
+  bool word(size_t i, size_t j) {
+    Word w;
+    w.letter = upper(s_[i]);
+    w.col = uint32_t(i + 1);
+    size_t k = j;
+    bool negative = false;
+    if (k < n_ && (s_[k] == '-' || s_[k] == '+')) {
+      negative = s_[k] == '-';
+      k = skip_space(k + 1);
+    }
+    if (k < n_ && (s_[k] == '[' || s_[k] == '#')) {
+      w.is_expr = true;
+      b_.has_expr = true;
+      if (s_[k] == '[') {
+        int depth = 0;
+        for (; k < n_; ++k) {
+          if (s_[k] == '[') ++depth;
+          if (s_[k] == ']' && --depth == 0) break;
+        }
+        if (k >= n_) {
+          opaque(i, "E-LEX-EXPR", fmt::format("expression after '{}' has no closing ']'", w.letter));
+          return false;
+        }
+        ++k;
+      } else {
+        while (k < n_ && s_[k] == '#') ++k;
+        if (k < n_ && s_[k] == '<') {
+          while (k < n_ && s_[k] != '>') ++k;
+          if (k < n_) ++k;
+        } else {
+          while (k < n_ && (is_digit(s_[k]) || s_[k] == '.')) ++k;
+        }
+      }
+      push(w, k);
+      return true;
+    }
+    uint64_t mant = 0;
+    int digits = 0, decimals = 0;
+    bool point = false, slow = false;
+    size_t start = k;
+    while (k < n_) {
+      char c = s_[k];
+      if (is_digit(c)) {
+        if (digits < 18) {
+          mant = mant * 10 + uint64_t(c - '0');
+          if (point) ++decimals;
+        } else {
+          slow = true;
+        }
+        ++digits;
+      } else if (c == '.' && !point) {
+        point = true;
+      } else if (!(c == ' ' || c == '\t')) {
+        break;
+      }
+      ++k;
+    }
+    while (k > start && (s_[k - 1] == ' ' || s_[k - 1] == '\t')) --k;  // trailing blanks are not the number's
+    if (digits == 0 && k < n_ && s_[k] == '"') {
+      set_kind(BlockKind::HostCommand);  // firmware string argument: M862.3 P "MINI"
+      return false;
+    }
+    if (digits == 0 && (i + 1 >= n_ || is_space(s_[i + 1]) || s_[i + 1] == ';') && allows_flags()) {
+      w.flag = true;  // Marlin-style axis flag: M84 X Y E, G28 X Y
+      push(w, k);
+      return true;
+    }
+    if (digits == 0) {
+      std::string found = k < n_ ? fmt::format("'{}'", printable(s_[k])) : std::string("end of line");
+      opaque(i, "E-LEX-NUMBER", fmt::format("word '{}' has no number (found {})", w.letter, found));
+      return false;
+    }
+    if (!slow && decimals <= 22) {
+      w.value = double(mant) / kPow10[decimals];
+    } else {
+      std::string buf;
+      for (size_t q = start; q < k; ++q)
+        if (s_[q] != ' ' && s_[q] != '\t') buf += s_[q];
+      w.value = std::strtod(buf.c_str(), nullptr);
+    }
+    if (negative) w.value = -w.value;
+    w.has_point = point;
+    w.decimals = uint8_t(decimals > 255 ? 255 : decimals);
+    push(w, k);
+    return true;
+  }
+
+  /// Letters without numbers are flags after an M-code or G28/G29 (firmware syntax).
+  bool allows_flags() const {
+    for (uint32_t k = 0; k < b_.word_count; ++k) {
+      const Word& w = p_.words[b_.first_word + k];
+      if (w.letter == 'M' || (w.letter == 'G' && (w.value == 28 || w.value == 29))) return true;
+    }
+    return false;
+  }
+
+  void push(const Word& w, size_t after) {
+    if (b_.word_count == 0) b_.first_word = uint32_t(p_.words.size());
+    p_.words.push_back(w);
+    p_.words.back().length = uint16_t(after - (w.col - 1));
+    ++b_.word_count;
+    after_ = after;
+  }
+
+  Program& p_;
+  Block& b_;
+  DiagnosticSink& sink_;
+  const char* s_;
+  size_t n_;
+  size_t after_ = 0;
+};
+
+}  // namespace
+
+Program lex(std::string name, std::string text, DiagnosticSink& sink) {
+  Program p;
+  p.name = std::move(name);
+  p.text = std::move(text);
+  const std::string& t = p.text;
+  p.blocks.reserve(t.size() / 24 + 1);
+  p.words.reserve(t.size() / 6 + 1);
+  size_t pos = 0;
+  uint32_t line = 0;
+  while (pos < t.size()) {
+    size_t nl = t.find('\n', pos);
+    Block b;
+    b.line = ++line;
+    b.begin = uint32_t(pos);
+    size_t end = nl == std::string::npos ? t.size() : nl;
+    size_t content_end = end;
+    if (nl != std::string::npos) {
+      b.eol_length = 1;
+      if (end > pos && t[end - 1] == '\r') {
+        content_end = end - 1;
+        b.eol_length = 2;
+      }
+    }
+    b.length = uint32_t(content_end - pos);
+    b.first_word = uint32_t(p.words.size());
+    p.blocks.push_back(b);
+    LineLexer(p, p.blocks.back(), sink).run();
+    pos = nl == std::string::npos ? t.size() : nl + 1;
+  }
+  return p;
+}
+
+}  // namespace arcpress

@@ -1,0 +1,346 @@
+#include "arcpress/model/interpreter.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace arcpress {
+namespace {
+
+int axis_of_letter(char c) {
+  switch (c) {
+    case 'X': return kX;
+    case 'Y': return kY;
+    case 'Z': return kZ;
+    case 'A': return kA;
+    case 'B': return kB;
+    case 'C': return kC;
+    case 'U': return kU;
+    case 'V': return kV;
+    case 'W': return kW;
+    case 'E': return kE;
+    default: return -1;
+  }
+}
+
+/// G-code number times ten, so G90.1 is 901 and G1 is 10.
+int gcode10(double v) { return int(std::lround(v * 10.0)); }
+
+constexpr uint32_t kAllAxes = (1u << kAxisCount) - 1;
+constexpr uint32_t kXyzMask = (1u << kX) | (1u << kY) | (1u << kZ);
+
+class Interpreter {
+ public:
+  Interpreter(const Program& p, DiagnosticSink& sink) : p_(p), sink_(sink) {
+    out_.frames.push_back(frame_);
+    out_.move_of_block.assign(p.blocks.size(), -1);
+    out_.moves.reserve(p.blocks.size());
+  }
+
+  Interpretation run() {
+    for (size_t bi = 0; bi < p_.blocks.size(); ++bi) block(uint32_t(bi), p_.blocks[bi]);
+    return std::move(out_);
+  }
+
+ private:
+  void block(uint32_t bi, const Block& b) {
+    switch (b.kind) {
+      case BlockKind::Empty:
+      case BlockKind::Percent:
+        return;
+      case BlockKind::Code:
+        break;
+      default:
+        // Flow control, macros, host commands and unread lines may move anything.
+        known_ = 1u << kE;
+        return;
+    }
+    bool only_g1_words = !b.block_delete && !b.has_comment && !b.has_checksum && !b.has_expr;
+    int motion = -1;            // G-code ×10 of a motion word in this block
+    bool g92 = false, g92_reset = false, g53 = false, axis_consumer = false, homing = false;
+    bool words_seen[kAxisCount] = {};
+    bool expr_axis[kAxisCount] = {};
+    bool flag_axis[kAxisCount] = {};
+    double value[kAxisCount] = {};
+    double ijk[3] = {0, 0, 0};
+    bool ijk_seen[3] = {};
+    bool r_seen = false;
+    double r_value = 0;
+    int turns = 1;
+    Frame f = frame_;
+    double feed = feed_;
+    bool feed_set = false;
+
+    for (auto* w = p_.words_begin(b); w != p_.words_end(b); ++w) {
+      char L = w->letter;
+      if (int ax = axis_of_letter(L); ax >= 0) {
+        if (w->flag) {
+          flag_axis[ax] = true;
+          continue;
+        }
+        words_seen[ax] = true;
+        expr_axis[ax] = w->is_expr;
+        value[ax] = w->value;
+        continue;
+      }
+      if (w->is_expr) {
+        if (L == 'G' || L == 'M') only_g1_words = false, known_ &= 1u << kE;
+        if (L == 'F') feed_known_ = false;
+        continue;
+      }
+      switch (L) {
+        case 'G': {
+          int g = gcode10(w->value);
+          if (g != 10) only_g1_words = false;
+          switch (g) {
+            case 0: case 10: case 20: case 30: motion = g; break;
+            case 50: case 51: case 52: case 53: motion = g; break;  // G5, G5.1, G5.2, G5.3
+            case 330: case 331: case 382: case 383: case 384: case 385: case 760:
+            case 730: case 810: case 820: case 830: case 840: case 850: case 860: case 870: case 880: case 890:
+              motion = g;
+              break;
+            case 800: motion = 800; break;
+            case 40: break;  // dwell
+            case 170: f_plane_ = Plane::XY; break;
+            case 180: f_plane_ = Plane::ZX; break;
+            case 190: f_plane_ = Plane::YZ; break;
+            case 200: f.unit_mm = 25.4; break;
+            case 210: f.unit_mm = 1.0; break;
+            case 70: f.diameter_mode = true; break;
+            case 80: f.diameter_mode = false; break;
+            case 900: f.absolute = true; f.e_relative = false; break;
+            case 910: f.absolute = false; f.e_relative = true; break;
+            case 901: f.arc_absolute = true; break;
+            case 911: f.arc_absolute = false; break;
+            case 920: g92 = true; axis_consumer = true; break;
+            case 921: case 922: g92_reset = true; break;
+            case 923: break;
+            case 930: f.inverse_time = true; break;
+            case 940: case 950: f.inverse_time = false; break;
+            case 280: case 300: homing = true; axis_consumer = true; break;
+            case 281: case 301: break;
+            case 700: case 710: case 720: case 740: case 750:  // lathe turning cycles: run elsewhere
+              axis_consumer = true;
+              known_ &= 1u << kE;
+              break;
+            case 100: axis_consumer = true; known_ &= 1u << kE; break;  // G10: offsets and tables
+            case 530: g53 = true; break;
+            case 540: case 550: case 560: case 570: case 580: case 590: case 591: case 592: case 593:
+              if (f.work_offset != g) known_ &= 1u << kE;  // same machine point, new coordinates
+              f.work_offset = g;
+              break;
+            case 400: case 410: case 411: case 420: case 421:  // cutter compensation
+            case 430: case 431: case 432: case 490:             // tool length
+            case 610: case 611: case 640:                       // path control
+            case 980: case 990: case 150: case 160:             // canned-cycle return, polar
+            case 290:                                           // Marlin bed levelling
+            case 310: case 320:
+            case 500: case 960: case 970:                       // lathe spindle limits, CSS
+              break;
+            default:
+              sink_.problem({b.line, w->col}, "E-MODEL-GCODE",
+                            fmt::format("{} is not modelled; the block is kept and not fitted",
+                                        p_.raw(b, *w)));
+              known_ &= 1u << kE;
+              break;
+          }
+          break;
+        }
+        case 'M': {
+          only_g1_words = false;
+          int m = int(std::lround(w->value));
+          if (m == 82) f.e_relative = false;
+          if (m == 83) f.e_relative = true;
+          if (m == 98 || m == 99) known_ &= 1u << kE;  // subprogram call / return
+          break;
+        }
+        case 'F':
+          feed = w->value;
+          feed_set = true;
+          break;
+        case 'I': case 'J': case 'K': {
+          int k = L - 'I';
+          ijk[k] = w->value;
+          ijk_seen[k] = true;
+          only_g1_words = false;
+          break;
+        }
+        case 'R':
+          r_seen = true;
+          r_value = w->value;
+          only_g1_words = false;
+          break;
+        case 'P':
+          turns = int(std::lround(w->value));
+          only_g1_words = false;
+          break;
+        case 'N':
+          break;
+        default:
+          only_g1_words = false;
+          break;
+      }
+    }
+    if (feed_set) {
+      feed_mm_ = f.inverse_time ? feed : feed * f.unit_mm;
+      feed_known_ = true;
+    }
+    (void)feed_;
+
+    // G92 and G92.1 change the offsets; positions in mm stay where they are.
+    if (g92_reset) f.offset = AxisValues{};
+    if (g92) {
+      for (int ax = 0; ax < kAxisCount; ++ax) {
+        if (!words_seen[ax]) continue;
+        if (expr_axis[ax]) {
+          known_ &= ~(1u << ax);
+          continue;
+        }
+        double scale = kAxisIsLinear[ax] ? f.unit_mm : 1.0;
+        f.offset[ax] = pos_[ax] - value[ax] * scale;
+      }
+    }
+    set_frame(f);
+    if (motion >= 0) motion_ = motion;
+
+    bool any_axis = false;
+    for (int ax = 0; ax < kAxisCount; ++ax) any_axis |= words_seen[ax];
+    if (homing) {
+      // G28/G30: through an optional point to a stored position we do not know.
+      add_move(bi, MoveKind::Other, pos_, 0, false, 1, false);
+      bool any_flag = false;
+      for (int ax = 0; ax < kAxisCount; ++ax) any_flag |= flag_axis[ax];
+      for (int ax = 0; ax < kE; ++ax)
+        if (words_seen[ax] || flag_axis[ax] || (!any_axis && !any_flag)) known_ &= ~(1u << ax);
+      return;
+    }
+    if (!any_axis || axis_consumer) {
+      // Arc words without axes (a full circle in I/J form) still move along a path.
+      if (!(motion_ == 20 || motion_ == 30) || !(ijk_seen[0] || ijk_seen[1] || ijk_seen[2]) || axis_consumer)
+        return;
+    }
+
+    const Frame& fr = frame_;
+    AxisValues target = pos_;
+    uint32_t known_after = known_;
+    for (int ax = 0; ax < kAxisCount; ++ax) {
+      if (!words_seen[ax]) continue;
+      if (expr_axis[ax]) {
+        known_after &= ~(1u << ax);
+        continue;
+      }
+      double v = value[ax];
+      if (ax == kX && fr.diameter_mode) v *= 0.5;
+      double scale = kAxisIsLinear[ax] ? fr.unit_mm : 1.0;
+      bool relative = ax == kE ? fr.e_relative : !fr.absolute;
+      if (g53) {
+        known_after &= ~(1u << ax);  // machine coordinates: not in our frame
+        target[ax] = v * scale;
+      } else if (relative) {
+        target[ax] = pos_[ax] + v * scale;
+      } else {
+        target[ax] = fr.to_mm(ax, v);
+        known_after |= (1u << ax);
+      }
+    }
+    bool known = (known_ & kXyzMask) == kXyzMask && (known_after & kXyzMask) == kXyzMask;
+    for (int ax = kA; ax < kAxisCount; ++ax)
+      if (words_seen[ax] && !((known_ >> ax) & 1u && (known_after >> ax) & 1u)) known = false;
+
+    MoveKind kind = MoveKind::Other;
+    if (!g53) {
+      if (motion_ == 0) kind = MoveKind::Rapid;
+      else if (motion_ == 10) kind = MoveKind::Line;
+      else if (motion_ == 20) kind = MoveKind::ArcCW;
+      else if (motion_ == 30) kind = MoveKind::ArcCCW;
+    }
+    if (kind == MoveKind::Other && motion_ != 0) known_after &= ~kXyzMask;  // cycles end where they like
+    Move& m = add_move(bi, kind, target, 0, known, turns, false);
+    if (kind == MoveKind::ArcCW || kind == MoveKind::ArcCCW) {
+      m.center = arc_center(b, fr, target, ijk, ijk_seen, r_seen, r_value, kind, m.known);
+    }
+    bool moved_xyz = target[kX] != pos_[kX] || target[kY] != pos_[kY] || target[kZ] != pos_[kZ];
+    m.fittable = only_g1_words && kind == MoveKind::Line && m.known && moved_xyz && !fr.inverse_time &&
+                 !fr.diameter_mode && feed_known_;
+    pos_ = target;
+    known_ = known_after;
+  }
+
+  Vec3 arc_center(const Block& b, const Frame& fr, const AxisValues& target, const double* ijk,
+                  const bool* ijk_seen, bool r_seen, double r_value, MoveKind kind, bool& known) {
+    auto a = axes_of(f_plane_);
+    // I/J/K belong to X/Y/Z respectively.
+    Vec3 c(pos_[kX], pos_[kY], pos_[kZ]);
+    if (r_seen) {
+      Vec2 s(pos_[a.first], pos_[a.second]), e(target[a.first], target[a.second]);
+      double r = r_value * fr.unit_mm;
+      Vec2 chord = e - s;
+      double d = chord.norm();
+      if (d < kLengthEpsMm) {
+        sink_.warning({b.line, 1}, "W-MODEL-ARC-R", "R-form arc with coincident end points has no defined centre");
+        known = false;
+        return c;
+      }
+      double h2 = r * r - d * d / 4;
+      double h = h2 > 0 ? std::sqrt(h2) : 0.0;
+      Vec2 n = left_normal(chord / d);
+      // G3 with R > 0 (short way round): centre on the left of the chord; G2: on the right.
+      double side = (kind == MoveKind::ArcCCW ? 1.0 : -1.0) * (r >= 0 ? 1.0 : -1.0);
+      Vec2 cc = (s + e) / 2 + side * h * n;
+      c[a.first] = cc.x();
+      c[a.second] = cc.y();
+      return c;
+    }
+    for (int k = 0; k < 3; ++k) {
+      if (k == a.normal) continue;
+      double off = ijk_seen[k] ? ijk[k] : 0.0;
+      if (fr.arc_absolute)
+        c[k] = ijk_seen[k] ? fr.to_mm(k, off) : pos_[k];
+      else
+        c[k] = pos_[k] + off * fr.unit_mm;
+    }
+    return c;
+  }
+
+  Move& add_move(uint32_t bi, MoveKind kind, const AxisValues& to, int, bool known, int turns, bool fittable) {
+    Move m;
+    m.to = to;
+    m.block = bi;
+    m.frame = uint32_t(out_.frames.size() - 1);
+    m.kind = kind;
+    m.plane = f_plane_;
+    m.feed_mm_min = feed_mm_;
+    m.known = known;
+    m.turns = turns;
+    m.fittable = fittable;
+    out_.move_of_block[bi] = int32_t(out_.moves.size());
+    out_.moves.push_back(m);
+    return out_.moves.back();
+  }
+
+  void set_frame(const Frame& f) {
+    if (f.same_as(frame_)) return;
+    frame_ = f;
+    out_.frames.push_back(f);
+  }
+
+  const Program& p_;
+  DiagnosticSink& sink_;
+  Interpretation out_;
+  Frame frame_;
+  Plane f_plane_ = Plane::XY;
+  AxisValues pos_{};
+  uint32_t known_ = 1u << kE;  // bit per axis: position known; E is a counter from 0
+  int motion_ = 0;       // modal motion G-code ×10; G0 at power-up
+  double feed_ = 0;
+  double feed_mm_ = 0;
+  bool feed_known_ = false;
+};
+
+}  // namespace
+
+Interpretation interpret(const Program& program, DiagnosticSink& sink) {
+  return Interpreter(program, sink).run();
+}
+
+}  // namespace arcpress

@@ -1,0 +1,82 @@
+#pragma once
+// The interpreter's output: the machine state ("frame") under which words are read, and
+// one Move per block that changes position.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "arcpress/core/geometry.hpp"
+
+namespace arcpress {
+
+/// Axis slots, in this order everywhere: X Y Z A B C U V W E.
+enum Axis : int { kX, kY, kZ, kA, kB, kC, kU, kV, kW, kE, kAxisCount };
+inline constexpr char kAxisLetters[kAxisCount] = {'X', 'Y', 'Z', 'A', 'B', 'C', 'U', 'V', 'W', 'E'};
+/// Linear axes scale with G20/G21; rotary A/B/C are degrees in both.
+inline constexpr bool kAxisIsLinear[kAxisCount] = {true, true, true, false, false, false, true, true, true, true};
+using AxisValues = std::array<double, kAxisCount>;
+
+/// How program words turn into absolute positions. A new Frame starts whenever any of these
+/// modal settings changes, so every Move can be written back in its own frame.
+struct Frame {
+  double unit_mm = 1.0;      ///< 1 for G21 (mm), 25.4 for G20 (inch)
+  AxisValues offset{};       ///< G92 offset: absolute = programmed * unit + offset (mm or deg)
+  bool absolute = true;      ///< G90 (true) / G91 (false) for X..W
+  bool arc_absolute = false; ///< G90.1 (true) / G91.1 (false, default) for I/J/K
+  bool e_relative = false;   ///< M83 (true) / M82 (false)
+  bool diameter_mode = false;///< lathe G7: X words are diameters
+  bool inverse_time = false; ///< G93: F is 1/minutes per block
+  int work_offset = 54;      ///< G54..G59 as 540..593 / 10; tracked, values unknown
+
+  double to_mm(int axis, double programmed) const {
+    return programmed * (kAxisIsLinear[axis] ? unit_mm : 1.0) + offset[axis];
+  }
+  double to_program(int axis, double mm) const {
+    return (mm - offset[axis]) / (kAxisIsLinear[axis] ? unit_mm : 1.0);
+  }
+  bool same_as(const Frame& o) const {
+    return unit_mm == o.unit_mm && offset == o.offset && absolute == o.absolute &&
+           arc_absolute == o.arc_absolute && e_relative == o.e_relative &&
+           diameter_mode == o.diameter_mode && inverse_time == o.inverse_time &&
+           work_offset == o.work_offset;
+  }
+};
+
+enum class MoveKind : uint8_t {
+  Rapid,   ///< G0
+  Line,    ///< G1
+  ArcCW,   ///< G2
+  ArcCCW,  ///< G3
+  Other,   ///< canned cycle, spline, probe, homing: a position change we do not model as a path
+};
+
+struct Move {
+  AxisValues to{};            ///< absolute end position (mm for linear axes, degrees for A/B/C)
+  Vec3 center{0, 0, 0};       ///< arcs: absolute centre, mm (in-plane components meaningful)
+  double feed_mm_min = 0;     ///< F in force (mm/min; inverse-time value when the frame says so)
+  uint32_t block = 0;         ///< index of the block that made this move
+  uint32_t frame = 0;         ///< index into Interpretation::frames
+  int turns = 1;              ///< arcs: P word (full turns + 1), 1 when absent
+  MoveKind kind = MoveKind::Line;
+  Plane plane = Plane::XY;
+  bool known = true;          ///< start and end positions are both known
+  bool fittable = false;      ///< a plain G1 feed block a fitter may rewrite
+
+  Vec3 xyz() const { return {to[kX], to[kY], to[kZ]}; }
+};
+
+/// Everything the interpreter learned about a program.
+struct Interpretation {
+  std::vector<Frame> frames;
+  std::vector<Move> moves;
+  /// Per block: index of its move in `moves`, or -1 for blocks that do not move.
+  std::vector<int32_t> move_of_block;
+  /// Absolute position before the first move (unknown axes are 0).
+  AxisValues start{};
+  bool start_known = false;
+
+  /// Start of move `i` (end of the previous move, or `start`).
+  const AxisValues& from(size_t i) const { return i == 0 ? start : moves[i - 1].to; }
+};
+
+}  // namespace arcpress

@@ -1,0 +1,152 @@
+// arcpress command line: the only place that catches exceptions and picks exit codes.
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <limits.h>
+#include <stdlib.h>
+
+#include <chrono>
+#include <cstdio>
+#include <string>
+
+#include "arcpress/api/arcpress.hpp"
+#include "arcpress/core/error.hpp"
+#include "file_io.hpp"
+
+namespace {
+
+using namespace arcpress;
+
+constexpr const char* kExitCodesHelp =
+    "Exit codes:\n"
+    "  0  success\n"
+    "  1  verification failed: the output left the tolerance band\n"
+    "  2  usage error, or input that cannot be read (see the diagnostics)\n"
+    "  3  I/O error: a file could not be read or written\n";
+
+std::string real_path(const std::string& p) {
+  char buf[PATH_MAX];
+  return ::realpath(p.c_str(), buf) ? std::string(buf) : std::string();
+}
+
+struct CompressArgs {
+  std::string input = "-";
+  std::string output;
+  std::string dialect = "rs274";
+  std::string method = "arcs";
+  bool in_place = false;
+  bool stats = false;
+  CompressOptions opt;
+};
+
+int run_compress(const CompressArgs& a) {
+  if (a.dialect != "rs274")
+    throw Error(kExitInput, fmt::format("unknown dialect '{}' (available: rs274)", a.dialect));
+  std::string out_path = a.output;
+  if (a.in_place) {
+    if (a.input == "-") throw Error(kExitInput, "--in-place needs an input file, not standard input");
+    if (!out_path.empty()) throw Error(kExitInput, "--in-place and -o cannot be used together");
+    out_path = a.input;
+  } else if (out_path.empty()) {
+    out_path = "-";
+  } else if (a.input != "-" && out_path != "-" && !real_path(out_path).empty() &&
+             real_path(out_path) == real_path(a.input)) {
+    throw Error(kExitInput, fmt::format("output '{}' is the input file; use --in-place to overwrite it", out_path));
+  }
+  CompressOptions opt = a.opt;
+  opt.fit.method = a.method == "keep" ? FitOptions::Method::Keep : FitOptions::Method::Arcs;
+
+  auto t0 = std::chrono::steady_clock::now();
+  std::string text = cli::read_input(a.input);
+  std::string name = a.input == "-" ? "<stdin>" : a.input;
+  DiagnosticSink sink(name);
+  CompressResult r = compress(name, std::move(text), opt, sink);
+  std::string diags = sink.format_all();
+  if (!diags.empty()) std::fputs(diags.c_str(), stderr);
+  if (!r.ok) {
+    fmt::print(stderr, "arcpress: {} error(s) in '{}'; nothing written\n", sink.error_count(), name);
+    return kExitInput;
+  }
+  cli::write_output(out_path, r.output);
+  if (a.stats) {
+    double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const auto& st = r.stats;
+    fmt::print(stderr,
+               "arcpress: {} -> {}\n"
+               "  blocks in      {}\n"
+               "  bytes in/out   {} / {} ({:.1f} %)\n"
+               "  runs           {} with {} G1 moves\n"
+               "  written        {} G1 + {} G2/G3 ({} blocks for {} moves, {:.1f} %)\n"
+               "  time           {:.3f} s\n",
+               name, out_path == "-" ? "<stdout>" : out_path, r.blocks_in, r.bytes_in, r.output.size(),
+               r.bytes_in ? 100.0 * double(r.output.size()) / double(r.bytes_in) : 100.0, st.runs, st.moves_in,
+               st.lines_out, st.arcs_out, st.lines_out + st.arcs_out, st.moves_in,
+               st.moves_in ? 100.0 * double(st.lines_out + st.arcs_out) / double(st.moves_in) : 100.0, s);
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "arcpress: replaces runs of short G1 moves in a G-code program with the fewest\n"
+      "tangent-continuous lines and arcs (G2/G3) that stay within --tolerance of the\n"
+      "original path. Everything that is not a G1 run passes through unchanged.\n\n"
+      "  arcpress in.nc -o out.nc --tolerance 0.01\n"
+      "  cat in.gcode | arcpress > out.gcode\n",
+      "arcpress"};
+  app.footer(kExitCodesHelp);
+  app.set_version_flag("--version", std::string("arcpress ") + kVersion);
+
+  CompressArgs a;
+  app.add_option("input", a.input, "Input program; '-' or absent: standard input");
+  app.add_option("-o,--output", a.output, "Output file; absent: standard output");
+  app.add_flag("--in-place", a.in_place, "Rewrite the input file (atomically)");
+  app.add_option("--tolerance", a.opt.fit.tolerance_mm,
+                 "Max distance in mm between output and input path, both ways")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  app.add_option("--dialect", a.dialect, "Target controller dialect")->capture_default_str();
+  app.add_option("--method", a.method, "keep: leave every G1 as it is; arcs: fit lines and arcs")
+      ->check(CLI::IsMember({"keep", "arcs"}))->capture_default_str();
+  app.add_option("--g1-angle", a.opt.fit.g1_angle_deg, "Max tangent change in degrees at smooth joints")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  app.add_option("--corner-angle", a.opt.fit.corner_angle_deg,
+                 "Input turns sharper than this (degrees) are corners, kept sharp")
+      ->check(CLI::Range(0.0, 180.0))->capture_default_str();
+  app.add_option("--min-radius", a.opt.fit.min_radius_mm, "Arcs with a smaller radius (mm) become lines")
+      ->check(CLI::NonNegativeNumber)->capture_default_str();
+  app.add_option("--max-radius", a.opt.fit.max_radius_mm, "Arcs with a larger radius (mm) become lines")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  app.add_option("--max-sweep", a.opt.fit.max_sweep_deg, "Max degrees one arc block may sweep")
+      ->check(CLI::Range(1.0, 359.0))->capture_default_str();
+  app.add_option("--min-arc-length", a.opt.fit.min_arc_length_mm, "Shorter arcs (mm) become lines")
+      ->check(CLI::NonNegativeNumber)->capture_default_str();
+  bool no_helical = false;
+  app.add_flag("--no-helical", no_helical, "Never move the plane's normal axis inside an arc");
+  app.add_flag("--passthrough", a.opt.passthrough, "Read and write the program back unchanged");
+  app.add_flag("--strict", a.opt.strict, "Refuse (exit 2) any block that cannot be read");
+  app.add_flag("--stats", a.stats, "Print counts and sizes to standard error");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::Success& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return kExitInput;
+  }
+  a.opt.fit.helical = !no_helical;
+  try {
+    return run_compress(a);
+  } catch (const Error& e) {
+    fmt::print(stderr, "arcpress: {}\n", e.what());
+    return e.exit_code();
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "arcpress: internal error: {}\n", e.what());
+    return kExitIo;
+  }
+}

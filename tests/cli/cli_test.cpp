@@ -1,0 +1,92 @@
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+
+#include "support.hpp"
+
+namespace fs = std::filesystem;
+using arcpress::test::run_arcpress;
+
+namespace {
+const std::string kProgram = "G21 G90\nG0 X0 Y0 Z1\nG1 Z0 F100\nG1 X1 Y0\nX2 Y0.1\nX3 Y0.3\nM2\n";
+}
+
+TEST_CASE("arcpress reads standard input and writes standard output", "[cli]") {
+  auto c = run_arcpress("--method keep", kProgram);
+  CHECK(c.exit_code == 0);
+  CHECK(c.out == kProgram);
+  auto d = run_arcpress("- --passthrough", kProgram);
+  CHECK(d.exit_code == 0);
+  CHECK(d.out == kProgram);
+}
+
+TEST_CASE("--help and --version succeed and document the exit codes", "[cli]") {
+  auto h = run_arcpress("--help");
+  CHECK(h.exit_code == 0);
+  CHECK(h.out.find("--tolerance") != std::string::npos);
+  CHECK(h.out.find("Exit codes") != std::string::npos);
+  auto v = run_arcpress("--version");
+  CHECK(v.exit_code == 0);
+  CHECK(v.out.find("arcpress ") == 0);
+}
+
+TEST_CASE("usage errors exit with 2", "[cli]") {
+  CHECK(run_arcpress("--tolerance -1", kProgram).exit_code == 2);
+  CHECK(run_arcpress("--no-such-option", kProgram).exit_code == 2);
+  CHECK(run_arcpress("--dialect nosuch", kProgram).exit_code == 2);
+}
+
+TEST_CASE("a missing input file exits with 3", "[cli]") {
+  auto c = run_arcpress("/nonexistent/in.nc -o /tmp/x.nc");
+  CHECK(c.exit_code == 3);
+  CHECK(c.err.find("cannot open") != std::string::npos);
+}
+
+TEST_CASE("strict mode refuses an unreadable block with its place and leaves no output", "[cli]") {
+  fs::path d = arcpress::test::temp_dir("strict");
+  arcpress::test::write_file(d / "in.nc", "G0 X0 Y0\nG1 X1 Y@\n");
+  auto c = run_arcpress("--strict '" + (d / "in.nc").string() + "' -o '" + (d / "out.nc").string() + "'");
+  CHECK(c.exit_code == 2);
+  CHECK(c.err.find("in.nc:2:7: error: E-LEX-NUMBER") != std::string::npos);
+  CHECK_FALSE(fs::exists(d / "out.nc"));
+  // No temporary files are left behind either.
+  CHECK(std::distance(fs::directory_iterator(d), fs::directory_iterator()) == 1);
+  fs::remove_all(d);
+}
+
+TEST_CASE("non-strict mode passes an unreadable block through and warns", "[cli]") {
+  auto c = run_arcpress("", "G0 X0 Y0\nG1 X1 Y@\n");
+  CHECK(c.exit_code == 0);
+  CHECK(c.out == "G0 X0 Y0\nG1 X1 Y@\n");
+  CHECK(c.err.find("<stdin>:2:7: warning: E-LEX-NUMBER") != std::string::npos);
+}
+
+TEST_CASE("the input is never overwritten unless --in-place is given", "[cli]") {
+  fs::path d = arcpress::test::temp_dir("inplace");
+  fs::path in = d / "in.nc";
+  arcpress::test::write_file(in, kProgram);
+  auto c = run_arcpress("'" + in.string() + "' -o '" + in.string() + "'");
+  CHECK(c.exit_code == 2);
+  CHECK(arcpress::test::read_file(in) == kProgram);
+  auto ok = run_arcpress("--in-place --method keep '" + in.string() + "'");
+  CHECK(ok.exit_code == 0);
+  CHECK(arcpress::test::read_file(in) == kProgram);
+  fs::remove_all(d);
+}
+
+TEST_CASE("an existing output file is replaced only when the run succeeds", "[cli]") {
+  fs::path d = arcpress::test::temp_dir("atomic");
+  arcpress::test::write_file(d / "out.nc", "old content\n");
+  arcpress::test::write_file(d / "bad.nc", "G1 X(\n");
+  auto c = run_arcpress("--strict '" + (d / "bad.nc").string() + "' -o '" + (d / "out.nc").string() + "'");
+  CHECK(c.exit_code == 2);
+  CHECK(arcpress::test::read_file(d / "out.nc") == "old content\n");
+  fs::remove_all(d);
+}
+
+TEST_CASE("--stats reports counts on standard error", "[cli]") {
+  auto c = run_arcpress("--stats --method keep", kProgram);
+  CHECK(c.exit_code == 0);
+  CHECK(c.out == kProgram);
+  CHECK(c.err.find("runs           1 with 4 G1 moves") != std::string::npos);
+}

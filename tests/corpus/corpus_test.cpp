@@ -1,0 +1,77 @@
+#include <catch2/catch.hpp>
+#include <fmt/format.h>
+
+#include "arcpress/api/arcpress.hpp"
+#include "support.hpp"
+
+using namespace arcpress;
+
+TEST_CASE("every corpus file passes through byte for byte", "[corpus][passthrough]") {
+  auto files = test::corpus_files();
+  if (files.empty()) {
+    WARN("corpus folder " ARCPRESS_CORPUS_DIR " is absent: corpus round trip skipped");
+    return;
+  }
+  for (const auto& f : files) {
+    INFO(f.string());
+    std::string text = test::read_file(f);
+    DiagnosticSink sink(f.string());
+    CompressOptions opt;
+    opt.passthrough = true;
+    auto r = compress(f.string(), text, opt, sink);
+    REQUIRE(r.ok);
+    CHECK(r.output.size() == text.size());
+    CHECK(r.output == text);
+  }
+}
+
+TEST_CASE("with the keep method every corpus file comes out unchanged through the whole pipeline",
+          "[corpus][pipeline]") {
+  auto files = test::corpus_files();
+  if (files.empty()) {
+    WARN("corpus folder " ARCPRESS_CORPUS_DIR " is absent: skipped");
+    return;
+  }
+  size_t runs = 0;
+  for (const auto& f : files) {
+    INFO(f.string());
+    std::string text = test::read_file(f);
+    DiagnosticSink sink(f.string());
+    CompressOptions opt;
+    opt.fit.method = FitOptions::Method::Keep;
+    auto r = compress(f.string(), text, opt, sink);
+    REQUIRE(r.ok);
+    CHECK(r.output == text);
+    runs += r.stats.runs;
+  }
+  CHECK(runs > 1000);  // the pipeline found runs to work on
+}
+
+TEST_CASE("strict mode reads every corpus file but for unexpanded slicer templates",
+          "[corpus][lex]") {
+  auto files = test::corpus_files();
+  if (files.empty()) {
+    WARN("corpus folder " ARCPRESS_CORPUS_DIR " is absent: skipped");
+    return;
+  }
+  for (const auto& f : files) {
+    INFO(f.string());
+    DiagnosticSink sink(f.string());
+    CompressOptions opt;
+    opt.passthrough = true;
+    opt.strict = true;
+    std::string text = test::read_file(f);
+    auto r = compress(f.string(), text, opt, sink);
+    INFO(sink.format_all());
+    // The only blocks a strict read may refuse are placeholders a slicer left unexpanded,
+    // such as Cura's `G1 X0 Y{machine_depth}`.
+    for (const auto& d : sink.all()) {
+      size_t line_start = 0;
+      for (uint32_t l = 1; l < d.at.line; ++l) line_start = text.find('\n', line_start) + 1;
+      std::string line = text.substr(line_start, text.find('\n', line_start) - line_start);
+      INFO(line);
+      CHECK(line.find('{') != std::string::npos);
+    }
+    CHECK((r.ok || text.find('{') != std::string::npos));
+  }
+}

@@ -1,0 +1,25 @@
+#pragma once
+// Helpers shared by the tests: corpus discovery and running the arcpress executable.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace arcpress::test {
+
+/// All files of the development corpus (sorted), or empty when the folder is absent.
+std::vector<std::filesystem::path> corpus_files();
+std::string read_file(const std::filesystem::path& p);
+void write_file(const std::filesystem::path& p, const std::string& data);
+
+struct Command {
+  int exit_code = -1;
+  std::string out;  ///< standard output
+  std::string err;  ///< standard error
+};
+/// Runs the arcpress executable with `args` (shell words), feeding `stdin_text`.
+Command run_arcpress(const std::string& args, const std::string& stdin_text = "");
+
+/// A fresh empty folder under the system temp dir.
+std::filesystem::path temp_dir(const std::string& tag);
+
+}  // namespace arcpress::test

@@ -1,0 +1,55 @@
+#include <catch2/catch.hpp>
+
+#include "arcpress/emit/emitter.hpp"
+#include "arcpress/emit/number_format.hpp"
+#include "arcpress/extract/run.hpp"
+#include "arcpress/lex/lexer.hpp"
+#include "arcpress/model/interpreter.hpp"
+
+using namespace arcpress;
+
+TEST_CASE("numbers are printed in fixed point, never with an exponent or as -0", "[emit]") {
+  CHECK(format_number(1e-5, {6, true, false}) == "0.00001");
+  CHECK(format_number(1e-5, {4, true, false}) == "0");
+  CHECK(format_number(-0.00001, {4, true, false}) == "0");
+  CHECK(format_number(12.5, {3, true, false}) == "12.5");
+  CHECK(format_number(12.0, {3, true, false}) == "12");
+  CHECK(format_number(12.0, {3, true, true}) == "12.");
+  CHECK(format_number(-3.14159, {4, false, false}) == "-3.1416");
+  CHECK(format_number(123456789.0, {3, true, false}) == "123456789");
+}
+
+namespace {
+/// Emits `text` with the given primitives for its single run.
+std::string emit_with(const std::string& text, std::vector<Primitive> prims) {
+  DiagnosticSink sink;
+  Program p = lex("t.nc", text, sink);
+  Interpretation in = interpret(p, sink);
+  auto runs = extract_runs(in);
+  REQUIRE(runs.size() == 1);
+  std::vector<FitResult> fits{{std::move(prims)}};
+  return emit_program(p, in, runs, fits);
+}
+}  // namespace
+
+TEST_CASE("lines the fitter keeps are copied byte for byte", "[emit]") {
+  std::string text = "G0 X0 Y0 Z0\nG1 X1 Y0 F100 \nX2 Y0.5\nX3 Y0.5\nM2\n";
+  CHECK(emit_with(text, {{1}, {2}, {3}}) == text);
+}
+
+TEST_CASE("a merged line reuses the input's own number text and look", "[emit]") {
+  std::string text = "g0 x0 y0 z0\ng01 x1.000 y0 f100\nx2.000 y0\nx3.000 y0\nm2\n";
+  CHECK(emit_with(text, {{3}}) == "g0 x0 y0 z0\ng01 x3.000 y0 f100\nm2\n");
+}
+
+TEST_CASE("an arc is written with I/J from its start, and the next copied block restates G1", "[emit]") {
+  std::string text = "N5 G0 X10 Y0 Z0\nN10 G1 X7.071 Y7.071 F200\nN20 X0 Y10\nN30 X-5 Y10\nN40 M2\n";
+  Primitive arc{2, Primitive::Kind::Arc, true, Vec2(0, 0), 10.0};
+  std::string out = emit_with(text, {arc, {3}});
+  CHECK(out == "N5 G0 X10 Y0 Z0\nN20 G3 X0 Y10 I-10 J0 F200\nN30 G1 X-5 Y10\nN40 M2\n");
+}
+
+TEST_CASE("relative programs get relative end points; M83 E is summed", "[emit]") {
+  std::string text = "G0 X0 Y0 Z0\nG91\nM83\nG1 X1 E0.1 F100\nX1 E0.1\nX1 E0.1\nM2\n";
+  CHECK(emit_with(text, {{3}}) == "G0 X0 Y0 Z0\nG91\nM83\nG1 X3 E0.3 F100\nM2\n");
+}

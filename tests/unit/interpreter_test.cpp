@@ -1,0 +1,114 @@
+#include <catch2/catch.hpp>
+
+#include "arcpress/extract/run.hpp"
+#include "arcpress/lex/lexer.hpp"
+#include "arcpress/model/interpreter.hpp"
+
+using namespace arcpress;
+using Catch::Matchers::WithinAbs;
+
+namespace {
+struct Interpreted {
+  Program prog;
+  Interpretation in;
+};
+Interpreted run(const std::string& text) {
+  DiagnosticSink sink;
+  Interpreted r;
+  r.prog = lex("t.nc", text, sink);
+  r.in = interpret(r.prog, sink);
+  return r;
+}
+}  // namespace
+
+TEST_CASE("absolute and incremental moves give absolute millimetres", "[model]") {
+  auto r = run("G21 G90\nG0 X1 Y2 Z3\nG91\nG1 X1 Y1 F100\nG90\nG1 X0\n");
+  REQUIRE(r.in.moves.size() == 3);
+  CHECK(r.in.moves[1].to[kX] == 2.0);
+  CHECK(r.in.moves[1].to[kY] == 3.0);
+  CHECK(r.in.moves[1].to[kZ] == 3.0);
+  CHECK(r.in.moves[1].kind == MoveKind::Line);
+  CHECK(r.in.moves[2].to[kX] == 0.0);
+  CHECK(r.in.moves[2].to[kY] == 3.0);
+}
+
+TEST_CASE("inch programs are converted to millimetres", "[model]") {
+  auto r = run("G20 G90\nG0 X1 Y0 Z0\nG1 X2 F10\n");
+  REQUIRE(r.in.moves.size() == 2);
+  CHECK_THAT(r.in.moves[1].to[kX], WithinAbs(50.8, 1e-12));
+  CHECK_THAT(r.in.moves[1].feed_mm_min, WithinAbs(254.0, 1e-12));
+  CHECK(r.in.frames[r.in.moves[1].frame].unit_mm == 25.4);
+}
+
+TEST_CASE("G92 shifts the coordinates without moving", "[model]") {
+  auto r = run("G0 X10 Y0 Z0\nG92 X0\nG1 X5 F100\nG92.1\nG1 X5\n");
+  REQUIRE(r.in.moves.size() == 3);
+  CHECK(r.in.moves[1].to[kX] == 15.0);
+  CHECK(r.in.moves[2].to[kX] == 5.0);
+}
+
+TEST_CASE("modal motion and feed carry over to blocks without them", "[model]") {
+  auto r = run("G0 X0 Y0 Z0\nG1 X1 F300\nX2\nY2\n");
+  REQUIRE(r.in.moves.size() == 4);
+  CHECK(r.in.moves[3].kind == MoveKind::Line);
+  CHECK(r.in.moves[3].feed_mm_min == 300.0);
+  CHECK(r.in.moves[3].fittable);
+}
+
+TEST_CASE("arcs get their centre from I/J, G90.1 absolute centres and R", "[model]") {
+  auto r = run("G0 X10 Y0 Z0\nG3 X0 Y10 I-10 J0 F100\nG90.1\nG2 X10 Y0 I0 J0\nG3 X0 Y10 R10\nG91.1\nG18 G0 X0 Y0 Z10\nG2 X10 Z0 I0 K-10\n");
+  REQUIRE(r.in.moves.size() == 6);
+  CHECK(r.in.moves[1].kind == MoveKind::ArcCCW);
+  CHECK(r.in.moves[1].center.isApprox(Vec3(0, 0, 0)));
+  CHECK(r.in.moves[2].kind == MoveKind::ArcCW);
+  CHECK(r.in.moves[2].center.isApprox(Vec3(0, 0, 0)));
+  CHECK_THAT(r.in.moves[3].center.x(), WithinAbs(0, 1e-9));
+  CHECK_THAT(r.in.moves[3].center.y(), WithinAbs(0, 1e-9));
+  CHECK(r.in.moves[5].plane == Plane::ZX);
+  CHECK_THAT(r.in.moves[5].center.z(), WithinAbs(0, 1e-9));
+  CHECK_THAT(r.in.moves[5].center.x(), WithinAbs(0, 1e-9));
+}
+
+TEST_CASE("M83 makes E relative, M82 absolute, G92 E resets it", "[model]") {
+  auto r = run("G0 X0 Y0 Z0\nM83\nG1 X1 E0.5 F1200\nG1 X2 E0.5\nM82\nG92 E0\nG1 X3 E2\n");
+  REQUIRE(r.in.moves.size() == 4);
+  CHECK(r.in.moves[1].to[kE] == 0.5);
+  CHECK(r.in.moves[2].to[kE] == 1.0);
+  CHECK(r.in.moves[3].to[kE] == 3.0);  // G92 E0 at E=1, then E2
+}
+
+TEST_CASE("what cannot be evaluated makes the position unknown", "[model]") {
+  auto r = run("G0 X0 Y0 Z0\nG1 X[#1*2] F100\nG1 Y1\nG1 X2 Y1 Z0\nG1 X3\nG53 G0 Z0\nG1 X4\n");
+  REQUIRE(r.in.moves.size() == 7);
+  CHECK_FALSE(r.in.moves[1].known);
+  CHECK_FALSE(r.in.moves[2].known);  // X still unknown
+  CHECK_FALSE(r.in.moves[3].known);  // X unknown at its start
+  CHECK(r.in.moves[4].known);
+  CHECK(r.in.moves[4].fittable);
+  CHECK(r.in.moves[5].kind == MoveKind::Other);
+  CHECK_FALSE(r.in.moves[6].known);  // Z in machine coordinates is not in our frame
+  CHECK_FALSE(r.in.moves[6].fittable);
+}
+
+TEST_CASE("only plain G1 blocks are fittable and runs stop at everything else", "[extract]") {
+  auto r = run(
+      "G0 X0 Y0 Z0\n"
+      "G1 X1 F100\nX2\nX3 (comment)\nX4\nX5\nM3\nX6\nX7\nX8\nG1 X9 F200\nX10\n");
+  auto runs = extract_runs(r.in);
+  REQUIRE(runs.size() == 4);
+  CHECK(runs[3].move_count == 2);  // X9 X10
+  CHECK(runs[0].move_count == 2);  // X1 X2; X3 has a comment
+  CHECK(runs[1].move_count == 2);  // X4 X5
+  CHECK(runs[2].move_count == 3);  // X6 X7 X8 (F changes at X9)
+  CHECK(runs[0].point(r.in, 0).isApprox(Vec3(0, 0, 0)));
+  CHECK(runs[2].point(r.in, 3).x() == 8.0);
+}
+
+TEST_CASE("canned cycles, homing and work-offset changes are barriers", "[model]") {
+  auto r = run("G0 X0 Y0 Z0\nG81 X1 Y1 Z-1 R1 F100\nG80\nG1 X2 Y2\nG1 X3 Y3 Z0\nG1 X3.5\nG55\nG1 X4\n");
+  CHECK(r.in.moves[1].kind == MoveKind::Other);
+  CHECK_FALSE(r.in.moves[2].known);
+  CHECK_FALSE(r.in.moves[3].known);  // Z unknown at its start
+  CHECK(r.in.moves[4].known);
+  CHECK_FALSE(r.in.moves.back().known);
+}

@@ -1,0 +1,150 @@
+#include <catch2/catch.hpp>
+
+#include "arcpress/lex/lexer.hpp"
+
+using namespace arcpress;
+
+namespace {
+Program lex_text(const std::string& text, DiagnosticSink& sink) { return lex("t.nc", text, sink); }
+std::string letters(const Program& p, const Block& b) {
+  std::string s;
+  for (auto* w = p.words_begin(b); w != p.words_end(b); ++w) s += w->letter;
+  return s;
+}
+}  // namespace
+
+TEST_CASE("words are read in upper and lower case, with or without spaces", "[lex]") {
+  DiagnosticSink sink;
+  auto p = lex_text("G1X1Y2\ng 1 x 1 y 2\nG01 X-0.5 Y+3 Z.5 F1.\n", sink);
+  REQUIRE(p.blocks.size() == 3);
+  CHECK(letters(p, p.blocks[0]) == "GXY");
+  CHECK(letters(p, p.blocks[1]) == "GXY");
+  CHECK(p.words_begin(p.blocks[1])[1].value == 1.0);
+  const Word* w = p.words_begin(p.blocks[2]);
+  CHECK(w[0].value == 1.0);
+  CHECK(w[1].value == -0.5);
+  CHECK(w[2].value == 3.0);
+  CHECK(w[3].value == 0.5);
+  CHECK(w[4].value == 1.0);
+  CHECK(w[4].has_point);
+  CHECK(w[1].decimals == 1);
+  CHECK(sink.all().empty());
+}
+
+TEST_CASE("a word's raw text is exactly what the input wrote", "[lex]") {
+  DiagnosticSink sink;
+  auto p = lex_text("N0140 G01 X 12.50 Y-3", sink);
+  const Block& b = p.blocks[0];
+  CHECK(p.raw(b, p.words_begin(b)[0]) == "N0140");
+  CHECK(p.raw(b, p.words_begin(b)[2]) == "X 12.50");
+  CHECK(p.raw(b, p.words_begin(b)[3]) == "Y-3");
+  CHECK(p.words_begin(b)[2].decimals == 2);
+}
+
+TEST_CASE("decimal values are correctly rounded doubles", "[lex]") {
+  DiagnosticSink sink;
+  auto p = lex_text("X43.2289 Y-0.1 Z123456.123456", sink);
+  const Word* w = p.words_begin(p.blocks[0]);
+  CHECK(w[0].value == 43.2289);
+  CHECK(w[1].value == -0.1);
+  CHECK(w[2].value == 123456.123456);
+}
+
+TEST_CASE("comments of both kinds are skipped and remembered", "[lex]") {
+  DiagnosticSink sink;
+  auto p = lex_text("G0 X1 (move) Y2 ; rest\n(only a comment)\n; semicolon\n", sink);
+  CHECK(letters(p, p.blocks[0]) == "GXY");
+  CHECK(p.blocks[0].has_comment);
+  CHECK(p.blocks[1].kind == BlockKind::Empty);
+  CHECK(p.blocks[1].has_comment);
+  CHECK(p.blocks[2].kind == BlockKind::Empty);
+}
+
+TEST_CASE("line endings, empty lines and a missing final newline are kept exactly", "[lex]") {
+  DiagnosticSink sink;
+  auto p = lex_text("G0 X1\r\n\r\n\tG1 Y2\nM2", sink);
+  REQUIRE(p.blocks.size() == 4);
+  CHECK(p.eol(p.blocks[0]) == "\r\n");
+  CHECK(p.raw(p.blocks[1]).empty());
+  CHECK(p.raw(p.blocks[2]) == "\tG1 Y2");
+  CHECK(p.eol(p.blocks[2]) == "\n");
+  CHECK(p.eol(p.blocks[3]).empty());
+  std::string back;
+  for (const auto& b : p.blocks) back += std::string(p.raw(b)) + std::string(p.eol(b));
+  CHECK(back == p.text);
+}
+
+TEST_CASE("block delete, line numbers, checksums, percent and O program numbers", "[lex]") {
+  DiagnosticSink sink;
+  auto p = lex_text("%\nO1006\n/G1 X1\nN10 G1 X2*57\n", sink);
+  CHECK(p.blocks[0].kind == BlockKind::Percent);
+  CHECK(p.blocks[1].kind == BlockKind::Code);
+  CHECK(letters(p, p.blocks[1]) == "O");
+  CHECK(p.blocks[2].block_delete);
+  CHECK(p.blocks[3].has_checksum);
+  CHECK(letters(p, p.blocks[3]) == "NGX");
+  CHECK(sink.all().empty());
+}
+
+TEST_CASE("LinuxCNC parameters, expressions and flow control are recognised, not fitted", "[lex]") {
+  DiagnosticSink sink;
+  auto p = lex_text("#1=0.1 (SafeHeight)\nG00 X [2019*#3+#5] Y#<y>\nO100 sub\no<loop> while [#1 LT 3]\nO100 endsub\n", sink);
+  CHECK(p.blocks[0].kind == BlockKind::Macro);
+  CHECK(p.blocks[1].kind == BlockKind::Code);
+  CHECK(p.blocks[1].has_expr);
+  CHECK(p.words_begin(p.blocks[1])[1].is_expr);
+  CHECK(p.words_begin(p.blocks[1])[2].is_expr);
+  CHECK(p.blocks[2].kind == BlockKind::Control);
+  CHECK(p.blocks[3].kind == BlockKind::Control);
+  CHECK(p.blocks[4].kind == BlockKind::Control);
+  CHECK(sink.all().empty());
+}
+
+TEST_CASE("Fanuc macro lines and firmware host commands are kept as their own kinds", "[lex]") {
+  DiagnosticSink sink;
+  auto p = lex_text("IF [#100 GT 5] GOTO 10\nWHILE [#1 LT 3] DO1\nEND1\nM117 Printing layer 3\n$H\n?\nSET_FAN_SPEED FAN=x SPEED=1\n", sink);
+  CHECK(p.blocks[0].kind == BlockKind::Macro);
+  CHECK(p.blocks[1].kind == BlockKind::Macro);
+  CHECK(p.blocks[2].kind == BlockKind::Macro);
+  CHECK(p.blocks[3].kind == BlockKind::HostCommand);
+  CHECK(p.blocks[4].kind == BlockKind::HostCommand);
+  CHECK(p.blocks[5].kind == BlockKind::HostCommand);
+  CHECK(p.blocks[6].kind == BlockKind::HostCommand);
+  CHECK(sink.all().empty());
+}
+
+TEST_CASE("non-ASCII bytes inside comments are fine", "[lex]") {
+  DiagnosticSink sink;
+  auto p = lex_text("G0 X1 (Maß: 3 mm \xE2\x80\x94 ok)\n", sink);
+  CHECK(p.blocks[0].kind == BlockKind::Code);
+  CHECK(sink.all().empty());
+}
+
+TEST_CASE("a word without a number is reported with its line and column", "[lex]") {
+  DiagnosticSink sink("bad.nc");
+  auto p = lex_text("G1 X1\nG1 X Y2\n", sink);
+  CHECK(p.blocks[1].kind == BlockKind::Opaque);
+  REQUIRE(sink.all().size() == 1);
+  const auto& d = sink.all()[0];
+  CHECK(d.code == "E-LEX-NUMBER");
+  CHECK(d.at.line == 2);
+  CHECK(d.at.col == 4);
+  CHECK(sink.format(d).rfind("bad.nc:2:4: warning: E-LEX-NUMBER: word 'X' has no number (found 'Y')", 0) == 0);
+}
+
+TEST_CASE("strict mode turns unreadable blocks into errors", "[lex]") {
+  DiagnosticSink sink;
+  sink.set_strict(true);
+  lex_text("G1 X1 @\n(unclosed\n", sink);
+  CHECK(sink.error_count() == 2);
+  CHECK(sink.all()[0].code == "E-LEX-CHAR");
+  CHECK(sink.all()[1].code == "E-LEX-COMMENT");
+}
+
+TEST_CASE("repeated warnings of one kind are kept once and counted", "[lex]") {
+  DiagnosticSink sink;
+  lex_text("G1 X@\nG1 X@\nG1 X@\n", sink);
+  CHECK(sink.all().size() == 1);
+  CHECK(sink.warning_count("E-LEX-NUMBER") == 3);
+  CHECK(sink.format_all().find("2 more E-LEX-NUMBER") != std::string::npos);
+}
