@@ -1,12 +1,266 @@
 #include "arcpress/fit/fitter.hpp"
 
-namespace arcpress {
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
 
-FitResult fit_run(const Interpretation&, const Run& run, const FitOptions&) {
-  FitResult r;
-  r.prims.reserve(run.move_count);
-  for (uint32_t v = 1; v <= run.move_count; ++v) r.prims.push_back({v, Primitive::Kind::Line});
-  return r;
+#include "arcpress/core/deviation.hpp"
+
+namespace arcpress {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// Share of the tolerance kept back for rounding the printed arc centre (the emitter prints
+/// centres with enough digits that rounding moves them by less than this).
+constexpr double kRoundingReserve = 0.03;
+/// In-plane and normal-axis shares of the band when a primitive moves along the normal axis:
+/// 0.8² + 0.6² = 1, so the 3D distance stays inside the band.
+constexpr double kPlaneShare = 0.8;
+constexpr double kHeightShare = 0.6;
+
+/// One way to end the primitive that starts at `a`: at vertex e with curvature k.
+struct Candidate {
+  uint32_t e;
+  double k;       // signed curvature, 1/mm (> 0 turns left)
+  bool line;
+};
+
+struct Chosen {
+  Primitive prim;
+  Vec2 end_tangent;
+};
+
+class RunFitter {
+ public:
+  RunFitter(const Interpretation& in, const Run& run, const FitOptions& o) : o_(o), n_(run.move_count) {
+    auto ax = axes_of(run.plane);
+    p_.resize(n_ + 1);
+    for (uint32_t v = 0; v <= n_; ++v) {
+      const auto& a = run.vertex(in, v);
+      p_[v] = Vec3(a[ax.first], a[ax.second], a[ax.normal]);
+      if (v > 0) {
+        for (int x = kA; x < kE; ++x)
+          if (a[x] != run.vertex(in, v - 1)[x]) extra_axes_move_ = true;
+      }
+    }
+    eps_ = o.tolerance_mm * (1.0 - kRoundingReserve);
+    line_kink_ = deg_to_rad(o.g1_angle_deg) / 4;
+    hard_.assign(n_ + 1, 0);
+    soft_.assign(n_ + 1, 0);
+    double corner_cos = std::cos(deg_to_rad(o.corner_angle_deg));
+    for (uint32_t v = 1; v < n_; ++v) {
+      Vec3 d1 = p_[v] - p_[v - 1], d2 = p_[v + 1] - p_[v];
+      double l1 = d1.norm(), l2 = d2.norm();
+      if (l1 <= kLengthEpsMm || l2 <= kLengthEpsMm || d1.dot(d2) < corner_cos * l1 * l2) hard_[v] = 1;
+      // Extrusion per mm must stay (nearly) constant inside one primitive.
+      double e1 = run.vertex(in, v)[kE] - run.vertex(in, v - 1)[kE];
+      double e2 = run.vertex(in, v + 1)[kE] - run.vertex(in, v)[kE];
+      double r1 = e1 / l1, r2 = e2 / l2;
+      if ((e1 == 0) != (e2 == 0) || std::abs(r1 - r2) > 0.05 * std::max(std::abs(r1), std::abs(r2))) soft_[v] = 1;
+    }
+  }
+
+  FitResult fit() {
+    FitResult r;
+    if (o_.method == FitOptions::Method::Keep || extra_axes_move_ || n_ < 2) return keep();
+    uint32_t a = 0;
+    std::optional<Vec2> tangent;
+    while (a < n_) {
+      uint32_t limit = a + 1;
+      while (limit < n_ && !hard_[limit]) ++limit;
+      std::optional<Chosen> c;
+      if (tangent) c = best_from(a, *tangent, limit);
+      if (!c) {
+        if (tangent && a > 0 && !hard_[a]) ++r.forced_kinks;
+        c = best_free(a, limit);
+      }
+      r.prims.push_back(c->prim);
+      a = c->prim.end_vertex;
+      tangent = hard_[a] ? std::nullopt : std::optional<Vec2>(c->end_tangent);
+    }
+    return r;
+  }
+
+ private:
+  FitResult keep() const {
+    FitResult r;
+    for (uint32_t v = 1; v <= n_; ++v) r.prims.push_back({v, Primitive::Kind::Line});
+    return r;
+  }
+
+  Vec2 q(uint32_t v) const { return {p_[v].x(), p_[v].y()}; }
+
+  /// All ends e in (a, limit] for which the arc (or line) leaving `a` along `T` and passing
+  /// exactly through vertex e keeps every vertex in between inside the band. For a fixed
+  /// start and tangent, each vertex allows an interval of curvatures (exact for the full
+  /// circle), so the scan is linear and stops when the intervals no longer meet.
+  void scan(uint32_t a, const Vec2& T, uint32_t limit, std::vector<Candidate>& out) const {
+    out.clear();
+    Vec2 N = left_normal(T);
+    double lo = -kInf, hi = kInf;    // curvature interval, full band
+    double lo3 = -kInf, hi3 = kInf;  // ... in-plane share, for primitives that climb
+    const double h0 = p_[a].z();
+    bool flat = true;
+    double max_sweep = deg_to_rad(o_.max_sweep_deg);
+    for (uint32_t e = a + 1; e <= limit; ++e) {
+      if (e > a + 1) {
+        uint32_t m = e - 1;  // becomes an interior vertex
+        if (soft_[m]) break;
+        Vec2 u = q(m) - q(a);
+        double uu = u.squaredNorm(), b = u.dot(N);
+        double w = uu - eps_ * eps_;
+        if (w > 0) {
+          lo = std::max(lo, (2 * b - 2 * eps_) / w);
+          hi = std::min(hi, (2 * b + 2 * eps_) / w);
+        }
+        double e3 = eps_ * kPlaneShare;
+        double w3 = uu - e3 * e3;
+        if (w3 > 0) {
+          lo3 = std::max(lo3, (2 * b - 2 * e3) / w3);
+          hi3 = std::min(hi3, (2 * b + 2 * e3) / w3);
+        }
+      }
+      flat = flat && std::abs(p_[e].z() - h0) <= kLengthEpsMm;
+      double L = flat ? lo : lo3, H = flat ? hi : hi3;
+      if (L > H) break;
+      Vec2 u = q(e) - q(a);
+      double uu = u.squaredNorm();
+      if (uu <= kLengthEpsMm * kLengthEpsMm) {
+        if (!flat) continue;
+        break;  // back at the start: a full circle is not a single primitive here
+      }
+      double alpha = std::atan2(u.dot(N), u.dot(T));  // tangent-chord angle; sweep = 2 alpha
+      if (std::abs(2 * alpha) > max_sweep) break;
+      double k = 2 * u.dot(N) / uu;
+      double slack = 1e-12 * (1 + std::abs(k));
+      if (k < L - slack || k > H + slack) continue;
+      bool line = std::abs(alpha) <= line_kink_;
+      if (!line) {
+        double r = 1 / std::abs(k);
+        double len = r * std::abs(2 * alpha);
+        if (r > o_.max_radius_mm || r < o_.min_radius_mm || len < o_.min_arc_length_mm) continue;
+        if (!flat && !o_.helical) continue;
+      }
+      out.push_back({e, k, line});
+    }
+  }
+
+  /// Builds and checks the primitive for candidate `c` from `a` along `T`.
+  std::optional<Chosen> make(uint32_t a, const Vec2& T, const Candidate& c) const {
+    std::span<const Vec3> pts(p_.data() + a, c.e - a + 1);
+    Chosen ch;
+    ch.prim.end_vertex = c.e;
+    bool flat = true;
+    for (const auto& p : pts) flat = flat && std::abs(p.z() - pts.front().z()) <= kLengthEpsMm;
+    if (c.line) {
+      Deviation d = line_deviation(pts);
+      if (!d.ordered || d.max_mm > eps_) return std::nullopt;
+      ch.prim.kind = Primitive::Kind::Line;
+      Vec2 chord = q(c.e) - q(a);
+      ch.end_tangent = chord.norm() > 0 ? Vec2(chord.normalized()) : T;
+      return ch;
+    }
+    Vec2 center = q(a) + left_normal(T) / c.k;
+    bool ccw = c.k > 0;
+    ArcGeom g = ArcGeom::through(pts.front(), pts.back(), center, ccw);
+    Deviation d = arc_deviation(pts, g);
+    if (!d.ordered || d.max_mm > eps_) return std::nullopt;
+    if (!flat) {
+      // Height must follow the helix closely enough for the 3D distance to stay in the band.
+      double total = std::abs(g.sweep);
+      double len_sum = 0;
+      for (size_t m = 1; m < pts.size(); ++m) len_sum += (Vec2(pts[m].x(), pts[m].y()) - Vec2(pts[m - 1].x(), pts[m - 1].y())).norm();
+      (void)total;
+      double s = 0;
+      for (size_t m = 1; m + 1 < pts.size(); ++m) {
+        s += (Vec2(pts[m].x(), pts[m].y()) - Vec2(pts[m - 1].x(), pts[m - 1].y())).norm();
+        double h = g.h0 + (g.h1 - g.h0) * (len_sum > 0 ? s / len_sum : 0);
+        if (std::abs(pts[m].z() - h) > eps_ * kHeightShare) return std::nullopt;
+      }
+    }
+    ch.prim.kind = Primitive::Kind::Arc;
+    ch.prim.ccw = ccw;
+    ch.prim.center = center;
+    ch.prim.radius_mm = g.radius_mm;
+    double ang = g.sweep;
+    ch.end_tangent = Vec2(T.x() * std::cos(ang) - T.y() * std::sin(ang), T.x() * std::sin(ang) + T.y() * std::cos(ang));
+    return ch;
+  }
+
+  /// The longest checked primitive from `a` along `T`, or nothing.
+  std::optional<Chosen> best_from(uint32_t a, const Vec2& T, uint32_t limit) const {
+    scan(a, T, limit, cand_);
+    // Longest first; after a failure step back by growing strides to bound the work.
+    size_t stride = 1;
+    for (size_t i = cand_.size(); i > 0;) {
+      --i;
+      if (auto c = make(a, T, cand_[i])) return c;
+      if (i < stride) {
+        if (i > 0 && stride > 1) {
+          i = 1;  // still try the shortest candidate
+          stride = 1;
+          continue;
+        }
+        break;
+      }
+      i -= stride - 1;
+      stride *= 2;
+    }
+    return std::nullopt;
+  }
+
+  /// Start of a smooth stretch (or after a forced kink): try a few start tangents read off
+  /// the input and keep the one whose primitive reaches furthest.
+  Chosen best_free(uint32_t a, uint32_t limit) const {
+    std::vector<Vec2> tangents;
+    Vec2 chord = q(a + 1) - q(a);
+    for (uint32_t w : {2u, 4u, 8u, 16u}) {
+      if (a + w > limit) break;
+      if (auto t = circle_tangent(q(a), q(a + w / 2), q(a + w))) tangents.push_back(*t);
+    }
+    if (chord.norm() > kLengthEpsMm) tangents.push_back(chord.normalized());
+    std::optional<Chosen> best;
+    for (const Vec2& T : tangents) {
+      auto c = best_from(a, T, limit);
+      if (c && (!best || c->prim.end_vertex > best->prim.end_vertex)) best = c;
+    }
+    if (best) return *best;
+    Chosen line;  // the input's own segment is always inside the band
+    line.prim = {a + 1, Primitive::Kind::Line};
+    line.end_tangent = chord.norm() > kLengthEpsMm ? Vec2(chord.normalized()) : Vec2(1, 0);
+    return line;
+  }
+
+  /// Tangent at p0 of the circle through p0, p1, p2, pointing towards p1.
+  static std::optional<Vec2> circle_tangent(const Vec2& p0, const Vec2& p1, const Vec2& p2) {
+    Vec2 a = p1 - p0, b = p2 - p0;
+    double d = 2 * cross2(a, b);
+    if (a.norm() <= kLengthEpsMm || b.norm() <= kLengthEpsMm) return std::nullopt;
+    if (std::abs(d) <= 1e-12 * a.norm() * b.norm()) return Vec2(b.normalized());
+    Vec2 c(( b.y() * a.squaredNorm() - a.y() * b.squaredNorm()) / d,
+           (-b.x() * a.squaredNorm() + a.x() * b.squaredNorm()) / d);  // centre relative to p0
+    Vec2 t = left_normal(-c).normalized();
+    if (t.dot(a) < 0) t = -t;
+    return t;
+  }
+
+  const FitOptions& o_;
+  uint32_t n_;
+  std::vector<Vec3> p_;           // vertices in plane coordinates (first, second, normal)
+  std::vector<uint8_t> hard_;     // corner: tangent may change, a primitive ends here
+  std::vector<uint8_t> soft_;     // extrusion rate changes: a primitive ends here, tangent kept
+  mutable std::vector<Candidate> cand_;
+  double eps_ = 0;                // band the fitter works to, mm
+  double line_kink_ = 0;          // largest tangent-chord angle written as a line, rad
+  bool extra_axes_move_ = false;
+};
+
+}  // namespace
+
+FitResult fit_run(const Interpretation& in, const Run& run, const FitOptions& opt) {
+  return RunFitter(in, run, opt).fit();
 }
 
 }  // namespace arcpress

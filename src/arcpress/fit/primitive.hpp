@@ -36,6 +36,9 @@ struct FitOptions {
 
 struct FitResult {
   std::vector<Primitive> prims;
+  /// Joints where the input is smooth but no tangent-continuous primitive fitted the band,
+  /// so the tangent direction changes there (the band wins over tangency).
+  size_t forced_kinks = 0;
 };
 
 }  // namespace arcpress

@@ -1,0 +1,147 @@
+#include "arcpress/core/deviation.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace arcpress {
+
+ArcGeom ArcGeom::through(const Vec3& start, const Vec3& end, const Vec2& center, bool ccw) {
+  ArcGeom g;
+  g.center = center;
+  Vec2 s(start.x() - center.x(), start.y() - center.y());
+  Vec2 e(end.x() - center.x(), end.y() - center.y());
+  g.radius_mm = s.norm();
+  g.start_angle = std::atan2(s.y(), s.x());
+  double sweep = std::atan2(cross2(s, e), s.dot(e));  // (-π, π]
+  if (ccw && sweep <= 0) sweep += 2 * kPi;
+  if (!ccw && sweep >= 0) sweep -= 2 * kPi;
+  g.sweep = sweep;
+  g.h0 = start.z();
+  g.h1 = end.z();
+  return g;
+}
+
+double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
+  Vec3 d = b - a;
+  double len2 = d.squaredNorm();
+  if (len2 <= kLengthEpsMm * kLengthEpsMm) return (p - a).norm();
+  double t = std::clamp((p - a).dot(d) / len2, 0.0, 1.0);
+  return (p - (a + t * d)).norm();
+}
+
+Deviation line_deviation(std::span<const Vec3> pts) {
+  Deviation dev;
+  const Vec3& a = pts.front();
+  const Vec3& b = pts.back();
+  Vec3 d = b - a;
+  double len2 = d.squaredNorm();
+  double last_t = 0;
+  for (size_t m = 1; m + 1 < pts.size(); ++m) {
+    double dist = point_segment_distance(pts[m], a, b);
+    if (dist > dev.max_mm) {
+      dev.max_mm = dist;
+      dev.at_index = m;
+    }
+    // Vertices must advance along the chord, or a stretch of the chord could be far from
+    // every input segment (a reversal inside the band).
+    double t = len2 > 0 ? (pts[m] - a).dot(d) / len2 : 0;
+    if (t < last_t - 1e-12) dev.ordered = false;
+    last_t = std::max(last_t, t);
+  }
+  // The input segments are within max(vertex distance) of the chord (convexity), and with
+  // ordered vertices every chord point is within that distance of some input segment.
+  return dev;
+}
+
+Deviation arc_deviation(std::span<const Vec3> pts, const ArcGeom& arc) {
+  Deviation dev;
+  const double r = arc.radius_mm;
+  const double dir = arc.sweep >= 0 ? 1.0 : -1.0;
+  const double total = std::abs(arc.sweep);
+  auto angle_along = [&](const Vec3& p) {  // angle from the start in the arc's direction, [0, 2π)
+    double a = std::atan2(p.y() - arc.center.y(), p.x() - arc.center.x()) - arc.start_angle;
+    a *= dir;
+    a = std::fmod(a, 2 * kPi);
+    if (a < 0) a += 2 * kPi;
+    return a;
+  };
+  auto note = [&](double d, size_t m) {
+    if (d > dev.max_mm) {
+      dev.max_mm = d;
+      dev.at_index = m;
+    }
+  };
+  const size_t n = pts.size();
+  std::vector<double> phi(n);
+  phi[0] = 0;
+  phi[n - 1] = total;
+  for (size_t m = 1; m + 1 < n; ++m) {
+    double a = angle_along(pts[m]);
+    // A vertex just behind the start (within rounding) reads as almost 2π.
+    if (a > total && a > 2 * kPi - 1e-9) a = 0;
+    phi[m] = a;
+  }
+  for (size_t m = 1; m < n; ++m)
+    if (phi[m] < phi[m - 1] - 1e-12) dev.ordered = false;
+  // Input vertices to the arc (helical height interpolated by angle).
+  for (size_t m = 1; m + 1 < n; ++m) {
+    const Vec3& p = pts[m];
+    double d;
+    if (phi[m] <= total) {
+      Vec3 on = arc.point_at(total > 0 ? phi[m] / total : 0);
+      Vec2 rel(p.x() - arc.center.x(), p.y() - arc.center.y());
+      double dr = rel.norm() - r;
+      double dz = p.z() - on.z();
+      d = std::sqrt(dr * dr + dz * dz);
+    } else {
+      d = std::min((p - pts.front()).norm(), (p - pts.back()).norm());
+    }
+    note(d, m);
+  }
+  // Input segments bulge towards the centre: the point of a chord nearest the centre.
+  for (size_t m = 0; m + 1 < n; ++m) {
+    Vec2 a(pts[m].x(), pts[m].y()), b(pts[m + 1].x(), pts[m + 1].y());
+    Vec2 ab = b - a;
+    double len2 = ab.squaredNorm();
+    if (len2 <= 0) continue;
+    double t = (arc.center - a).dot(ab) / len2;
+    if (t <= 0 || t >= 1) continue;
+    Vec2 foot = a + t * ab;
+    double inward = r - (foot - arc.center).norm();
+    double dz = 0;  // heights at the foot: both linear, so compare the interpolations
+    {
+      double ph = phi[m] + t * (phi[m + 1] - phi[m]);
+      double hz = pts[m].z() + t * (pts[m + 1].z() - pts[m].z());
+      dz = hz - arc.point_at(total > 0 ? ph / total : 0).z();
+    }
+    note(std::sqrt(std::max(inward, 0.0) * std::max(inward, 0.0) + dz * dz), m);
+  }
+  // Arc to input: each piece of the arc between two vertices' angles against that segment,
+  // at the piece ends, its middle, and where the arc runs parallel to the segment.
+  if (dev.ordered && total > 0) {
+    for (size_t m = 0; m + 1 < n; ++m) {
+      double p0 = phi[m], p1 = phi[m + 1];
+      double cand[4] = {p0, p1, 0.5 * (p0 + p1), -1};
+      Vec2 ab(pts[m + 1].x() - pts[m].x(), pts[m + 1].y() - pts[m].y());
+      if (ab.squaredNorm() > 0) {
+        // Arc point whose radius is perpendicular to the segment, on the far side.
+        Vec2 nrm = left_normal(ab.normalized());
+        for (double s : {1.0, -1.0}) {
+          double a = std::atan2(s * nrm.y(), s * nrm.x()) - arc.start_angle;
+          a *= dir;
+          a = std::fmod(a, 2 * kPi);
+          if (a < 0) a += 2 * kPi;
+          if (a > p0 && a < p1) cand[3] = a;
+        }
+      }
+      for (double c : cand) {
+        if (c < 0) continue;
+        Vec3 q = arc.point_at(c / total);
+        note(point_segment_distance(q, pts[m], pts[m + 1]), m);
+      }
+    }
+  }
+  return dev;
+}
+
+}  // namespace arcpress

@@ -1,0 +1,43 @@
+#pragma once
+// Exact-enough two-sided distance between a polyline and one line or arc: every input
+// vertex and every point of every input segment to the primitive, and every point of the
+// primitive to the polyline. Used by the fitter to accept a primitive and by the verifier
+// to measure a whole program. Points are in plane coordinates: (first, second, normal).
+#include <span>
+
+#include "arcpress/core/geometry.hpp"
+
+namespace arcpress {
+
+/// A circular (possibly helical) arc in plane coordinates.
+struct ArcGeom {
+  Vec2 center{0, 0};
+  double radius_mm = 0;
+  double start_angle = 0;  ///< radians, of the start point about the centre
+  double sweep = 0;        ///< radians, > 0 counter-clockwise; |sweep| <= 2π
+  double h0 = 0, h1 = 0;   ///< normal-axis height at start and end (helix)
+
+  Vec3 point_at(double t) const {  ///< t in [0, 1] along the arc
+    double a = start_angle + sweep * t;
+    return {center.x() + radius_mm * std::cos(a), center.y() + radius_mm * std::sin(a), h0 + (h1 - h0) * t};
+  }
+  /// Builds the arc from start to end about `center`; `ccw` picks the direction; a start
+  /// equal to the end is a full turn.
+  static ArcGeom through(const Vec3& start, const Vec3& end, const Vec2& center, bool ccw);
+};
+
+struct Deviation {
+  double max_mm = 0;     ///< the largest distance found, mm
+  size_t at_index = 0;   ///< polyline vertex (or segment start) where it occurs
+  bool ordered = true;   ///< false: the polyline does not advance monotonically along the primitive
+};
+
+/// Two-sided deviation between the polyline `pts` and the segment pts.front() -> pts.back().
+Deviation line_deviation(std::span<const Vec3> pts);
+/// Two-sided deviation between the polyline `pts` and `arc` (which should start at
+/// pts.front() and end at pts.back()).
+Deviation arc_deviation(std::span<const Vec3> pts, const ArcGeom& arc);
+/// Distance from point p to the segment a-b.
+double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b);
+
+}  // namespace arcpress
