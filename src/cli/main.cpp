@@ -66,6 +66,18 @@ int run_compress(const CompressArgs& a) {
     fmt::print(stderr, "arcpress: {} error(s) in '{}'; nothing written\n", sink.error_count(), name);
     return kExitInput;
   }
+  if (!r.within_band()) {
+    const auto& c = r.comparison;
+    if (!c.matched)
+      fmt::print(stderr, "arcpress: verification failed: {}; nothing written\n", c.mismatch);
+    else
+      fmt::print(stderr,
+                 "arcpress: verification failed: output deviates {:.6f} mm from the input (band {:.6f} mm) at "
+                 "X{:.4f} Y{:.4f} Z{:.4f}, input line {}, output line {}; nothing written\n",
+                 c.max_deviation_mm, r.band_mm, c.worst_point.x(), c.worst_point.y(), c.worst_point.z(),
+                 c.worst_line_a, c.worst_line_b);
+    return kExitVerifyFailed;
+  }
   cli::write_output(out_path, r.output);
   if (a.stats) {
     double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -81,6 +93,16 @@ int run_compress(const CompressArgs& a) {
                r.bytes_in ? 100.0 * double(r.output.size()) / double(r.bytes_in) : 100.0, st.runs, st.moves_in,
                st.lines_out, st.arcs_out, st.lines_out + st.arcs_out, st.moves_in,
                st.moves_in ? 100.0 * double(st.lines_out + st.arcs_out) / double(st.moves_in) : 100.0, s);
+    if (r.verified) {
+      const auto& c = r.comparison;
+      fmt::print(stderr,
+                 "  deviation      {:.6f} mm max (band {} mm), input line {}, output line {}\n"
+                 "  smooth joints  {} made, max kink {:.3f} deg, {} over {} deg ({} forced by the band)\n",
+                 c.max_deviation_mm, r.band_mm, c.worst_line_a, c.worst_line_b, c.smooth_joints,
+                 c.max_smooth_kink_deg, c.smooth_joints_over_g1, a.opt.fit.g1_angle_deg, r.forced_kinks);
+    } else {
+      fmt::print(stderr, "  deviation      not measured (--no-verify)\n");
+    }
   }
   return kExitOk;
 }
@@ -125,7 +147,9 @@ int main(int argc, char** argv) {
   app.add_flag("--no-helical", no_helical, "Never move the plane's normal axis inside an arc");
   app.add_flag("--passthrough", a.opt.passthrough, "Read and write the program back unchanged");
   app.add_flag("--strict", a.opt.strict, "Refuse (exit 2) any block that cannot be read");
-  app.add_flag("--stats", a.stats, "Print counts and sizes to standard error");
+  app.add_flag("--stats", a.stats, "Print counts, sizes and the measured deviation to standard error");
+  bool no_verify = false;
+  app.add_flag("--no-verify", no_verify, "Skip reading the output back and measuring it against the input");
 
   try {
     app.parse(argc, argv);
@@ -140,6 +164,7 @@ int main(int argc, char** argv) {
     return kExitInput;
   }
   a.opt.fit.helical = !no_helical;
+  a.opt.verify = !no_verify;
   try {
     return run_compress(a);
   } catch (const Error& e) {

@@ -6,6 +6,7 @@
 #include "arcpress/core/diagnostic.hpp"
 #include "arcpress/emit/emitter.hpp"
 #include "arcpress/fit/primitive.hpp"
+#include "arcpress/verify/path_compare.hpp"
 
 namespace arcpress {
 
@@ -15,6 +16,7 @@ struct CompressOptions {
   FitOptions fit;
   bool passthrough = false;  ///< lex and write back every block unchanged
   bool strict = false;       ///< any unreadable block is an error
+  bool verify = true;        ///< re-read the output and measure it against the input
 };
 
 struct CompressResult {
@@ -23,10 +25,17 @@ struct CompressResult {
   size_t blocks_in = 0;
   size_t bytes_in = 0;
   EmitStats stats;
+  size_t forced_kinks = 0;   ///< smooth joints where the band forced a tangent change
+  bool verified = false;     ///< `comparison` holds a measurement of the output
+  PathComparison comparison;
+  /// True when the output may be used: read fine and, when verified, inside the band.
+  bool within_band() const { return !verified || comparison.within(band_mm); }
+  double band_mm = 0;
 };
 
 /// Compresses `text` (the program called `name` in diagnostics). Never throws for bad
-/// input: problems go to `sink`, and in strict mode any of them makes `ok` false.
+/// input: problems go to `sink`, and in strict mode any of them makes `ok` false. With
+/// `verify`, the output is read back and compared with the input (see within_band()).
 CompressResult compress(const std::string& name, std::string text, const CompressOptions& opt,
                         DiagnosticSink& sink);
 

@@ -21,10 +21,25 @@ CompressResult compress(const std::string& name, std::string text, const Compres
   if (!opt.passthrough) {
     runs = extract_runs(in);
     fits.reserve(runs.size());
-    for (const Run& run : runs) fits.push_back(fit_run(in, run, opt.fit));
+    for (const Run& run : runs) {
+      fits.push_back(fit_run(in, run, opt.fit));
+      r.forced_kinks += fits.back().forced_kinks;
+    }
   }
   r.output = emit_program(prog, in, runs, fits, &r.stats);
   r.ok = true;
+  r.band_mm = opt.fit.tolerance_mm;
+  if (opt.verify && !opt.passthrough) {
+    DiagnosticSink out_sink(name + " (output)");
+    Program out_prog = lex(name + " (output)", r.output, out_sink);
+    Interpretation out_in = interpret(out_prog, out_sink);
+    CompareOptions co;
+    co.tolerance_mm = opt.fit.tolerance_mm;
+    co.g1_angle_deg = opt.fit.g1_angle_deg;
+    co.corner_angle_deg = opt.fit.corner_angle_deg;
+    r.comparison = compare_paths(prog, in, out_prog, out_in, co);
+    r.verified = true;
+  }
   return r;
 }
 

@@ -21,6 +21,15 @@ ArcGeom ArcGeom::through(const Vec3& start, const Vec3& end, const Vec2& center,
   return g;
 }
 
+bool is_corner(const Vec3& a, const Vec3& b, const Vec3& c, double band_mm, double corner_angle_deg) {
+  Vec3 d1 = b - a, d2 = c - b;
+  double l1 = d1.norm(), l2 = d2.norm();
+  if (l1 <= kLengthEpsMm || l2 <= kLengthEpsMm) return true;
+  double turn = std::acos(std::clamp(d1.dot(d2) / (l1 * l2), -1.0, 1.0));
+  if (turn > deg_to_rad(corner_angle_deg)) return true;
+  return turn * l1 * l2 / (4 * (l1 + l2)) > band_mm;
+}
+
 double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
   Vec3 d = b - a;
   double len2 = d.squaredNorm();

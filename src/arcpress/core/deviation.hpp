@@ -37,6 +37,13 @@ Deviation line_deviation(std::span<const Vec3> pts);
 /// Two-sided deviation between the polyline `pts` and `arc` (which should start at
 /// pts.front() and end at pts.back()).
 Deviation arc_deviation(std::span<const Vec3> pts, const ArcGeom& arc);
+/// True when the path a -> b -> c has a real corner at b: it turns by more than
+/// `corner_angle_deg`, or so sharply for its segment lengths that no tangent-continuous
+/// path through b stays within `band_mm` of both segments. (With tangent T at b making
+/// angles α1, α2 with the segments, the arcs through a and c bulge by about L·α/4; the best
+/// split of the turn θ gives θ·L1·L2 / (4·(L1 + L2)).) Zero-length segments are corners.
+bool is_corner(const Vec3& a, const Vec3& b, const Vec3& c, double band_mm, double corner_angle_deg);
+
 /// Distance from point p to the segment a-b.
 double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b);
 

@@ -218,7 +218,8 @@ class Emitter {
         s += sep;
         s += raw;  // the input's own text for this value
       } else {
-        put(L, format_number(fr.to_program(ax, to[ax]), ns));
+        // Not written in the covered blocks: the value from before, printed exactly.
+        put(L, format_number(fr.to_program(ax, to[ax]), NumberStyle{6, true, st.keep_point}));
       }
     }
     if (const Word* f = last_word['F' - 'A']) {

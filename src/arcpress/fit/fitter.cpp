@@ -49,11 +49,9 @@ class RunFitter {
     line_kink_ = deg_to_rad(o.g1_angle_deg) / 4;
     hard_.assign(n_ + 1, 0);
     soft_.assign(n_ + 1, 0);
-    double corner_cos = std::cos(deg_to_rad(o.corner_angle_deg));
     for (uint32_t v = 1; v < n_; ++v) {
-      Vec3 d1 = p_[v] - p_[v - 1], d2 = p_[v + 1] - p_[v];
-      double l1 = d1.norm(), l2 = d2.norm();
-      if (l1 <= kLengthEpsMm || l2 <= kLengthEpsMm || d1.dot(d2) < corner_cos * l1 * l2) hard_[v] = 1;
+      double l1 = (p_[v] - p_[v - 1]).norm(), l2 = (p_[v + 1] - p_[v]).norm();
+      if (is_corner(p_[v - 1], p_[v], p_[v + 1], eps_, o.corner_angle_deg)) hard_[v] = 1;
       // Extrusion per mm must stay (nearly) constant inside one primitive.
       double e1 = run.vertex(in, v)[kE] - run.vertex(in, v - 1)[kE];
       double e2 = run.vertex(in, v + 1)[kE] - run.vertex(in, v)[kE];
@@ -189,14 +187,29 @@ class RunFitter {
     return ch;
   }
 
-  /// The longest checked primitive from `a` along `T`, or nothing.
+  /// True when a tangent-continuous primitive can leave vertex `e` along `T` (or `e` is a
+  /// corner or the end, where tangency is not needed).
+  bool can_continue(uint32_t e, const Vec2& T, uint32_t limit) const {
+    if (e >= limit) return true;
+    std::vector<Candidate> next;
+    scan(e, T, std::min(limit, e + 1), next);
+    return !next.empty() && make(e, T, next.back()).has_value();
+  }
+
+  /// The longest checked primitive from `a` along `T` after which the path can go on
+  /// tangentially; failing that, the longest checked one; or nothing.
   std::optional<Chosen> best_from(uint32_t a, const Vec2& T, uint32_t limit) const {
-    scan(a, T, limit, cand_);
+    std::vector<Candidate> cand;
+    scan(a, T, limit, cand);
+    std::optional<Chosen> fallback;
     // Longest first; after a failure step back by growing strides to bound the work.
     size_t stride = 1;
-    for (size_t i = cand_.size(); i > 0;) {
+    for (size_t i = cand.size(); i > 0;) {
       --i;
-      if (auto c = make(a, T, cand_[i])) return c;
+      if (auto c = make(a, T, cand[i])) {
+        if (can_continue(c->prim.end_vertex, c->end_tangent, limit)) return c;
+        if (!fallback) fallback = c;
+      }
       if (i < stride) {
         if (i > 0 && stride > 1) {
           i = 1;  // still try the shortest candidate
@@ -208,7 +221,7 @@ class RunFitter {
       i -= stride - 1;
       stride *= 2;
     }
-    return std::nullopt;
+    return fallback;
   }
 
   /// Start of a smooth stretch (or after a forced kink): try a few start tangents read off
@@ -251,7 +264,6 @@ class RunFitter {
   std::vector<Vec3> p_;           // vertices in plane coordinates (first, second, normal)
   std::vector<uint8_t> hard_;     // corner: tangent may change, a primitive ends here
   std::vector<uint8_t> soft_;     // extrusion rate changes: a primitive ends here, tangent kept
-  mutable std::vector<Candidate> cand_;
   double eps_ = 0;                // band the fitter works to, mm
   double line_kink_ = 0;          // largest tangent-chord angle written as a line, rad
   bool extra_axes_move_ = false;

@@ -1,0 +1,174 @@
+#include "arcpress/verify/path_compare.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "arcpress/core/deviation.hpp"
+
+namespace arcpress {
+namespace {
+
+/// End points printed from the same text read back identically; this only absorbs the
+/// different order of operations in unit conversion.
+constexpr double kSamePointMm = 1e-7;
+
+bool is_feed(MoveKind k) { return k == MoveKind::Line || k == MoveKind::ArcCW || k == MoveKind::ArcCCW; }
+bool is_arc(MoveKind k) { return k == MoveKind::ArcCW || k == MoveKind::ArcCCW; }
+
+bool same_point(const AxisValues& p, const AxisValues& q) {
+  for (int ax = 0; ax < kE; ++ax)
+    if (std::abs(p[ax] - q[ax]) > kSamePointMm) return false;
+  return true;
+}
+
+Vec3 in_plane(const AxisValues& v, Plane pl) {
+  auto a = axes_of(pl);
+  return {v[a.first], v[a.second], v[a.normal]};
+}
+Vec3 in_plane(const Vec3& v, Plane pl) {
+  auto a = axes_of(pl);
+  return {v[a.first], v[a.second], v[a.normal]};
+}
+Vec3 from_plane(const Vec3& v, Plane pl) {
+  auto a = axes_of(pl);
+  Vec3 r;
+  r[a.first] = v.x();
+  r[a.second] = v.y();
+  r[a.normal] = v.z();
+  return r;
+}
+
+ArcGeom arc_of(const Interpretation& in, size_t i) {
+  const Move& m = in.moves[i];
+  Vec3 s = in_plane(in.from(i), m.plane), e = in_plane(m.to, m.plane);
+  Vec3 c = in_plane(m.center, m.plane);
+  ArcGeom g = ArcGeom::through(s, e, Vec2(c.x(), c.y()), m.kind == MoveKind::ArcCCW);
+  if (std::abs(g.sweep) < 1e-12 || (s - e).norm() <= kSamePointMm) g.sweep = (g.sweep >= 0 ? 1 : -1) * 2 * kPi;
+  g.sweep += (g.sweep >= 0 ? 1 : -1) * 2 * kPi * std::max(0, m.turns - 1);
+  return g;
+}
+
+/// Appends the path of move i to `pts` (in `pl` coordinates); arcs as dense chords whose
+/// sagitta is below `chord_mm`.
+void append_path(const Interpretation& in, size_t i, Plane pl, double chord_mm, std::vector<Vec3>& pts) {
+  const Move& m = in.moves[i];
+  if (!is_arc(m.kind)) {
+    pts.push_back(in_plane(m.to, pl));
+    return;
+  }
+  ArcGeom g = arc_of(in, i);
+  double r = std::max(g.radius_mm, 1e-9);
+  double step = 2 * std::acos(std::clamp(1 - chord_mm / r, -1.0, 1.0));
+  size_t n = std::clamp<size_t>(size_t(std::ceil(std::abs(g.sweep) / std::max(step, 1e-6))), 1, 200000);
+  for (size_t k = 1; k <= n; ++k) {
+    Vec3 p = g.point_at(double(k) / double(n));
+    pts.push_back(in_plane(from_plane(p, m.plane), pl));
+  }
+}
+
+Vec2 start_tangent(const Interpretation& in, size_t i) {
+  const Move& m = in.moves[i];
+  Vec3 s = in_plane(in.from(i), m.plane), e = in_plane(m.to, m.plane);
+  if (is_arc(m.kind)) {
+    Vec3 c = in_plane(m.center, m.plane);
+    Vec2 rad(s.x() - c.x(), s.y() - c.y());
+    Vec2 t = left_normal(rad).normalized();
+    return m.kind == MoveKind::ArcCCW ? t : Vec2(-t);
+  }
+  Vec2 d(e.x() - s.x(), e.y() - s.y());
+  return d.norm() > 0 ? Vec2(d.normalized()) : Vec2(0, 0);
+}
+
+Vec2 end_tangent(const Interpretation& in, size_t i) {
+  const Move& m = in.moves[i];
+  if (!is_arc(m.kind)) return start_tangent(in, i);
+  Vec3 e = in_plane(m.to, m.plane), c = in_plane(m.center, m.plane);
+  Vec2 rad(e.x() - c.x(), e.y() - c.y());
+  Vec2 t = left_normal(rad).normalized();
+  return m.kind == MoveKind::ArcCCW ? t : Vec2(-t);
+}
+
+double angle_deg(const Vec2& a, const Vec2& b) {
+  if (a.squaredNorm() == 0 || b.squaredNorm() == 0) return 0;
+  return rad_to_deg(std::atan2(std::abs(cross2(a, b)), a.dot(b)));
+}
+
+
+}  // namespace
+
+PathComparison compare_paths(const Program& a, const Interpretation& ia, const Program& b,
+                             const Interpretation& ib, const CompareOptions& opt) {
+  PathComparison r;
+  const double chord_mm = std::max(opt.tolerance_mm * 1e-3, 1e-6);
+  size_t i = 0;  // next input move
+  std::vector<Vec3> pts;
+  long prev_j = -1;          // previous output feed move, for joints
+  bool prev_replaced = false;
+  for (size_t j = 0; j < ib.moves.size(); ++j) {
+    const Move& mb = ib.moves[j];
+    // Find the input move that ends where this output move ends.
+    size_t k = i;
+    while (k < ia.moves.size() && !same_point(ia.moves[k].to, mb.to)) ++k;
+    if (k >= ia.moves.size()) {
+      r.matched = false;
+      r.mismatch = fmt::format("output line {} ends at X{:.4f} Y{:.4f} Z{:.4f}, which is not on the input path after input line {}",
+                               b.blocks[mb.block].line, mb.to[kX], mb.to[kY], mb.to[kZ],
+                               i < ia.moves.size() ? a.blocks[ia.moves[i].block].line : 0);
+      return r;
+    }
+    bool replaced = k > i;
+    if (is_feed(mb.kind) && mb.known) {
+      ++r.moves_b;
+      // The input stretch i..k as points in the output move's plane.
+      pts.clear();
+      pts.push_back(in_plane(ia.from(i), mb.plane));
+      bool input_is_same_arc = !replaced && is_arc(ia.moves[i].kind) && is_arc(mb.kind) &&
+                               ia.moves[i].kind == mb.kind &&
+                               (ia.moves[i].center - mb.center).norm() <= kSamePointMm;
+      for (size_t q = i; q <= k; ++q) {
+        if (is_feed(ia.moves[q].kind)) ++r.moves_a;
+        if (!input_is_same_arc) append_path(ia, q, mb.plane, chord_mm, pts);
+      }
+      Deviation d;
+      if (input_is_same_arc) {
+        d.max_mm = 0;
+      } else if (is_arc(mb.kind)) {
+        d = arc_deviation(pts, arc_of(ib, j));
+      } else {
+        d = line_deviation(pts);
+      }
+      if (!d.ordered) d.max_mm = std::max(d.max_mm, opt.tolerance_mm * 2 + 1.0);  // the path runs backwards
+      if (d.max_mm > r.max_deviation_mm) {
+        r.max_deviation_mm = d.max_mm;
+        r.worst_line_b = b.blocks[mb.block].line;
+        size_t q = std::min(k, i + (d.at_index > 0 ? d.at_index - 1 : 0));
+        r.worst_line_a = a.blocks[ia.moves[q].block].line;
+        r.worst_point = from_plane(pts[std::min(d.at_index, pts.size() - 1)], mb.plane);
+      }
+      // Tangency at the joint with the previous output feed move.
+      if (prev_j == long(j) - 1 && prev_j >= 0 && (replaced || prev_replaced) && ib.moves[prev_j].plane == mb.plane &&
+          i >= 1 && is_feed(ia.moves[i - 1].kind)) {
+        Vec3 before = in_plane(ia.from(i - 1), mb.plane);
+        Vec3 at = in_plane(ia.from(i), mb.plane);
+        Vec3 after = in_plane(ia.moves[i].to, mb.plane);
+        if (!is_corner(before, at, after, opt.tolerance_mm, opt.corner_angle_deg)) {
+          ++r.smooth_joints;
+          double kink = angle_deg(end_tangent(ib, size_t(prev_j)), start_tangent(ib, j));
+          r.max_smooth_kink_deg = std::max(r.max_smooth_kink_deg, kink);
+          if (kink > opt.g1_angle_deg) ++r.smooth_joints_over_g1;
+        }
+      }
+      prev_j = long(j);
+      prev_replaced = replaced;
+    } else {
+      prev_j = -1;
+    }
+    i = k + 1;
+  }
+  return r;
+}
+
+}  // namespace arcpress

@@ -1,0 +1,42 @@
+#pragma once
+// Verification stage: reads two interpreted programs and measures how far the second's
+// path is from the first's. The output of arcpress ends every move on a vertex of the input
+// path, so the two move lists are walked together: each output move is matched with the
+// stretch of input moves that ends at the same point, and the two-sided distance between
+// them is measured exactly (core/deviation). A move that does not end on the input path is
+// a mismatch and fails the check.
+#include <cstdint>
+#include <string>
+
+#include "arcpress/lex/block.hpp"
+#include "arcpress/model/move.hpp"
+
+namespace arcpress {
+
+struct CompareOptions {
+  double tolerance_mm = 0.01;       ///< band the output path must stay in
+  double g1_angle_deg = 0.5;        ///< tangent change allowed at smooth joints
+  double corner_angle_deg = 30.0;   ///< input turns sharper than this are corners
+};
+
+struct PathComparison {
+  bool matched = true;              ///< every output move ends on the input path
+  std::string mismatch;             ///< what did not match, with line numbers
+  double max_deviation_mm = 0;      ///< largest two-sided distance of feed moves
+  uint32_t worst_line_a = 0;        ///< 1-based lines (input, output) where it occurs
+  uint32_t worst_line_b = 0;
+  Vec3 worst_point{0, 0, 0};        ///< input vertex nearest the worst place, mm
+  size_t moves_a = 0, moves_b = 0;  ///< feed moves compared
+  /// Joints between two output feed moves of which at least one replaces several input
+  /// moves, where the input is smooth (no corner in the sense of is_corner()).
+  size_t smooth_joints = 0;
+  size_t smooth_joints_over_g1 = 0;  ///< ... whose tangent changes by more than g1_angle_deg
+  double max_smooth_kink_deg = 0;
+
+  bool within(double tolerance_mm) const { return matched && max_deviation_mm <= tolerance_mm; }
+};
+
+PathComparison compare_paths(const Program& a, const Interpretation& ia, const Program& b,
+                             const Interpretation& ib, const CompareOptions& opt);
+
+}  // namespace arcpress
