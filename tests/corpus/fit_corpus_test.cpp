@@ -1,0 +1,62 @@
+// The fitter's guarantees on every run of every corpus file, measured by reading the
+// output back: inside the band, ending on the input path, non-motion lines untouched.
+#include <catch2/catch.hpp>
+#include <fmt/format.h>
+
+#include "arcpress/api/arcpress.hpp"
+#include "arcpress/lex/lexer.hpp"
+#include "support.hpp"
+
+using namespace arcpress;
+
+namespace {
+
+/// The raw text of every block that does not move an axis, in order.
+std::vector<std::string> non_motion_lines(const std::string& text) {
+  DiagnosticSink sink;
+  Program p = lex("x", text, sink);
+  std::vector<std::string> out;
+  for (const auto& b : p.blocks) {
+    bool moves = false;
+    for (auto* w = p.words_begin(b); w != p.words_end(b); ++w)
+      moves |= std::string_view("XYZABCUVWEIJKR").find(w->letter) != std::string_view::npos && !w->flag;
+    if (!moves || b.kind != BlockKind::Code) out.emplace_back(p.raw(b));
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("every corpus file compresses inside the band with its non-motion lines untouched",
+          "[corpus][fit]") {
+  auto files = test::corpus_files();
+  if (files.empty()) {
+    WARN("corpus folder " ARCPRESS_CORPUS_DIR " is absent: skipped");
+    return;
+  }
+  size_t moves_in = 0, blocks_out = 0, arcs = 0;
+  for (double tol : {0.01, 0.002}) {
+    for (const auto& f : files) {
+      INFO(fmt::format("{} at tolerance {} mm", f.string(), tol));
+      std::string text = test::read_file(f);
+      DiagnosticSink sink(f.string());
+      CompressOptions opt;
+      opt.fit.tolerance_mm = tol;
+      auto r = compress(f.string(), text, opt, sink);
+      REQUIRE(r.ok);
+      REQUIRE(r.verified);
+      INFO(r.comparison.mismatch);
+      CHECK(r.comparison.matched);
+      CHECK(r.comparison.max_deviation_mm <= tol);
+      CHECK(non_motion_lines(r.output) == non_motion_lines(text));
+      if (tol == 0.01) {
+        moves_in += r.stats.moves_in;
+        blocks_out += r.stats.lines_out + r.stats.arcs_out;
+        arcs += r.stats.arcs_out;
+      }
+    }
+  }
+  // The corpus has long smooth runs: the fitter must actually compress them.
+  CHECK(arcs > 10000);
+  CHECK(double(blocks_out) < 0.8 * double(moves_in));
+}

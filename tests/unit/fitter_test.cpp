@@ -1,0 +1,231 @@
+// Specifications of the fitter, checked through the whole pipeline: each program is
+// compressed, read back and measured by the verifier.
+#include <catch2/catch.hpp>
+#include <fmt/format.h>
+
+#include <cmath>
+#include <random>
+
+#include "arcpress/api/arcpress.hpp"
+
+using namespace arcpress;
+
+namespace {
+
+struct Pt {
+  double x, y, z;
+};
+
+/// A G21 G90 program: rapid to the first point, then one G1 per further point.
+std::string program(const std::vector<Pt>& pts, const std::string& plane = "G17", int decimals = 4) {
+  std::string s = fmt::format("G21 G90 {}\nG0 X{:.{}f} Y{:.{}f} Z{:.{}f}\nG1 F600\n", plane, pts[0].x, decimals,
+                              pts[0].y, decimals, pts[0].z, decimals);
+  for (size_t i = 1; i < pts.size(); ++i)
+    s += fmt::format("G1 X{:.{}f} Y{:.{}f} Z{:.{}f}\n", pts[i].x, decimals, pts[i].y, decimals, pts[i].z, decimals);
+  return s + "M2\n";
+}
+
+std::vector<Pt> arc_points(double cx, double cy, double r, double a0_deg, double a1_deg, double step_deg,
+                           double z0 = 0, double z1 = 0) {
+  std::vector<Pt> p;
+  int n = int(std::round(std::abs(a1_deg - a0_deg) / step_deg));
+  for (int i = 0; i <= n; ++i) {
+    double t = double(i) / n;
+    double a = deg_to_rad(a0_deg + (a1_deg - a0_deg) * t);
+    p.push_back({cx + r * std::cos(a), cy + r * std::sin(a), z0 + (z1 - z0) * t});
+  }
+  return p;
+}
+
+struct Outcome {
+  CompressResult r;
+  size_t arcs = 0, lines = 0;
+};
+
+Outcome compress_text(const std::string& text, FitOptions fit = {}) {
+  DiagnosticSink sink;
+  CompressOptions opt;
+  opt.fit = fit;
+  Outcome o;
+  o.r = compress("t.nc", text, opt, sink);
+  REQUIRE(o.r.ok);
+  REQUIRE(o.r.verified);
+  INFO(o.r.comparison.mismatch);
+  REQUIRE(o.r.comparison.matched);
+  o.arcs = o.r.stats.arcs_out;
+  o.lines = o.r.stats.lines_out;
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("a sampled quarter circle becomes one counter-clockwise arc inside the band", "[fit]") {
+  auto o = compress_text(program(arc_points(0, 0, 10, 0, 90, 1)));
+  CHECK(o.arcs == 1);
+  CHECK(o.lines == 0);
+  CHECK(o.r.output.find("G3 ") != std::string::npos);
+  CHECK(o.r.comparison.max_deviation_mm <= 0.01);
+}
+
+TEST_CASE("a clockwise arc is written as G2", "[fit]") {
+  auto o = compress_text(program(arc_points(0, 0, 10, 90, 0, 1)));
+  CHECK(o.arcs == 1);
+  CHECK(o.r.output.find("G2 ") != std::string::npos);
+}
+
+TEST_CASE("collinear moves become one line and the run's ends are kept exactly", "[fit]") {
+  std::vector<Pt> p;
+  for (int i = 0; i <= 50; ++i) p.push_back({1.0 + 0.5 * i, 2.0 + 0.25 * i, -1});
+  auto o = compress_text(program(p));
+  CHECK(o.lines == 1);
+  CHECK(o.arcs == 0);
+  CHECK(o.r.output.find("G1 X26.0000 Y14.5000 Z-1.0000") != std::string::npos);
+}
+
+TEST_CASE("a real corner stays a sharp vertex", "[fit]") {
+  std::vector<Pt> p;
+  for (int i = 0; i <= 20; ++i) p.push_back({0.5 * i, 0, 0});
+  for (int i = 1; i <= 20; ++i) p.push_back({10, 0.5 * i, 0});
+  auto o = compress_text(program(p));
+  CHECK(o.lines == 2);
+  CHECK(o.r.output.find("X10.0000 Y0.0000") != std::string::npos);  // the corner itself
+}
+
+TEST_CASE("a smooth curve is fitted with tangent-continuous joints", "[fit]") {
+  // An ellipse quadrant and a sine: curvature varies, so several arcs are needed.
+  std::vector<Pt> p;
+  for (int i = 0; i <= 400; ++i) {
+    double t = kPi / 2 * i / 400.0;
+    p.push_back({30 * std::cos(t), 10 * std::sin(t), 0});
+  }
+  auto o = compress_text(program(p));
+  CHECK(o.arcs >= 2);
+  CHECK(o.r.comparison.max_deviation_mm <= 0.01);
+  CHECK(o.r.comparison.smooth_joints >= 1);
+  CHECK(o.r.comparison.max_smooth_kink_deg <= 0.5);
+  CHECK(o.r.forced_kinks == 0);
+
+  std::vector<Pt> s;
+  for (int i = 0; i <= 600; ++i) s.push_back({i * 0.05, 5 * std::sin(i * 0.05 / 3), 0});
+  auto so = compress_text(program(s));
+  CHECK(so.arcs >= 2);
+  CHECK(so.arcs + so.lines < 60);
+  CHECK(so.r.comparison.max_deviation_mm <= 0.01);
+  CHECK(so.r.comparison.max_smooth_kink_deg <= 0.5);
+}
+
+TEST_CASE("no arc sweeps more than the maximum; a full circle needs at least two", "[fit]") {
+  auto o = compress_text(program(arc_points(5, 5, 8, 0, 360, 2)));
+  CHECK(o.arcs >= 2);
+  CHECK(o.r.comparison.max_deviation_mm <= 0.01);
+  FitOptions f;
+  f.max_sweep_deg = 90;
+  auto q = compress_text(program(arc_points(5, 5, 8, 0, 360, 2)), f);
+  CHECK(q.arcs >= 4);
+}
+
+TEST_CASE("a helix becomes helical arcs, or lines when helical arcs are off", "[fit]") {
+  auto pts = arc_points(0, 0, 6, 0, 170, 1, 0, -2);
+  auto o = compress_text(program(pts));
+  CHECK(o.arcs == 1);
+  CHECK(o.r.comparison.max_deviation_mm <= 0.01);
+  FitOptions f;
+  f.helical = false;
+  auto q = compress_text(program(pts), f);
+  CHECK(q.arcs == 0);
+  CHECK(q.r.comparison.max_deviation_mm <= 0.01);
+}
+
+TEST_CASE("arcs in the XZ and YZ planes follow G18 and G19", "[fit]") {
+  std::vector<Pt> xz, yz;
+  for (auto& p : arc_points(0, 0, 10, 0, 90, 1)) {
+    xz.push_back({p.y, 3, p.x});  // G18 plane axes are (Z, X)
+    yz.push_back({3, p.x, p.y});
+  }
+  auto a = compress_text(program(xz, "G18"));
+  CHECK(a.arcs == 1);
+  CHECK(a.r.output.find(" K") != std::string::npos);
+  CHECK(a.r.comparison.max_deviation_mm <= 0.01);
+  auto b = compress_text(program(yz, "G19"));
+  CHECK(b.arcs == 1);
+  CHECK(b.r.output.find(" J") != std::string::npos);
+  CHECK(b.r.comparison.max_deviation_mm <= 0.01);
+}
+
+TEST_CASE("arcs below the minimum radius or above the maximum become lines", "[fit]") {
+  FitOptions f;
+  f.tolerance_mm = 0.0005;
+  auto tiny = compress_text(program(arc_points(0, 0, 0.03, 0, 90, 5), "G17", 5), f);
+  CHECK(tiny.r.comparison.max_deviation_mm <= f.tolerance_mm);
+  // Every arc written has at least the minimum radius (the true 0.03 mm circle is refused).
+  size_t pos = 0;
+  while ((pos = tiny.r.output.find(" I", pos)) != std::string::npos) {
+    double i = std::stod(tiny.r.output.substr(pos + 2));
+    size_t jpos = tiny.r.output.find(" J", pos);
+    double j = std::stod(tiny.r.output.substr(jpos + 2));
+    CHECK(std::hypot(i, j) >= f.min_radius_mm);
+    pos = jpos;
+  }
+  // A very flat arc: radius 10000 mm over 20 mm is within 0.005 mm of its chord.
+  std::vector<Pt> flat;
+  for (int i = 0; i <= 40; ++i) {
+    double x = -10 + 0.5 * i;
+    flat.push_back({x, 10000 - std::sqrt(10000.0 * 10000.0 - x * x), 0});
+  }
+  auto o = compress_text(program(flat));
+  CHECK(o.arcs == 0);
+  CHECK(o.lines == 1);
+}
+
+TEST_CASE("degenerate input gives valid output: reversals, tiny steps, noise", "[fit]") {
+  std::vector<Pt> rev;
+  for (int i = 0; i <= 10; ++i) rev.push_back({double(i), 0, 0});
+  for (int i = 9; i >= 0; --i) rev.push_back({double(i), 0.001, 0});
+  auto o = compress_text(program(rev));
+  CHECK(o.r.comparison.max_deviation_mm <= 0.01);
+  CHECK(o.r.output.find("nan") == std::string::npos);
+
+  std::mt19937 rng(12345);
+  std::normal_distribution<double> noise(0, 0.004);
+  std::vector<Pt> noisy;
+  for (int i = 0; i <= 2000; ++i) {
+    double a = deg_to_rad(i * 0.17);
+    noisy.push_back({20 * std::cos(a) + noise(rng), 20 * std::sin(a) + noise(rng), 0});
+  }
+  auto n = compress_text(program(noisy));
+  CHECK(n.r.comparison.max_deviation_mm <= 0.01);
+  CHECK(n.arcs + n.lines < 2000);
+  CHECK(n.r.output.find("e-") == std::string::npos);
+}
+
+TEST_CASE("random polylines always stay inside the band", "[fit][property]") {
+  std::mt19937 rng(2024);
+  std::uniform_real_distribution<double> turn(-0.3, 0.3), step(0.05, 1.5);
+  for (int trial = 0; trial < 30; ++trial) {
+    std::vector<Pt> p{{0, 0, 0}};
+    double heading = 0;
+    for (int i = 0; i < 300; ++i) {
+      heading += turn(rng) * (trial % 3 == 0 ? 0.1 : 1.0);
+      double s = step(rng);
+      p.push_back({p.back().x + s * std::cos(heading), p.back().y + s * std::sin(heading), 0});
+    }
+    FitOptions f;
+    f.tolerance_mm = trial % 2 ? 0.01 : 0.002;
+    auto o = compress_text(program(p), f);
+    INFO("trial " << trial);
+    CHECK(o.r.comparison.max_deviation_mm <= f.tolerance_mm);
+  }
+}
+
+TEST_CASE("extrusion is kept at every end point and a change of rate ends a primitive", "[fit]") {
+  std::string text = "G21 G90 M83\nG0 X10 Y0 Z0.2\nG1 F1200\n";
+  auto pts = arc_points(0, 0, 10, 0, 90, 1);
+  for (size_t i = 1; i < pts.size(); ++i) {
+    double e = i <= 45 ? 0.01 : 0.02;  // the rate doubles half way
+    text += fmt::format("G1 X{:.4f} Y{:.4f} E{:.5f}\n", pts[i].x, pts[i].y, e);
+  }
+  auto o = compress_text(text);
+  CHECK(o.arcs == 2);
+  CHECK(o.r.output.find("E0.45") != std::string::npos);
+  CHECK(o.r.output.find("E0.9") != std::string::npos);
+}
