@@ -20,7 +20,7 @@ TEST_CASE("arcpress reads standard input and writes standard output", "[cli]") {
   CHECK(d.out == kProgram);
 }
 
-TEST_CASE("--help and --version succeed and document the exit codes", "[cli]") {
+TEST_CASE("help and version succeed and help documents the exit codes", "[cli]") {
   auto h = run_arcpress("--help");
   CHECK(h.exit_code == 0);
   CHECK(h.out.find("--tolerance") != std::string::npos);
@@ -84,7 +84,7 @@ TEST_CASE("an existing output file is replaced only when the run succeeds", "[cl
   fs::remove_all(d);
 }
 
-TEST_CASE("--stats reports counts on standard error", "[cli]") {
+TEST_CASE("the stats flag reports counts on standard error", "[cli]") {
   auto c = run_arcpress("--stats --method keep", kProgram);
   CHECK(c.exit_code == 0);
   CHECK(c.out == kProgram);

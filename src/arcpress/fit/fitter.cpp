@@ -19,6 +19,10 @@ constexpr double kRoundingReserve = 0.03;
 /// 0.8² + 0.6² = 1, so the 3D distance stays inside the band.
 constexpr double kPlaneShare = 0.8;
 constexpr double kHeightShare = 0.6;
+/// Candidates per primitive whose next step is looked at before choosing.
+constexpr int kLookahead = 6;
+/// A primitive whose end tangent is within this of the input's direction is "on course".
+constexpr double kOnCourseRad = 1.5 * kPi / 180;
 
 /// One way to end the primitive that starts at `a`: at vertex e with curvature k.
 struct Candidate {
@@ -68,8 +72,9 @@ class RunFitter {
     while (a < n_) {
       uint32_t limit = a + 1;
       while (limit < n_ && !hard_[limit]) ++limit;
+      if (a == 0 || hard_[a]) stretch_start_ = a;
       std::optional<Chosen> c;
-      if (tangent) c = best_from(a, *tangent, limit);
+      if (tangent) c = best_near(a, *tangent, limit);
       if (!c) {
         if (tangent && a > 0 && !hard_[a]) ++r.forced_kinks;
         c = best_free(a, limit);
@@ -187,28 +192,78 @@ class RunFitter {
     return ch;
   }
 
-  /// True when a tangent-continuous primitive can leave vertex `e` along `T` (or `e` is a
-  /// corner or the end, where tangency is not needed).
-  bool can_continue(uint32_t e, const Vec2& T, uint32_t limit) const {
-    if (e >= limit) return true;
-    std::vector<Candidate> next;
-    scan(e, T, std::min(limit, e + 1), next);
-    return !next.empty() && make(e, T, next.back()).has_value();
+  /// How far the chain reaches in one more step from vertex `e` along `T`: the last end
+  /// the curvature scan allows (not yet checked exactly), or `e` itself when nothing fits.
+  /// A corner or the end of the stretch counts as reaching the end.
+  uint32_t reach_after(uint32_t e, const Vec2& T, uint32_t limit) const {
+    if (e >= limit) return limit + 1;
+    scan(e, T, limit, next_);
+    for (size_t i = next_.size(); i > 0; --i)
+      if (make(e, T, next_[i - 1])) return next_[i - 1].e;
+    return e;
   }
 
-  /// The longest checked primitive from `a` along `T` after which the path can go on
-  /// tangentially; failing that, the longest checked one; or nothing.
+  /// The input's own direction at vertex e: tangent at e of the circle through e-w, e, e+w,
+  /// with w wide enough (0.1 mm each side) that 4-decimal rounding does not steer it.
+  /// Nothing at the ends of the stretch [lo, hi].
+  std::optional<Vec2> input_tangent(uint32_t e, uint32_t lo, uint32_t hi) const {
+    if (e <= lo || e >= hi) return std::nullopt;
+    uint32_t w = 1;
+    while (e - w > lo && e + w < hi && ((q(e - w) - q(e)).norm() < 0.1 || (q(e + w) - q(e)).norm() < 0.1)) ++w;
+    Vec2 a = q(e - w), b = q(e), c = q(e + w);
+    auto t = circle_tangent(b, c, a);  // at b, pointing towards c
+    return t;
+  }
+
+  /// Ranks a primitive ending at vertex e with `end_tangent`: primitives that leave the chain
+  /// heading where the input heads come first, then those after which the chain reaches
+  /// further, then longer ones. Keeps the chain from zigzagging along a straight stretch with
+  /// a tangent that is off by a few degrees.
+  struct Score {
+    bool on_course = true;
+    uint32_t reach = 0;
+    uint32_t end = 0;
+    bool operator>(const Score& o) const {
+      if (on_course != o.on_course) return on_course;
+      if (reach != o.reach) return reach > o.reach;
+      return end > o.end;
+    }
+  };
+  Score score(const Chosen& c, uint32_t limit) const {
+    Score sc;
+    sc.end = c.prim.end_vertex;
+    sc.reach = reach_after(sc.end, c.end_tangent, limit);
+    if (auto t = input_tangent(sc.end, stretch_start_, limit))
+      sc.on_course = std::atan2(std::abs(cross2(*t, c.end_tangent)), t->dot(c.end_tangent)) <= kOnCourseRad;
+    return sc;
+  }
+
+  /// Among the checked primitives from `a` along `T`, the one after which the chain reaches
+  /// furthest in the next step (two-step look-ahead over a few long candidates); ties go
+  /// to the longer primitive. A primitive after which the chain cannot go on tangentially
+  /// is taken only when there is no other.
   std::optional<Chosen> best_from(uint32_t a, const Vec2& T, uint32_t limit) const {
     std::vector<Candidate> cand;
     scan(a, T, limit, cand);
-    std::optional<Chosen> fallback;
+    std::optional<Chosen> best;
+    Score best_score;
+    int checked = 0;
     // Longest first; after a failure step back by growing strides to bound the work.
     size_t stride = 1;
-    for (size_t i = cand.size(); i > 0;) {
+    for (size_t i = cand.size(); i > 0 && checked < kLookahead;) {
       --i;
       if (auto c = make(a, T, cand[i])) {
-        if (can_continue(c->prim.end_vertex, c->end_tangent, limit)) return c;
-        if (!fallback) fallback = c;
+        ++checked;
+        Score sc = score(*c, limit);
+        if (!best || sc > best_score) {
+          best = c;
+          best_score = sc;
+        }
+        // Spread the look-ahead over the longer half of the candidates.
+        size_t step = std::max<size_t>(1, cand.size() / (2 * kLookahead));
+        i = i >= step ? i - step + 1 : 0;
+        if (i == 0) break;
+        continue;
       }
       if (i < stride) {
         if (i > 0 && stride > 1) {
@@ -221,7 +276,32 @@ class RunFitter {
       i -= stride - 1;
       stride *= 2;
     }
-    return fallback;
+    return best;
+  }
+
+  /// The chain may turn by less than the G1 angle at a joint. When the exact tangent only
+  /// allows a short primitive (the incoming tangent is slightly off the input's), tangents
+  /// turned by up to 0.9 of that angle are tried too, and the one reaching furthest wins.
+  std::optional<Chosen> best_near(uint32_t a, const Vec2& T, uint32_t limit) const {
+    auto best = best_from(a, T, limit);
+    Score best_score;
+    if (best) {
+      best_score = score(*best, limit);
+      if (best_score.on_course && (best->prim.end_vertex - a >= 4 || best->prim.end_vertex == limit)) return best;
+    }
+    double g1 = deg_to_rad(o_.g1_angle_deg);
+    for (double f : {0.45, -0.45, 0.9, -0.9}) {
+      double t = f * g1;
+      Vec2 R(T.x() * std::cos(t) - T.y() * std::sin(t), T.x() * std::sin(t) + T.y() * std::cos(t));
+      auto c = best_from(a, R, limit);
+      if (!c) continue;
+      Score sc = score(*c, limit);
+      if (!best || sc > best_score) {
+        best = c;
+        best_score = sc;
+      }
+    }
+    return best;
   }
 
   /// Start of a smooth stretch (or after a forced kink): try a few start tangents read off
@@ -234,10 +314,17 @@ class RunFitter {
       if (auto t = circle_tangent(q(a), q(a + w / 2), q(a + w))) tangents.push_back(*t);
     }
     if (chord.norm() > kLengthEpsMm) tangents.push_back(chord.normalized());
+    if (auto t = input_tangent(a, stretch_start_, limit)) tangents.push_back(*t);
     std::optional<Chosen> best;
+    Score best_score;
     for (const Vec2& T : tangents) {
       auto c = best_from(a, T, limit);
-      if (c && (!best || c->prim.end_vertex > best->prim.end_vertex)) best = c;
+      if (!c) continue;
+      Score sc = score(*c, limit);
+      if (!best || sc > best_score) {
+        best = c;
+        best_score = sc;
+      }
     }
     if (best) return *best;
     Chosen line;  // the input's own segment is always inside the band
@@ -264,6 +351,8 @@ class RunFitter {
   std::vector<Vec3> p_;           // vertices in plane coordinates (first, second, normal)
   std::vector<uint8_t> hard_;     // corner: tangent may change, a primitive ends here
   std::vector<uint8_t> soft_;     // extrusion rate changes: a primitive ends here, tangent kept
+  mutable std::vector<Candidate> next_;  // scratch for reach_after
+  uint32_t stretch_start_ = 0;    // first vertex of the current corner-free stretch
   double eps_ = 0;                // band the fitter works to, mm
   double line_kink_ = 0;          // largest tangent-chord angle written as a line, rad
   bool extra_axes_move_ = false;
