@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <optional>
 
 namespace arcpress {
 namespace {
@@ -67,7 +68,12 @@ class Interpreter {
     bool r_seen = false;
     double r_value = 0;
     int turns = 1;
-    Frame f = frame_;
+    // Most blocks change no modal setting: copy the frame only when one is touched.
+    std::optional<Frame> fedit;
+    auto F = [&]() -> Frame& {
+      if (!fedit) fedit = frame_;
+      return *fedit;
+    };
     double feed = feed_;
     bool feed_set = false;
 
@@ -104,19 +110,19 @@ class Interpreter {
             case 170: f_plane_ = Plane::XY; break;
             case 180: f_plane_ = Plane::ZX; break;
             case 190: f_plane_ = Plane::YZ; break;
-            case 200: f.unit_mm = 25.4; break;
-            case 210: f.unit_mm = 1.0; break;
-            case 70: f.diameter_mode = true; break;
-            case 80: f.diameter_mode = false; break;
-            case 900: f.absolute = true; f.e_relative = false; break;
-            case 910: f.absolute = false; f.e_relative = true; break;
-            case 901: f.arc_absolute = true; break;
-            case 911: f.arc_absolute = false; break;
+            case 200: F().unit_mm = 25.4; break;
+            case 210: F().unit_mm = 1.0; break;
+            case 70: F().diameter_mode = true; break;
+            case 80: F().diameter_mode = false; break;
+            case 900: F().absolute = true; F().e_relative = false; break;
+            case 910: F().absolute = false; F().e_relative = true; break;
+            case 901: F().arc_absolute = true; break;
+            case 911: F().arc_absolute = false; break;
             case 920: g92 = true; axis_consumer = true; break;
             case 921: case 922: g92_reset = true; break;
             case 923: break;
-            case 930: f.inverse_time = true; break;
-            case 940: case 950: f.inverse_time = false; break;
+            case 930: F().inverse_time = true; break;
+            case 940: case 950: F().inverse_time = false; break;
             case 280: case 300: homing = true; axis_consumer = true; break;
             case 281: case 301: break;
             case 700: case 710: case 720: case 740: case 750:  // lathe turning cycles: run elsewhere
@@ -126,8 +132,8 @@ class Interpreter {
             case 100: axis_consumer = true; known_ &= 1u << kE; break;  // G10: offsets and tables
             case 530: g53 = true; break;
             case 540: case 550: case 560: case 570: case 580: case 590: case 591: case 592: case 593:
-              if (f.work_offset != g) known_ &= 1u << kE;  // same machine point, new coordinates
-              f.work_offset = g;
+              if (frame_.work_offset != g) known_ &= 1u << kE;  // same machine point, new coordinates
+              F().work_offset = g;
               break;
             case 400: case 410: case 411: case 420: case 421:  // cutter compensation
             case 430: case 431: case 432: case 490:             // tool length
@@ -149,8 +155,8 @@ class Interpreter {
         case 'M': {
           only_g1_words = false;
           int m = int(std::lround(w->value));
-          if (m == 82) f.e_relative = false;
-          if (m == 83) f.e_relative = true;
+          if (m == 82) F().e_relative = false;
+          if (m == 83) F().e_relative = true;
           if (m == 98 || m == 99) known_ &= 1u << kE;  // subprogram call / return
           break;
         }
@@ -181,15 +187,17 @@ class Interpreter {
           break;
       }
     }
+    const Frame& fnow = fedit ? *fedit : frame_;
     if (feed_set) {
-      feed_mm_ = f.inverse_time ? feed : feed * f.unit_mm;
+      feed_mm_ = fnow.inverse_time ? feed : feed * fnow.unit_mm;
       feed_known_ = true;
     }
     (void)feed_;
 
     // G92 and G92.1 change the offsets; positions in mm stay where they are.
-    if (g92_reset) f.offset = AxisValues{};
+    if (g92_reset) F().offset = AxisValues{};
     if (g92) {
+      Frame& f = F();
       for (int ax = 0; ax < kAxisCount; ++ax) {
         if (!words_seen[ax]) continue;
         if (expr_axis[ax]) {
@@ -200,7 +208,7 @@ class Interpreter {
         f.offset[ax] = pos_[ax] - value[ax] * scale;
       }
     }
-    set_frame(f);
+    if (fedit) set_frame(*fedit);
     if (motion >= 0) motion_ = motion;
 
     bool any_axis = false;
