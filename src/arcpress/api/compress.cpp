@@ -26,7 +26,7 @@ CompressResult compress(const std::string& name, std::string text, const Compres
       r.forced_kinks += fits.back().forced_kinks;
     }
   }
-  r.output = emit_program(prog, in, runs, fits, &r.stats);
+  r.output = emit_program(prog, in, runs, fits, opt.fit.tolerance_mm, &r.stats);
   r.ok = true;
   r.band_mm = opt.fit.tolerance_mm;
   if (opt.verify && !opt.passthrough) {

@@ -38,7 +38,7 @@ double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
   return (p - (a + t * d)).norm();
 }
 
-Deviation line_deviation(std::span<const Vec3> pts) {
+Deviation line_deviation(std::span<const Vec3> pts, double stop_above_mm) {
   Deviation dev;
   const Vec3& a = pts.front();
   const Vec3& b = pts.back();
@@ -50,6 +50,7 @@ Deviation line_deviation(std::span<const Vec3> pts) {
     if (dist > dev.max_mm) {
       dev.max_mm = dist;
       dev.at_index = m;
+      if (dist > stop_above_mm) return dev;
     }
     // Vertices must advance along the chord, or a stretch of the chord could be far from
     // every input segment (a reversal inside the band).
@@ -62,7 +63,7 @@ Deviation line_deviation(std::span<const Vec3> pts) {
   return dev;
 }
 
-Deviation arc_deviation(std::span<const Vec3> pts, const ArcGeom& arc) {
+Deviation arc_deviation(std::span<const Vec3> pts, const ArcGeom& arc, double stop_above_mm) {
   Deviation dev;
   const double r = arc.radius_mm;
   const double dir = arc.sweep >= 0 ? 1.0 : -1.0;
@@ -92,6 +93,7 @@ Deviation arc_deviation(std::span<const Vec3> pts, const ArcGeom& arc) {
   }
   for (size_t m = 1; m < n; ++m)
     if (phi[m] < phi[m - 1] - 1e-12) dev.ordered = false;
+  if (!dev.ordered && stop_above_mm < HUGE_VAL) return dev;
   // Input vertices to the arc (helical height interpolated by angle).
   for (size_t m = 1; m + 1 < n; ++m) {
     const Vec3& p = pts[m];
@@ -106,6 +108,7 @@ Deviation arc_deviation(std::span<const Vec3> pts, const ArcGeom& arc) {
       d = std::min((p - pts.front()).norm(), (p - pts.back()).norm());
     }
     note(d, m);
+    if (dev.max_mm > stop_above_mm) return dev;
   }
   // Input segments bulge towards the centre: the point of a chord nearest the centre.
   for (size_t m = 0; m + 1 < n; ++m) {
@@ -124,6 +127,7 @@ Deviation arc_deviation(std::span<const Vec3> pts, const ArcGeom& arc) {
       dz = hz - arc.point_at(total > 0 ? ph / total : 0).z();
     }
     note(std::sqrt(std::max(inward, 0.0) * std::max(inward, 0.0) + dz * dz), m);
+    if (dev.max_mm > stop_above_mm) return dev;
   }
   // Arc to input: each piece of the arc between two vertices' angles against that segment,
   // at the piece ends, its middle, and where the arc runs parallel to the segment.
@@ -148,6 +152,7 @@ Deviation arc_deviation(std::span<const Vec3> pts, const ArcGeom& arc) {
         Vec3 q = arc.point_at(c / total);
         note(point_segment_distance(q, pts[m], pts[m + 1]), m);
       }
+      if (dev.max_mm > stop_above_mm) return dev;
     }
   }
   return dev;

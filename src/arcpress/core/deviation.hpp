@@ -3,6 +3,7 @@
 // vertex and every point of every input segment to the primitive, and every point of the
 // primitive to the polyline. Used by the fitter to accept a primitive and by the verifier
 // to measure a whole program. Points are in plane coordinates: (first, second, normal).
+#include <cmath>
 #include <span>
 
 #include "arcpress/core/geometry.hpp"
@@ -33,10 +34,12 @@ struct Deviation {
 };
 
 /// Two-sided deviation between the polyline `pts` and the segment pts.front() -> pts.back().
-Deviation line_deviation(std::span<const Vec3> pts);
+/// Both measures stop early, with a result above `stop_above_mm`, once the deviation
+/// exceeds it (the fitter only needs to know that a candidate fails).
+Deviation line_deviation(std::span<const Vec3> pts, double stop_above_mm = HUGE_VAL);
 /// Two-sided deviation between the polyline `pts` and `arc` (which should start at
 /// pts.front() and end at pts.back()).
-Deviation arc_deviation(std::span<const Vec3> pts, const ArcGeom& arc);
+Deviation arc_deviation(std::span<const Vec3> pts, const ArcGeom& arc, double stop_above_mm = HUGE_VAL);
 /// True when the path a -> b -> c has a real corner at b: it turns by more than
 /// `corner_angle_deg`, or so sharply for its segment lengths that no tangent-continuous
 /// path through b stays within `band_mm` of both segments. (With tangent T at b making

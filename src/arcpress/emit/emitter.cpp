@@ -33,7 +33,8 @@ struct BlockStyle {
 
 class Emitter {
  public:
-  Emitter(const Program& p, const Interpretation& in, EmitStats* stats) : p_(p), in_(in), stats_(stats) {
+  Emitter(const Program& p, const Interpretation& in, double band_mm, EmitStats* stats)
+      : p_(p), in_(in), stats_(stats), band_mm_(band_mm) {
     out_.reserve(p.text.size());
     detect_padding();
   }
@@ -192,7 +193,10 @@ class Emitter {
         if (arc) {
           int cd = 0;
           for (int k = 0; k < 3; ++k) cd = std::max(cd, decimals[kAxisLetters[k] - 'A']);
-          cd = std::clamp(cd + 1, fr.unit_mm == 1.0 ? 3 : 4, 6);
+          // Rounding a centre by half a digit moves the arc by up to 0.71 digit (in mm);
+          // keep that under 1.5 % of the band.
+          int for_band = int(std::ceil(std::log10(fr.unit_mm * 0.71 / (0.015 * band_mm_))));
+          cd = std::clamp(std::max(cd + 1, for_band), fr.unit_mm == 1.0 ? 3 : 4, 8);
           NumberStyle ns{cd, true, st.keep_point};
           Vec2 c = pr.center;
           double cx[3] = {0, 0, 0};
@@ -234,6 +238,7 @@ class Emitter {
   const Program& p_;
   const Interpretation& in_;
   EmitStats* stats_;
+  double band_mm_;
   std::string out_;
   bool padded_ = false;
   bool keep_point_ = false;
@@ -244,8 +249,8 @@ class Emitter {
 }  // namespace
 
 std::string emit_program(const Program& program, const Interpretation& in, const std::vector<Run>& runs,
-                         const std::vector<FitResult>& fits, EmitStats* stats) {
-  return Emitter(program, in, stats).run(runs, fits);
+                         const std::vector<FitResult>& fits, double band_mm, EmitStats* stats) {
+  return Emitter(program, in, band_mm > 0 ? band_mm : 0.01, stats).run(runs, fits);
 }
 
 }  // namespace arcpress

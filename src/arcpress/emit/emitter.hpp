@@ -20,7 +20,9 @@ struct EmitStats {
   size_t motion_words_added = 0;  ///< copied blocks that needed their motion word restated
 };
 
+/// `band_mm` is the tolerance the fit was made for: arc centres are printed with enough
+/// digits that rounding them moves the arc by at most 1.5 % of it (the fitter keeps 3 % back).
 std::string emit_program(const Program& program, const Interpretation& in, const std::vector<Run>& runs,
-                         const std::vector<FitResult>& fits, EmitStats* stats = nullptr);
+                         const std::vector<FitResult>& fits, double band_mm = 0.01, EmitStats* stats = nullptr);
 
 }  // namespace arcpress

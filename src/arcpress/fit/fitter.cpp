@@ -158,7 +158,7 @@ class RunFitter {
     bool flat = true;
     for (const auto& p : pts) flat = flat && std::abs(p.z() - pts.front().z()) <= kLengthEpsMm;
     if (c.line) {
-      Deviation d = line_deviation(pts);
+      Deviation d = line_deviation(pts, eps_);
       if (!d.ordered || d.max_mm > eps_) return std::nullopt;
       ch.prim.kind = Primitive::Kind::Line;
       Vec2 chord = q(c.e) - q(a);
@@ -168,7 +168,7 @@ class RunFitter {
     Vec2 center = q(a) + left_normal(T) / c.k;
     bool ccw = c.k > 0;
     ArcGeom g = ArcGeom::through(pts.front(), pts.back(), center, ccw);
-    Deviation d = arc_deviation(pts, g);
+    Deviation d = arc_deviation(pts, g, eps_);
     if (!d.ordered || d.max_mm > eps_) return std::nullopt;
     if (!flat) {
       // Height must follow the helix closely enough for the 3D distance to stay in the band.
@@ -198,9 +198,7 @@ class RunFitter {
   uint32_t reach_after(uint32_t e, const Vec2& T, uint32_t limit) const {
     if (e >= limit) return limit + 1;
     scan(e, T, limit, next_);
-    for (size_t i = next_.size(); i > 0; --i)
-      if (make(e, T, next_[i - 1])) return next_[i - 1].e;
-    return e;
+    return next_.empty() ? e : next_.back().e;
   }
 
   /// The input's own direction at vertex e: tangent at e of the circle through e-w, e, e+w,
