@@ -10,6 +10,8 @@
 
 #include "arcpress/api/arcpress.hpp"
 #include "arcpress/core/error.hpp"
+#include "arcpress/lex/lexer.hpp"
+#include "arcpress/model/interpreter.hpp"
 #include "file_io.hpp"
 
 namespace {
@@ -107,6 +109,38 @@ int run_compress(const CompressArgs& a) {
   return kExitOk;
 }
 
+struct DiffArgs {
+  std::string a, b;
+  double tolerance_mm = 0.01;
+};
+
+/// `arcpress diff A B`: B's feed path against A's, for B written from A by arcpress (every
+/// move of B ends on A's path). Exit 0 inside the band, 1 outside or not matching.
+int run_diff(const DiffArgs& d) {
+  DiagnosticSink sa(d.a), sb(d.b);
+  Program pa = lex(d.a, cli::read_input(d.a), sa);
+  Program pb = lex(d.b, cli::read_input(d.b), sb);
+  Interpretation ia = interpret(pa, sa), ib = interpret(pb, sb);
+  std::string diags = sa.format_all() + sb.format_all();
+  if (!diags.empty()) std::fputs(diags.c_str(), stderr);
+  CompareOptions co;
+  co.tolerance_mm = d.tolerance_mm;
+  PathComparison c = compare_paths(pa, ia, pb, ib, co);
+  fmt::print("{}: {} blocks, {} bytes; {}: {} blocks, {} bytes\n", d.a, pa.blocks.size(), pa.text.size(), d.b,
+             pb.blocks.size(), pb.text.size());
+  if (!c.matched) {
+    fmt::print("DIFFERENT: {}\n", c.mismatch);
+    return kExitVerifyFailed;
+  }
+  fmt::print("feed moves compared: {} in {}, {} in {}\n", c.moves_a, d.a, c.moves_b, d.b);
+  fmt::print("max deviation {:.6f} mm at X{:.4f} Y{:.4f} Z{:.4f} ({} line {}, {} line {})\n", c.max_deviation_mm,
+             c.worst_point.x(), c.worst_point.y(), c.worst_point.z(), d.a, c.worst_line_a, d.b, c.worst_line_b);
+  bool ok = c.within(d.tolerance_mm);
+  fmt::print("{}: max deviation {:.6f} mm {} the {} mm band\n", ok ? "SAME PATH" : "DIFFERENT", c.max_deviation_mm,
+             ok ? "within" : "outside", d.tolerance_mm);
+  return ok ? kExitOk : kExitVerifyFailed;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -151,6 +185,14 @@ int main(int argc, char** argv) {
   bool no_verify = false;
   app.add_flag("--no-verify", no_verify, "Skip reading the output back and measuring it against the input");
 
+  DiffArgs diff;
+  CLI::App* diff_cmd = app.add_subcommand(
+      "diff", "Compare the feed path of B with A's (B written from A by arcpress); exit 1 outside the band");
+  diff_cmd->add_option("A", diff.a, "Original program")->required();
+  diff_cmd->add_option("B", diff.b, "Rewritten program")->required();
+  diff_cmd->add_option("--tolerance", diff.tolerance_mm, "Band in mm")->check(CLI::PositiveNumber)->capture_default_str();
+  diff_cmd->footer(kExitCodesHelp);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -166,6 +208,7 @@ int main(int argc, char** argv) {
   a.opt.fit.helical = !no_helical;
   a.opt.verify = !no_verify;
   try {
+    if (*diff_cmd) return run_diff(diff);
     return run_compress(a);
   } catch (const Error& e) {
     fmt::print(stderr, "arcpress: {}\n", e.what());

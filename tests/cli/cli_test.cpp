@@ -90,3 +90,34 @@ TEST_CASE("the stats flag reports counts on standard error", "[cli]") {
   CHECK(c.out == kProgram);
   CHECK(c.err.find("runs           1 with 4 G1 moves") != std::string::npos);
 }
+
+TEST_CASE("diff passes a compressed program within the band and fails it outside", "[cli][diff]") {
+  fs::path d = arcpress::test::temp_dir("diff");
+  fs::path in = fs::path(ARCPRESS_SOURCE_DIR) / "samples" / "contour.nc";
+  fs::path out = d / "out.nc";
+  auto c = run_arcpress("'" + in.string() + "' -o '" + out.string() + "' --tolerance 0.01");
+  REQUIRE(c.exit_code == 0);
+  auto same = run_arcpress("diff '" + in.string() + "' '" + out.string() + "' --tolerance 0.01");
+  CHECK(same.exit_code == 0);
+  CHECK(same.out.find("SAME PATH") != std::string::npos);
+  auto tight = run_arcpress("diff '" + in.string() + "' '" + out.string() + "' --tolerance 0.0001");
+  CHECK(tight.exit_code == 1);
+  CHECK(tight.out.find("DIFFERENT") != std::string::npos);
+  CHECK(tight.out.find("line") != std::string::npos);
+  // A program whose path leaves the original's is reported with its line.
+  arcpress::test::write_file(d / "moved.nc", "G21 G90 G17\nG0 Z5.000\nG0 X20.000 Y0.000\nG1 X21 Y3 F800\nM2\n");
+  auto moved = run_arcpress("diff '" + in.string() + "' '" + (d / "moved.nc").string() + "'");
+  CHECK(moved.exit_code == 1);
+  CHECK(moved.out.find("moved.nc") != std::string::npos);
+  fs::remove_all(d);
+}
+
+TEST_CASE("compression measures its own output and reports the deviation", "[cli]") {
+  fs::path in = fs::path(ARCPRESS_SOURCE_DIR) / "samples" / "contour.nc";
+  auto c = run_arcpress("'" + in.string() + "' --stats");
+  CHECK(c.exit_code == 0);
+  CHECK(c.out.find("G3 ") != std::string::npos);
+  CHECK(c.err.find("mm max (band 0.01 mm)") != std::string::npos);
+  auto n = run_arcpress("'" + in.string() + "' --stats --no-verify");
+  CHECK(n.err.find("not measured") != std::string::npos);
+}
