@@ -291,15 +291,20 @@ class RunFitter {
     for (double f : {0.45, -0.45, 0.9, -0.9}) {
       double t = f * g1;
       Vec2 R(T.x() * std::cos(t) - T.y() * std::sin(t), T.x() * std::sin(t) + T.y() * std::cos(t));
-      auto c = best_from(a, R, limit);
-      if (!c) continue;
-      Score sc = score(*c, limit);
-      if (!best || sc > best_score) {
-        best = c;
-        best_score = sc;
-      }
+      consider(a, R, limit, best, best_score);
     }
     return best;
+  }
+
+  /// Keeps in `best` whichever of it and the best primitive along `T` scores higher.
+  void consider(uint32_t a, const Vec2& T, uint32_t limit, std::optional<Chosen>& best, Score& best_score) const {
+    auto c = best_from(a, T, limit);
+    if (!c) return;
+    Score sc = score(*c, limit);
+    if (!best || sc > best_score) {
+      best = c;
+      best_score = sc;
+    }
   }
 
   /// Start of a smooth stretch (or after a forced kink): try a few start tangents read off
@@ -315,15 +320,7 @@ class RunFitter {
     if (auto t = input_tangent(a, stretch_start_, limit)) tangents.push_back(*t);
     std::optional<Chosen> best;
     Score best_score;
-    for (const Vec2& T : tangents) {
-      auto c = best_from(a, T, limit);
-      if (!c) continue;
-      Score sc = score(*c, limit);
-      if (!best || sc > best_score) {
-        best = c;
-        best_score = sc;
-      }
-    }
+    for (const Vec2& T : tangents) consider(a, T, limit, best, best_score);
     if (best) return *best;
     Chosen line;  // the input's own segment is always inside the band
     line.prim = {a + 1, Primitive::Kind::Line};
