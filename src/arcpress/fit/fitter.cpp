@@ -172,10 +172,8 @@ class RunFitter {
     if (!d.ordered || d.max_mm > eps_) return std::nullopt;
     if (!flat) {
       // Height must follow the helix closely enough for the 3D distance to stay in the band.
-      double total = std::abs(g.sweep);
       double len_sum = 0;
       for (size_t m = 1; m < pts.size(); ++m) len_sum += (Vec2(pts[m].x(), pts[m].y()) - Vec2(pts[m - 1].x(), pts[m - 1].y())).norm();
-      (void)total;
       double s = 0;
       for (size_t m = 1; m + 1 < pts.size(); ++m) {
         s += (Vec2(pts[m].x(), pts[m].y()) - Vec2(pts[m - 1].x(), pts[m - 1].y())).norm();

@@ -74,7 +74,7 @@ class Interpreter {
       if (!fedit) fedit = frame_;
       return *fedit;
     };
-    double feed = feed_;
+    double feed = 0;
     bool feed_set = false;
 
     for (auto* w = p_.words_begin(b); w != p_.words_end(b); ++w) {
@@ -192,7 +192,6 @@ class Interpreter {
       feed_mm_ = fnow.inverse_time ? feed : feed * fnow.unit_mm;
       feed_known_ = true;
     }
-    (void)feed_;
 
     // G92 and G92.1 change the offsets; positions in mm stay where they are.
     if (g92_reset) F().offset = AxisValues{};
@@ -215,7 +214,7 @@ class Interpreter {
     for (int ax = 0; ax < kAxisCount; ++ax) any_axis |= words_seen[ax];
     if (homing) {
       // G28/G30: through an optional point to a stored position we do not know.
-      add_move(bi, MoveKind::Other, pos_, 0, false, 1, false);
+      add_move(bi, MoveKind::Other, pos_, false, 1, false);
       bool any_flag = false;
       for (int ax = 0; ax < kAxisCount; ++ax) any_flag |= flag_axis[ax];
       for (int ax = 0; ax < kE; ++ax)
@@ -263,7 +262,7 @@ class Interpreter {
       else if (motion_ == 30) kind = MoveKind::ArcCCW;
     }
     if (kind == MoveKind::Other && motion_ != 0) known_after &= ~kXyzMask;  // cycles end where they like
-    Move& m = add_move(bi, kind, target, 0, known, turns, false);
+    Move& m = add_move(bi, kind, target, known, turns, false);
     if (kind == MoveKind::ArcCW || kind == MoveKind::ArcCCW) {
       m.center = arc_center(b, fr, target, ijk, ijk_seen, r_seen, r_value, kind, m.known);
     }
@@ -310,7 +309,7 @@ class Interpreter {
     return c;
   }
 
-  Move& add_move(uint32_t bi, MoveKind kind, const AxisValues& to, int, bool known, int turns, bool fittable) {
+  Move& add_move(uint32_t bi, MoveKind kind, const AxisValues& to, bool known, int turns, bool fittable) {
     Move m;
     m.to = to;
     m.block = bi;
@@ -340,7 +339,6 @@ class Interpreter {
   AxisValues pos_{};
   uint32_t known_ = 1u << kE;  // bit per axis: position known; E is a counter from 0
   int motion_ = 0;       // modal motion G-code ×10; G0 at power-up
-  double feed_ = 0;
   double feed_mm_ = 0;
   bool feed_known_ = false;
 };
