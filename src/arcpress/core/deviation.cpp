@@ -95,15 +95,18 @@ Deviation arc_deviation(std::span<const Vec3> pts, const ArcGeom& arc, double st
     if (phi[m] < phi[m - 1] - 1e-12) dev.ordered = false;
   if (!dev.ordered && stop_above_mm < HUGE_VAL) return dev;
   // Input vertices to the arc (helical height interpolated by angle).
+  const bool flat = arc.h0 == arc.h1;
+  std::vector<double> radial(n, 0.0);  // |distance to the centre - r| of each vertex
+  for (size_t m = 0; m < n; ++m) {
+    Vec2 rel(pts[m].x() - arc.center.x(), pts[m].y() - arc.center.y());
+    radial[m] = std::abs(rel.norm() - r);
+  }
   for (size_t m = 1; m + 1 < n; ++m) {
     const Vec3& p = pts[m];
     double d;
     if (phi[m] <= total) {
-      Vec3 on = arc.point_at(total > 0 ? phi[m] / total : 0);
-      Vec2 rel(p.x() - arc.center.x(), p.y() - arc.center.y());
-      double dr = rel.norm() - r;
-      double dz = p.z() - on.z();
-      d = std::sqrt(dr * dr + dz * dz);
+      double dz = flat ? p.z() - arc.h0 : p.z() - arc.point_at(total > 0 ? phi[m] / total : 0).z();
+      d = std::sqrt(radial[m] * radial[m] + dz * dz);
     } else {
       d = std::min((p - pts.front()).norm(), (p - pts.back()).norm());
     }
@@ -119,14 +122,14 @@ Deviation arc_deviation(std::span<const Vec3> pts, const ArcGeom& arc, double st
     double t = (arc.center - a).dot(ab) / len2;
     if (t <= 0 || t >= 1) continue;
     Vec2 foot = a + t * ab;
-    double inward = r - (foot - arc.center).norm();
+    double inward = std::max(r - (foot - arc.center).norm(), 0.0);
     double dz = 0;  // heights at the foot: both linear, so compare the interpolations
-    {
+    if (!flat || pts[m].z() != arc.h0 || pts[m + 1].z() != arc.h0) {
       double ph = phi[m] + t * (phi[m + 1] - phi[m]);
       double hz = pts[m].z() + t * (pts[m + 1].z() - pts[m].z());
       dz = hz - arc.point_at(total > 0 ? ph / total : 0).z();
     }
-    note(std::sqrt(std::max(inward, 0.0) * std::max(inward, 0.0) + dz * dz), m);
+    note(std::sqrt(inward * inward + dz * dz), m);
     if (dev.max_mm > stop_above_mm) return dev;
   }
   // Arc to input: each piece of the arc between two vertices' angles against that segment,
@@ -134,6 +137,13 @@ Deviation arc_deviation(std::span<const Vec3> pts, const ArcGeom& arc, double st
   if (dev.ordered && total > 0) {
     for (size_t m = 0; m + 1 < n; ++m) {
       double p0 = phi[m], p1 = phi[m + 1];
+      // Cheap bound first: the arc piece is within its sagitta of its own chord, and that
+      // chord is within the vertices' radial distances of the input segment. Only a piece
+      // whose bound could raise the maximum is measured exactly.
+      // (Planar pieces only: a helix is always measured exactly.)
+      bool planar = flat && pts[m].z() == arc.h0 && pts[m + 1].z() == arc.h0;
+      double sagitta = r * (1 - std::cos(0.5 * (p1 - p0)));
+      if (planar && sagitta + std::max(radial[m], radial[m + 1]) <= dev.max_mm) continue;
       double cand[4] = {p0, p1, 0.5 * (p0 + p1), -1};
       Vec2 ab(pts[m + 1].x() - pts[m].x(), pts[m + 1].y() - pts[m].y());
       if (ab.squaredNorm() > 0) {
