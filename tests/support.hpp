@@ -23,3 +23,12 @@ Command run_arcpress(const std::string& args, const std::string& stdin_text = ""
 std::filesystem::path temp_dir(const std::string& tag);
 
 }  // namespace arcpress::test
+
+/// Declares `files`, the corpus files, and leaves the test case with a warning when the
+/// corpus folder is absent.
+#define ARCPRESS_CORPUS_FILES_OR_SKIP(files)                                               \
+  auto files = arcpress::test::corpus_files();                                             \
+  if (files.empty()) {                                                                     \
+    WARN("corpus folder " ARCPRESS_CORPUS_DIR " is absent: skipped");                      \
+    return;                                                                                \
+  }

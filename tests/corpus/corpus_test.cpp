@@ -7,11 +7,7 @@
 using namespace arcpress;
 
 TEST_CASE("every corpus file passes through byte for byte", "[corpus][passthrough]") {
-  auto files = test::corpus_files();
-  if (files.empty()) {
-    WARN("corpus folder " ARCPRESS_CORPUS_DIR " is absent: corpus round trip skipped");
-    return;
-  }
+  ARCPRESS_CORPUS_FILES_OR_SKIP(files)
   for (const auto& f : files) {
     INFO(f.string());
     std::string text = test::read_file(f);
@@ -27,11 +23,7 @@ TEST_CASE("every corpus file passes through byte for byte", "[corpus][passthroug
 
 TEST_CASE("with the keep method every corpus file comes out unchanged through the whole pipeline",
           "[corpus][pipeline]") {
-  auto files = test::corpus_files();
-  if (files.empty()) {
-    WARN("corpus folder " ARCPRESS_CORPUS_DIR " is absent: skipped");
-    return;
-  }
+  ARCPRESS_CORPUS_FILES_OR_SKIP(files)
   size_t runs = 0;
   for (const auto& f : files) {
     INFO(f.string());
@@ -49,11 +41,7 @@ TEST_CASE("with the keep method every corpus file comes out unchanged through th
 
 TEST_CASE("strict mode reads every corpus file but for unexpanded slicer templates",
           "[corpus][lex]") {
-  auto files = test::corpus_files();
-  if (files.empty()) {
-    WARN("corpus folder " ARCPRESS_CORPUS_DIR " is absent: skipped");
-    return;
-  }
+  ARCPRESS_CORPUS_FILES_OR_SKIP(files)
   for (const auto& f : files) {
     INFO(f.string());
     DiagnosticSink sink(f.string());

@@ -29,11 +29,7 @@ std::vector<std::string> non_motion_lines(const std::string& text) {
 
 TEST_CASE("every corpus file compresses inside the band with its non-motion lines untouched",
           "[corpus][fit]") {
-  auto files = test::corpus_files();
-  if (files.empty()) {
-    WARN("corpus folder " ARCPRESS_CORPUS_DIR " is absent: skipped");
-    return;
-  }
+  ARCPRESS_CORPUS_FILES_OR_SKIP(files)
   size_t moves_in = 0, blocks_out = 0, arcs = 0;
   for (double tol : {0.01, 0.002}) {
     for (const auto& f : files) {
