@@ -55,7 +55,8 @@ class RunFitter {
     soft_.assign(n_ + 1, 0);
     for (uint32_t v = 1; v < n_; ++v) {
       double l1 = (p_[v] - p_[v - 1]).norm(), l2 = (p_[v + 1] - p_[v]).norm();
-      if (is_corner(p_[v - 1], p_[v], p_[v + 1], eps_, o.corner_angle_deg)) hard_[v] = 1;
+      // The same corner rule, with the same band, as the verifier uses to judge joints.
+      if (is_corner(p_[v - 1], p_[v], p_[v + 1], o.tolerance_mm, o.corner_angle_deg)) hard_[v] = 1;
       // Extrusion per mm must stay (nearly) constant inside one primitive.
       double e1 = run.vertex(in, v)[kE] - run.vertex(in, v - 1)[kE];
       double e2 = run.vertex(in, v + 1)[kE] - run.vertex(in, v)[kE];
