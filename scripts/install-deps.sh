@@ -1,8 +1,12 @@
 #!/usr/bin/env bash
-# Installs the Debian packages arcpress builds and tests with. Idempotent: does nothing
-# when everything is already installed. Run as root (or through sudo).
+# Installs the Debian packages arcpress builds with; with --test, also the real
+# interpreters and browser the test suite checks output against (LinuxCNC's rs274,
+# Chromium). Idempotent: installs only what is missing. Run as root (or through sudo).
 set -euo pipefail
 packages=(g++ cmake make libeigen3-dev libcgal-dev libcli11-dev libfmt-dev catch2 libtomlplusplus-dev)
+if [ "${1:-}" = "--test" ]; then
+  packages+=(linuxcnc-uspace chromium)
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

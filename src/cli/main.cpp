@@ -10,6 +10,7 @@
 
 #include "arcpress/api/arcpress.hpp"
 #include "arcpress/core/error.hpp"
+#include "arcpress/dialect/dialect_loader.hpp"
 #include "arcpress/lex/lexer.hpp"
 #include "arcpress/model/interpreter.hpp"
 #include "file_io.hpp"
@@ -30,10 +31,24 @@ std::string real_path(const std::string& p) {
   return ::realpath(p.c_str(), buf) ? std::string(buf) : std::string();
 }
 
+std::string exe_dir() {
+  std::string self = real_path("/proc/self/exe");
+  size_t slash = self.rfind('/');
+  return slash == std::string::npos ? std::string() : self.substr(0, slash);
+}
+
+/// The dialect named on the command line: a file wins over a name.
+Dialect chosen_dialect(const std::string& name, const std::string& file) {
+  if (!file.empty()) return load_dialect_file(file);
+  return find_dialect(name, dialect_search_path(exe_dir()));
+}
+
 struct CompressArgs {
   std::string input = "-";
   std::string output;
   std::string dialect = "rs274";
+  std::string dialect_file;
+  std::string arc_format;
   std::string method = "arcs";
   bool in_place = false;
   bool stats = false;
@@ -41,8 +56,6 @@ struct CompressArgs {
 };
 
 int run_compress(const CompressArgs& a) {
-  if (a.dialect != "rs274")
-    throw Error(kExitInput, fmt::format("unknown dialect '{}' (available: rs274)", a.dialect));
   std::string out_path = a.output;
   if (a.in_place) {
     if (a.input == "-") throw Error(kExitInput, "--in-place needs an input file, not standard input");
@@ -56,6 +69,9 @@ int run_compress(const CompressArgs& a) {
   }
   CompressOptions opt = a.opt;
   opt.fit.method = a.method == "keep" ? FitOptions::Method::Keep : FitOptions::Method::Arcs;
+  opt.dialect = chosen_dialect(a.dialect, a.dialect_file);
+  if (a.arc_format == "ijk") opt.arc_format = ArcFormat::Centre;
+  if (a.arc_format == "r") opt.arc_format = ArcFormat::Radius;
 
   auto t0 = std::chrono::steady_clock::now();
   std::string text = cli::read_input(a.input);
@@ -89,12 +105,16 @@ int run_compress(const CompressArgs& a) {
                "  blocks in      {}\n"
                "  bytes in/out   {} / {} ({:.1f} %)\n"
                "  runs           {} with {} G1 moves\n"
+               "  dialect        {}\n"
                "  written        {} G1 + {} G2/G3 ({} blocks for {} moves, {:.1f} %)\n"
+               "  kept as input  {} arcs that would not print inside the dialect's rules, {} over-long lines\n"
                "  time           {:.3f} s\n",
                name, out_path == "-" ? "<stdout>" : out_path, r.blocks_in, r.bytes_in, r.output.size(),
                r.bytes_in ? 100.0 * double(r.output.size()) / double(r.bytes_in) : 100.0, st.runs, st.moves_in,
+               opt.dialect.source.empty() ? opt.dialect.name : opt.dialect.name + " (" + opt.dialect.source + ")",
                st.lines_out, st.arcs_out, st.lines_out + st.arcs_out, st.moves_in,
-               st.moves_in ? 100.0 * double(st.lines_out + st.arcs_out) / double(st.moves_in) : 100.0, s);
+               st.moves_in ? 100.0 * double(st.lines_out + st.arcs_out) / double(st.moves_in) : 100.0,
+               st.arcs_unprintable, st.long_lines_kept, s);
     if (r.verified) {
       const auto& c = r.comparison;
       fmt::print(stderr,
@@ -161,7 +181,11 @@ int main(int argc, char** argv) {
   app.add_option("--tolerance", a.opt.fit.tolerance_mm,
                  "Max distance in mm between output and input path, both ways")
       ->check(CLI::PositiveNumber)->capture_default_str();
-  app.add_option("--dialect", a.dialect, "Target controller dialect")->capture_default_str();
+  app.add_option("--dialect", a.dialect, "Target controller dialect (see 'arcpress dialects')")->capture_default_str();
+  app.add_option("--dialect-file", a.dialect_file, "Load the dialect from this TOML file instead");
+  app.add_option("--arc-format", a.arc_format, "ijk: centre words; r: radius words where the dialect reads them "
+                                                "(default: the dialect's choice)")
+      ->check(CLI::IsMember({"ijk", "r"}));
   app.add_option("--method", a.method, "keep: leave every G1 as it is; arcs: fit lines and arcs")
       ->check(CLI::IsMember({"keep", "arcs"}))->capture_default_str();
   app.add_option("--g1-angle", a.opt.fit.g1_angle_deg, "Max tangent change in degrees at smooth joints")
@@ -193,6 +217,8 @@ int main(int argc, char** argv) {
   diff_cmd->add_option("--tolerance", diff.tolerance_mm, "Band in mm")->check(CLI::PositiveNumber)->capture_default_str();
   diff_cmd->footer(kExitCodesHelp);
 
+  CLI::App* dialects_cmd = app.add_subcommand("dialects", "List the controller dialects, one line each");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -209,6 +235,11 @@ int main(int argc, char** argv) {
   a.opt.verify = !no_verify;
   try {
     if (*diff_cmd) return run_diff(diff);
+    if (*dialects_cmd) {
+      auto path = dialect_search_path(exe_dir());
+      for (const Dialect& d : list_dialects(path)) fmt::print("{:<16}{}\n", d.name, d.description);
+      return kExitOk;
+    }
     return run_compress(a);
   } catch (const Error& e) {
     fmt::print(stderr, "arcpress: {}\n", e.what());

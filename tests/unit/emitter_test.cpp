@@ -1,4 +1,5 @@
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 
 #include "arcpress/emit/emitter.hpp"
 #include "arcpress/emit/number_format.hpp"
@@ -42,11 +43,31 @@ TEST_CASE("a merged line reuses the input's own number text and look", "[emit]")
   CHECK(emit_with(text, {{3}}) == "g0 x0 y0 z0\ng01 x3.000 y0 f100\nm2\n");
 }
 
+namespace {
+/// A quarter circle of radius 10 about the origin from (10, 0) to (0, 10) as 32 G1 moves
+/// printed to 4 decimals, then one more move and M2.
+std::string quarter_circle_program(const std::string& header = "G0 X10 Y0 Z0\n") {
+  std::string t = header;
+  for (int k = 1; k <= 32; ++k) {
+    double a = kPi / 2 * k / 32;
+    t += fmt::format("{}X{} Y{}{}\n", k == 1 ? "G1 " : "", format_number(10 * std::cos(a), {4, true, false}),
+                     format_number(10 * std::sin(a), {4, true, false}), k == 1 ? " F200" : "");
+  }
+  return t + "X-5 Y10\nM2\n";
+}
+}  // namespace
+
 TEST_CASE("an arc is written with I/J from its start, and the next copied block restates G1", "[emit]") {
+  Primitive arc{32, Primitive::Kind::Arc, true, Vec2(0, 0), 10.0};
+  std::string out = emit_with(quarter_circle_program(), {arc, {33}});
+  CHECK(out == "G0 X10 Y0 Z0\nG3 X0 Y10 I-10 J0 F200\nG1 X-5 Y10\nM2\n");
+}
+
+TEST_CASE("an arc that leaves the band once printed is written as the input's own lines", "[emit]") {
+  // Two chords of a radius-10 circle: the arc bulges 0.76 mm away from them.
   std::string text = "N5 G0 X10 Y0 Z0\nN10 G1 X7.071 Y7.071 F200\nN20 X0 Y10\nN30 X-5 Y10\nN40 M2\n";
   Primitive arc{2, Primitive::Kind::Arc, true, Vec2(0, 0), 10.0};
-  std::string out = emit_with(text, {arc, {3}});
-  CHECK(out == "N5 G0 X10 Y0 Z0\nN20 G3 X0 Y10 I-10 J0 F200\nN30 G1 X-5 Y10\nN40 M2\n");
+  CHECK(emit_with(text, {arc, {3}}) == text);
 }
 
 TEST_CASE("relative programs get relative end points; M83 E is summed", "[emit]") {

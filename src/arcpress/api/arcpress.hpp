@@ -1,9 +1,11 @@
 #pragma once
 // The C++ façade: one call runs the whole pipeline on a program held in memory.
 // lex -> interpret -> extract runs -> fit -> emit (-> verify).
+#include <optional>
 #include <string>
 
 #include "arcpress/core/diagnostic.hpp"
+#include "arcpress/dialect/dialect.hpp"
 #include "arcpress/emit/emitter.hpp"
 #include "arcpress/fit/primitive.hpp"
 #include "arcpress/verify/path_compare.hpp"
@@ -14,6 +16,10 @@ inline constexpr const char* kVersion = "0.1.0";
 
 struct CompressOptions {
   FitOptions fit;
+  /// The target controller: how the input is read, what the fit may use (planes, helices,
+  /// sweep, radius and length limits, which tighten `fit`'s) and how the output is printed.
+  Dialect dialect;
+  std::optional<ArcFormat> arc_format;  ///< I/J/K or R; absent: the dialect's own choice
   bool passthrough = false;  ///< lex and write back every block unchanged
   bool strict = false;       ///< any unreadable block is an error
   bool verify = true;        ///< re-read the output and measure it against the input
@@ -32,6 +38,10 @@ struct CompressResult {
   bool within_band() const { return !verified || comparison.within(band_mm); }
   double band_mm = 0;
 };
+
+/// The fit options for one run: the user's, tightened by what the dialect's controller
+/// accepts in that run's frame and plane.
+FitOptions fit_options_for(const FitOptions& user, const Dialect& dialect, const Frame& frame, Plane plane);
 
 /// Compresses `text` (the program called `name` in diagnostics). Never throws for bad
 /// input: problems go to `sink`, and in strict mode any of them makes `ok` false. With

@@ -1,11 +1,28 @@
 #include "arcpress/api/arcpress.hpp"
 
+#include <algorithm>
+
+#include "arcpress/core/error.hpp"
 #include "arcpress/extract/run.hpp"
 #include "arcpress/fit/fitter.hpp"
 #include "arcpress/lex/lexer.hpp"
+#include "arcpress/lex/refusal_scan.hpp"
 #include "arcpress/model/interpreter.hpp"
 
 namespace arcpress {
+
+FitOptions fit_options_for(const FitOptions& user, const Dialect& d, const Frame& frame, Plane plane) {
+  FitOptions o = user;
+  o.arcs = user.arcs && d.arcs && d.plane_allowed(plane) && (d.relative_arcs || frame.absolute);
+  o.helical = user.helical && d.helical;
+  o.max_sweep_deg = std::min(user.max_sweep_deg, d.max_sweep_deg);
+  o.min_sweep_deg = std::max(user.min_sweep_deg, d.min_sweep_deg);
+  o.min_radius_mm = std::max(user.min_radius_mm, d.min_radius_mm);
+  o.max_radius_mm = std::min(user.max_radius_mm, d.max_radius_mm);
+  o.min_arc_length_mm = std::max(user.min_arc_length_mm, d.min_arc_length_mm);
+  o.min_arc_moves = std::max<uint32_t>(user.min_arc_moves, uint32_t(d.min_arc_moves));
+  return o;
+}
 
 CompressResult compress(const std::string& name, std::string text, const CompressOptions& opt,
                         DiagnosticSink& sink) {
@@ -14,7 +31,10 @@ CompressResult compress(const std::string& name, std::string text, const Compres
   r.bytes_in = text.size();
   Program prog = lex(name, std::move(text), sink);
   r.blocks_in = prog.blocks.size();
-  Interpretation in = interpret(prog, sink);
+  if (opt.arc_format == ArcFormat::Radius && !opt.dialect.radius_word)
+    throw Error(kExitInput, opt.dialect.name + " does not read R-form arcs; use I/J/K");
+  scan_refusals(prog, opt.dialect, sink);
+  Interpretation in = interpret(prog, sink, opt.dialect);
   if (sink.error_count() > 0) return r;
   std::vector<Run> runs;
   std::vector<FitResult> fits;
@@ -22,17 +42,21 @@ CompressResult compress(const std::string& name, std::string text, const Compres
     runs = extract_runs(in);
     fits.reserve(runs.size());
     for (const Run& run : runs) {
-      fits.push_back(fit_run(in, run, opt.fit));
+      fits.push_back(fit_run(in, run, fit_options_for(opt.fit, opt.dialect, in.frames[run.frame], run.plane)));
       r.forced_kinks += fits.back().forced_kinks;
     }
   }
-  r.output = emit_program(prog, in, runs, fits, opt.fit.tolerance_mm, &r.stats);
+  EmitOptions eo;
+  eo.band_mm = opt.fit.tolerance_mm;
+  eo.dialect = opt.dialect;
+  eo.format = opt.arc_format.value_or(opt.dialect.format);
+  r.output = emit_program(prog, in, runs, fits, eo, &r.stats);
   r.ok = true;
   r.band_mm = opt.fit.tolerance_mm;
   if (opt.verify && !opt.passthrough) {
     DiagnosticSink out_sink(name + " (output)");
     Program out_prog = lex(name + " (output)", r.output, out_sink);
-    Interpretation out_in = interpret(out_prog, out_sink);
+    Interpretation out_in = interpret(out_prog, out_sink, opt.dialect);
     CompareOptions co;
     co.tolerance_mm = opt.fit.tolerance_mm;
     co.g1_angle_deg = opt.fit.g1_angle_deg;

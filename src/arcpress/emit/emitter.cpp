@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
+#include "arcpress/core/deviation.hpp"
 #include "arcpress/emit/number_format.hpp"
 
 namespace arcpress {
@@ -33,8 +35,8 @@ struct BlockStyle {
 
 class Emitter {
  public:
-  Emitter(const Program& p, const Interpretation& in, double band_mm, EmitStats* stats)
-      : p_(p), in_(in), stats_(stats), band_mm_(band_mm) {
+  Emitter(const Program& p, const Interpretation& in, const EmitOptions& opt, EmitStats* stats)
+      : p_(p), in_(in), stats_(stats), opt_(opt) {
     out_.reserve(p.text.size());
     detect_padding();
   }
@@ -83,6 +85,8 @@ class Emitter {
       const Word* n_word = nullptr;
       for (auto* w = p_.words_begin(b); w != p_.words_end(b); ++w) {
         if (w->letter == 'G' && !w->is_expr && is_motion_gcode(w->value)) explicit_motion = int(std::lround(w->value * 10));
+        if (w->letter == 'G' && !w->is_expr && (std::lround(w->value * 10) == 901 || std::lround(w->value * 10) == 911))
+          header_done_ = true;  // the program sets the centre mode itself
         if (moves_axis(w->letter)) axes = true;
         if (w->letter == 'N' && w == p_.words_begin(b)) n_word = w;
       }
@@ -140,26 +144,62 @@ class Emitter {
     uint32_t a = 0;
     for (const Primitive& pr : fit.prims) {
       uint32_t e = pr.end_vertex;
-      if (pr.kind == Primitive::Kind::Line && e == a + 1) {
-        copy_block(p_.blocks[in_.moves[run.first_move + a].block]);
-        if (stats_) ++stats_->lines_out;
+      bool arc = pr.kind == Primitive::Kind::Arc;
+      std::optional<std::string> text;
+      if (arc || e > a + 1) {
+        text = compose(run, fr, a, pr, false);
+        if (text && text->size() > d().max_line_length) text = compose(run, fr, a, pr, true);
+        if (text && text->size() > d().max_line_length) text.reset();
+        if (!text && stats_) ++(arc ? stats_->arcs_unprintable : stats_->long_lines_kept);
+      }
+      if (text) {
+        if (arc && !header_done_ && !d().arc_header.empty()) {
+          out_ += d().arc_header;
+          out_.append(p_.eol(p_.blocks[in_.moves[run.first_move + a].block]));
+          header_done_ = true;
+        }
+        const Block& last = p_.blocks[in_.moves[run.first_move + e - 1].block];
+        out_ += *text;
+        out_.append(p_.eol(last));
+        out_motion_ = arc ? (pr.ccw != flip(run.plane) ? 30 : 20) : 10;
+        if (stats_) ++(arc ? stats_->arcs_out : stats_->lines_out);
       } else {
-        new_block(run, fr, a, pr);
+        // The input's own blocks: always readable, always on the path.
+        for (uint32_t k = a; k < e; ++k) {
+          copy_block(p_.blocks[in_.moves[run.first_move + k].block]);
+          if (stats_) ++stats_->lines_out;
+        }
       }
       a = e;
     }
   }
 
-  /// Writes one block for primitive `pr` covering run vertices a .. pr.end_vertex.
-  void new_block(const Run& run, const Frame& fr, uint32_t a, const Primitive& pr) {
+  const Dialect& d() const { return opt_.dialect; }
+  /// True where the dialect's G2/G3 turn the other way than RS274's in this plane.
+  bool flip(Plane pl) const { return d().zx_reversed && pl == Plane::ZX; }
+
+  /// What the controller reads from one printed arc, checked against the input points.
+  struct PrintedArc {
+    std::string words;  ///< "I.. J.." or "R.."
+    bool ok = false;
+  };
+
+  /// The text of one block for primitive `pr` over run vertices a .. pr.end_vertex, or
+  /// nothing when the arc cannot be printed so that the controller reads it inside the band.
+  /// `compact`: no spaces between words (for short line limits).
+  std::optional<std::string> compose(const Run& run, const Frame& fr, uint32_t a, const Primitive& pr, bool compact) {
     uint32_t e = pr.end_vertex;
     const Block& last = p_.blocks[in_.moves[run.first_move + e - 1].block];
     BlockStyle st = style_of(p_.blocks[in_.moves[run.first_move + a].block]);
-    std::string sep = st.spaced ? " " : "";
-    // The last word of each letter in the covered blocks, and the decimals each letter uses.
+    st.keep_point = st.keep_point || d().decimal_point;
+    const std::string sep = st.spaced && !compact ? " " : "";
+    const NumberDigits& dig = d().digits(fr.unit_mm != 1.0);
+    // The last word of each letter in the covered blocks, the decimals each letter uses,
+    // and whether any covered block states its motion word.
     const Word* last_word[26] = {};
     const Block* last_block[26] = {};
     int decimals[26] = {};
+    bool motion_written = false;
     for (uint32_t k = a; k < e; ++k) {
       const Block& b = p_.blocks[in_.moves[run.first_move + k].block];
       for (auto* w = p_.words_begin(b); w != p_.words_end(b); ++w) {
@@ -167,78 +207,202 @@ class Emitter {
         last_word[li] = w;
         last_block[li] = &b;
         decimals[li] = std::max<int>(decimals[li], w->decimals);
+        if (w->letter == 'G') motion_written = true;
       }
-    }
-    std::string s;
-    if (const Word* n = p_.find(last, 'N'); n && n == p_.words_begin(last)) {
-      s += p_.raw(last, *n);
-      s += sep;
     }
     bool arc = pr.kind == Primitive::Kind::Arc;
-    int g = arc ? (pr.ccw ? 3 : 2) : 1;
-    s += st.motion(g);
-    out_motion_ = g * 10;
+    int g = arc ? (pr.ccw != flip(run.plane) ? 3 : 2) : 1;
+    std::string s;
+    if (const Word* n = p_.find(last, 'N'); n && n == p_.words_begin(last)) s += p_.raw(last, *n);
+    // Modal motion is not repeated where the input does not repeat it.
+    if (motion_written || out_motion_ != g * 10) {
+      if (!s.empty()) s += sep;
+      s += st.motion(g);
+    }
     const AxisValues& from = run.vertex(in_, a);
     const AxisValues& to = run.vertex(in_, e);
-    auto axes = axes_of(run.plane);
-    auto put = [&](char letter, const std::string& text) {
-      s += sep;
-      s += st.letter(letter);
-      s += text;
+    // End point words, and the end point as the controller reads them (mm).
+    AxisValues end = to;
+    std::string axis_words, e_word;
+    auto put_to = [&](std::string& dst, char letter, const std::string& text) {
+      dst += sep;
+      dst += st.letter(letter);
+      dst += text;
     };
+    auto axes = axes_of(run.plane);
     for (int ax = 0; ax < kAxisCount; ++ax) {
       char L = kAxisLetters[ax];
-      if (ax == kE) {
-        // Arc centre words come before E and F, as arc-fitting slicers write them.
-        if (arc) {
-          int cd = 0;
-          for (int k = 0; k < 3; ++k) cd = std::max(cd, decimals[kAxisLetters[k] - 'A']);
-          // Rounding a centre by half a digit moves the arc by up to 0.71 digit (in mm);
-          // keep that under 1.5 % of the band.
-          int for_band = int(std::ceil(std::log10(fr.unit_mm * 0.71 / (0.015 * band_mm_))));
-          cd = std::clamp(std::max(cd + 1, for_band), fr.unit_mm == 1.0 ? 3 : 4, 8);
-          NumberStyle ns{cd, true, st.keep_point};
-          Vec2 c = pr.center;
-          double cx[3] = {0, 0, 0};
-          cx[axes.first] = c.x();
-          cx[axes.second] = c.y();
-          for (int k = 0; k < 3; ++k) {
-            if (k == axes.normal) continue;
-            double v = fr.arc_absolute ? fr.to_program(k, cx[k]) : (cx[k] - from[k]) / fr.unit_mm;
-            put(char('I' + k), format_number(v, ns));
-          }
-        }
-      }
+      std::string& dst = ax == kE ? e_word : axis_words;
       bool in_plane = arc && (ax == axes.first || ax == axes.second);
       const Word* w = last_word[L - 'A'];
       if (!w && !in_plane) continue;
       bool relative = ax == kE ? fr.e_relative : !fr.absolute;
-      NumberStyle ns{decimals[L - 'A'], true, st.keep_point};
+      double scale = kAxisIsLinear[ax] ? fr.unit_mm : 1.0;
       if (relative) {
-        double d = (to[ax] - from[ax]) / (kAxisIsLinear[ax] ? fr.unit_mm : 1.0);
-        put(L, format_number(d, ns));
+        // Deltas of the input's own digits sum exactly at those digits: no drift.
+        int dec = std::max(decimals[L - 'A'], 0);
+        double delta = rounded((to[ax] - from[ax]) / scale, dec);
+        put_to(dst, L, format_number(delta, NumberStyle{dec, true, st.keep_point}));
+        end[ax] = from[ax] + delta * scale;
       } else if (w) {
-        auto raw = p_.raw(*last_block[L - 'A'], *w);
-        s += sep;
-        s += raw;  // the input's own text for this value
+        dst += sep;
+        dst += p_.raw(*last_block[L - 'A'], *w);  // the input's own text
       } else {
-        // Not written in the covered blocks: the value from before, printed exactly.
-        put(L, format_number(fr.to_program(ax, to[ax]), NumberStyle{6, true, st.keep_point}));
+        // Not written in the covered blocks: the value from before, printed exactly enough.
+        double v = rounded(fr.to_program(ax, to[ax]), dig.max);
+        put_to(dst, L, format_number(v, NumberStyle{dig.max, true, st.keep_point}));
+        end[ax] = fr.to_mm(ax, v);
       }
     }
+    s += axis_words;
+    if (arc) {
+      PrintedArc c = print_centre(run, fr, a, pr, end, st);
+      if (!c.ok) return std::nullopt;
+      s += sep;
+      s += c.words;
+    }
+    s += e_word;  // arc centre words come before E and F, as arc-fitting slicers write them
     if (const Word* f = last_word['F' - 'A']) {
       s += sep;
       s += p_.raw(*last_block['F' - 'A'], *f);
     }
-    out_ += s;
-    out_.append(p_.eol(last));
-    if (stats_) ++(arc ? stats_->arcs_out : stats_->lines_out);
+    return s;
+  }
+
+  /// Prints the centre (I/J/K or R) of arc `pr` from run vertex a to the printed end point
+  /// `end` (mm), so that what the controller reads stays within the band and its rules.
+  /// Tries the dialect's usual decimals, then more up to its maximum; at each, the rounded
+  /// centre, then its grid neighbours nearest the bisector of the printed end points.
+  PrintedArc print_centre(const Run& run, const Frame& fr, uint32_t a, const Primitive& pr, const AxisValues& end,
+                          const BlockStyle& st) {
+    PrintedArc out;
+    auto axes = axes_of(run.plane);
+    const AxisValues& from = run.vertex(in_, a);
+    auto plane3 = [&](const AxisValues& v) { return Vec3(v[axes.first], v[axes.second], v[axes.normal]); };
+    const Vec3 s3 = plane3(from), e3 = plane3(end);
+    const Vec2 s2 = s3.head<2>(), e2 = e3.head<2>();
+    const double chord = (e2 - s2).norm();
+    if (chord < std::max(d().min_chord_mm, kLengthEpsMm)) return out;
+    // The input points the arc replaces, for the band check.
+    pts_.clear();
+    for (uint32_t k = a; k <= pr.end_vertex; ++k) pts_.push_back(plane3(run.vertex(in_, k)));
+    pts_.back() = e3;
+
+    const NumberDigits& dig = d().digits(fr.unit_mm != 1.0);
+    const double unit = fr.unit_mm;
+    const std::string sep = st.spaced ? " " : "";
+    // Where the controller takes I/J/K from: the start, or the program's origin.
+    const bool offsets = d().centre == CentreReading::Absolute ? !fr.absolute : !fr.arc_absolute;
+    const int first_dec = std::min(std::max(dig.centre, decimals_for_band(unit)), dig.max);
+    const Vec2 ideal = pr.center;
+    const double r_ideal = (s2 - ideal).norm();
+    const double sweep_ideal = std::abs(ArcGeom::through(s3, e3, ideal, pr.ccw).sweep);
+    bool use_radius = opt_.format == ArcFormat::Radius && d().radius_word &&
+                      // R is ambiguous near a half circle and meaningless near a full one
+                      std::abs(rad_to_deg(sweep_ideal) - 180.0) > 15.0 && rad_to_deg(sweep_ideal) < 345.0;
+
+    // Program-unit reference point for the centre words.
+    const Vec2 ref = offsets ? s2 : Vec2(fr.to_mm(axes.first, 0.0), fr.to_mm(axes.second, 0.0));
+    for (int dec = first_dec; dec <= dig.max; ++dec) {
+      const double step = std::pow(10.0, -dec);
+      if (use_radius) {
+        double R = rounded(r_ideal / unit, dec);
+        for (double dr : {0.0, step, -step}) {
+          double Rp = R + dr;
+          if (Rp <= 0) continue;
+          // The controller's centre from the printed R (as the model stage reads it).
+          double h2 = Rp * unit * Rp * unit - chord * chord / 4;
+          double h = h2 > 0 ? std::sqrt(h2) : 0.0;
+          Vec2 n = left_normal((e2 - s2) / chord);
+          bool big = sweep_ideal > kPi;
+          double side = (pr.ccw ? 1.0 : -1.0) * (big ? -1.0 : 1.0);
+          Vec2 c = (s2 + e2) / 2 + side * h * n;
+          if (h2 < 0 || !acceptable(s3, e3, c, pr.ccw, run)) continue;
+          std::string t = format_number(big ? -Rp : Rp, NumberStyle{dec, true, st.keep_point});
+          if (!digits_fit(t)) continue;
+          out.words = st.letter('R') + t;
+          out.ok = true;
+          return out;
+        }
+        continue;
+      }
+      // Centre words: the rounded centre and its 8 neighbours on the printed grid.
+      Vec2 v = (ideal - ref) / unit;
+      Vec2 base(rounded(v.x(), dec), rounded(v.y(), dec));
+      struct Cand {
+        Vec2 w;
+        double dr;
+      };
+      Cand cands[9];
+      int n = 0;
+      for (int i = -1; i <= 1; ++i)
+        for (int j = -1; j <= 1; ++j) {
+          Vec2 w(base.x() + i * step, base.y() + j * step);
+          Vec2 c = ref + w * unit;
+          cands[n++] = {w, std::abs((s2 - c).norm() - (e2 - c).norm())};
+        }
+      // The rounded centre first (closest to the fit), then its neighbours nearest the bisector.
+      std::swap(cands[0], cands[4]);
+      std::sort(cands + 1, cands + n, [](const Cand& x, const Cand& y) { return x.dr < y.dr; });
+      for (int q = 0; q < n; ++q) {
+        Vec2 c = ref + cands[q].w * unit;
+        if (!acceptable(s3, e3, c, pr.ccw, run)) continue;
+        std::string t1 = format_number(cands[q].w.x(), NumberStyle{dec, true, st.keep_point});
+        std::string t2 = format_number(cands[q].w.y(), NumberStyle{dec, true, st.keep_point});
+        if (!digits_fit(t1) || !digits_fit(t2)) continue;
+        out.words = st.letter(char('I' + axes.first)) + t1 + sep + st.letter(char('I' + axes.second)) + t2;
+        if (axes.first > axes.second)  // I before J before K, as controllers print them
+          out.words = st.letter(char('I' + axes.second)) + t2 + sep + st.letter(char('I' + axes.first)) + t1;
+        out.ok = true;
+        return out;
+      }
+    }
+    return out;
+  }
+
+  /// Decimals for which rounding a centre by half a digit moves the arc by at most 1.5 %
+  /// of the band (the fitter keeps 3 % back): 0.71 digit in the worst direction.
+  int decimals_for_band(double unit_mm) const {
+    return int(std::ceil(std::log10(unit_mm * 0.71 / (0.015 * opt_.band_mm))));
+  }
+
+  /// Whether an arc from s to e about c (as the controller reads the printed numbers) is one
+  /// the controller runs as meant, inside the band of the input points pts_.
+  bool acceptable(const Vec3& s, const Vec3& e, const Vec2& c, bool ccw, const Run& run) const {
+    double rs = (s.head<2>() - c).norm(), re = (e.head<2>() - c).norm();
+    double dr = std::abs(rs - re);
+    if (dr > d().radius_allowance_mm(rs)) return false;
+    if (rs < d().min_radius_mm || rs > d().max_radius_mm) return false;
+    ArcGeom g = ArcGeom::through(s, e, c, ccw);
+    double sweep_deg = rad_to_deg(std::abs(g.sweep));
+    if (sweep_deg < d().min_sweep_deg || sweep_deg > d().max_sweep_deg + 1e-9) return false;
+    if (rs * std::abs(g.sweep) < d().min_arc_length_mm) return false;
+    (void)run;
+    // The controller ends on the printed end point: a spiral or a jump of at most dr.
+    Deviation dev = arc_deviation(pts_, g, opt_.band_mm);
+    return dev.ordered && dev.max_mm + dr <= opt_.band_mm;
+  }
+
+  /// The dialect's limit on significant digits in one number.
+  bool digits_fit(const std::string& t) const {
+    if (d().max_significant_digits <= 0) return true;
+    int n = 0;
+    bool leading = true;
+    for (char ch : t) {
+      if (ch < '0' || ch > '9') continue;
+      if (leading && ch == '0') continue;
+      leading = false;
+      ++n;
+    }
+    return n <= d().max_significant_digits;
   }
 
   const Program& p_;
   const Interpretation& in_;
   EmitStats* stats_;
-  double band_mm_;
+  const EmitOptions& opt_;
+  std::vector<Vec3> pts_;     // scratch: input points of the arc being printed
+  bool header_done_ = false;  // the dialect's arc header is written, or the program set the mode
   std::string out_;
   bool padded_ = false;
   bool keep_point_ = false;
@@ -249,8 +413,8 @@ class Emitter {
 }  // namespace
 
 std::string emit_program(const Program& program, const Interpretation& in, const std::vector<Run>& runs,
-                         const std::vector<FitResult>& fits, double band_mm, EmitStats* stats) {
-  return Emitter(program, in, band_mm > 0 ? band_mm : 0.01, stats).run(runs, fits);
+                         const std::vector<FitResult>& fits, const EmitOptions& options, EmitStats* stats) {
+  return Emitter(program, in, options, stats).run(runs, fits);
 }
 
 }  // namespace arcpress

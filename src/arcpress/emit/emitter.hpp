@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "arcpress/dialect/dialect.hpp"
 #include "arcpress/extract/run.hpp"
 #include "arcpress/fit/primitive.hpp"
 #include "arcpress/lex/block.hpp"
@@ -18,11 +19,25 @@ struct EmitStats {
   size_t lines_out = 0;   ///< G1 blocks written for runs (copied or new)
   size_t arcs_out = 0;    ///< G2/G3 blocks written
   size_t motion_words_added = 0;  ///< copied blocks that needed their motion word restated
+  /// Fitted arcs written as their input lines instead: after rounding to the printed digits
+  /// they broke the band, the controller's radius rule, its sweep limits or its line length.
+  size_t arcs_unprintable = 0;
+  size_t long_lines_kept = 0;    ///< fitted lines kept as input lines: too long for the dialect
 };
 
-/// `band_mm` is the tolerance the fit was made for: arc centres are printed with enough
-/// digits that rounding them moves the arc by at most 1.5 % of it (the fitter keeps 3 % back).
+struct EmitOptions {
+  /// The band the fit was made for: every arc is re-checked against it after rounding.
+  double band_mm = 0.01;
+  Dialect dialect;                           ///< what the controller reads
+  ArcFormat format = ArcFormat::Centre;      ///< I/J/K or R (R only where the dialect reads it)
+};
+
+/// Writes the program with each run replaced by its fit. Every arc is printed, read back
+/// from the printed digits as the controller would, and checked (band, end-radius rule,
+/// sweep, chord, digits, line length); one that fails any check is written as the input's
+/// own G1 blocks instead.
 std::string emit_program(const Program& program, const Interpretation& in, const std::vector<Run>& runs,
-                         const std::vector<FitResult>& fits, double band_mm = 0.01, EmitStats* stats = nullptr);
+                         const std::vector<FitResult>& fits, const EmitOptions& options = {},
+                         EmitStats* stats = nullptr);
 
 }  // namespace arcpress

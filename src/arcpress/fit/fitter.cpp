@@ -107,7 +107,8 @@ class RunFitter {
     double lo3 = -kInf, hi3 = kInf;  // ... in-plane share, for primitives that climb
     const double h0 = p_[a].z();
     bool flat = true;
-    double max_sweep = deg_to_rad(o_.max_sweep_deg);
+    const double max_sweep = deg_to_rad(o_.max_sweep_deg);
+    const double min_sweep = deg_to_rad(o_.min_sweep_deg);
     for (uint32_t e = a + 1; e <= limit; ++e) {
       if (e > a + 1) {
         uint32_t m = e - 1;  // becomes an interior vertex
@@ -142,9 +143,11 @@ class RunFitter {
       if (k < L - slack || k > H + slack) continue;
       bool line = std::abs(alpha) <= line_kink_;
       if (!line) {
+        if (!o_.arcs) continue;
         double r = 1 / std::abs(k);
         double len = r * std::abs(2 * alpha);
         if (r > o_.max_radius_mm || r < o_.min_radius_mm || len < o_.min_arc_length_mm) continue;
+        if (e - a < o_.min_arc_moves || std::abs(2 * alpha) < min_sweep) continue;
         if (!flat && !o_.helical) continue;
       }
       out.push_back({e, k, line});

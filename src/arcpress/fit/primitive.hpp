@@ -24,13 +24,16 @@ struct FitOptions {
     Arcs,  ///< G1-continuous lines and arcs (default)
   };
   Method method = Method::Arcs;
+  bool arcs = true;                ///< false: lines only (the controller takes no arcs here)
   double tolerance_mm = 0.01;      ///< max distance between fitted path and input path, both ways
   double g1_angle_deg = 0.5;       ///< max tangent change at a joint where the input is smooth
   double corner_angle_deg = 30.0;  ///< an input turn sharper than this is a corner kept sharp
   double min_radius_mm = 0.05;     ///< smaller arcs become lines
   double max_radius_mm = 1000.0;   ///< larger arcs become lines
   double max_sweep_deg = 180.0;    ///< per block
+  double min_sweep_deg = 0.0;      ///< flatter arcs become lines (controllers misread near-zero sweeps)
   double min_arc_length_mm = 0.0;  ///< shorter arcs become lines (firmware re-segmentation)
+  uint32_t min_arc_moves = 0;      ///< an arc must replace at least this many input moves
   bool helical = true;             ///< arcs may move along the plane's normal axis
 };
 

@@ -32,7 +32,7 @@ constexpr uint32_t kXyzMask = (1u << kX) | (1u << kY) | (1u << kZ);
 
 class Interpreter {
  public:
-  Interpreter(const Program& p, DiagnosticSink& sink) : p_(p), sink_(sink) {
+  Interpreter(const Program& p, const Dialect& d, DiagnosticSink& sink) : p_(p), d_(d), sink_(sink) {
     out_.frames.push_back(frame_);
     out_.move_of_block.assign(p.blocks.size(), -1);
     out_.moves.reserve(p.blocks.size());
@@ -86,7 +86,7 @@ class Interpreter {
         }
         words_seen[ax] = true;
         expr_axis[ax] = w->is_expr;
-        value[ax] = w->value;
+        value[ax] = ax == kE ? w->value : number(*w);
         continue;
       }
       if (w->is_expr) {
@@ -166,14 +166,14 @@ class Interpreter {
           break;
         case 'I': case 'J': case 'K': {
           int k = L - 'I';
-          ijk[k] = w->value;
+          ijk[k] = number(*w);
           ijk_seen[k] = true;
           only_g1_words = false;
           break;
         }
         case 'R':
           r_seen = true;
-          r_value = w->value;
+          r_value = number(*w);
           only_g1_words = false;
           break;
         case 'P':
@@ -256,10 +256,12 @@ class Interpreter {
 
     MoveKind kind = MoveKind::Other;
     if (!g53) {
+      // A dialect whose G18 arcs turn the other way is read back into RS274's sense here.
+      bool flip = d_.zx_reversed && f_plane_ == Plane::ZX;
       if (motion_ == 0) kind = MoveKind::Rapid;
       else if (motion_ == 10) kind = MoveKind::Line;
-      else if (motion_ == 20) kind = MoveKind::ArcCW;
-      else if (motion_ == 30) kind = MoveKind::ArcCCW;
+      else if (motion_ == 20) kind = flip ? MoveKind::ArcCCW : MoveKind::ArcCW;
+      else if (motion_ == 30) kind = flip ? MoveKind::ArcCW : MoveKind::ArcCCW;
     }
     if (kind == MoveKind::Other && motion_ != 0) known_after &= ~kXyzMask;  // cycles end where they like
     Move& m = add_move(bi, kind, target, known, turns, false);
@@ -298,10 +300,13 @@ class Interpreter {
       c[a.second] = cc.y();
       return c;
     }
+    // RS274 reads I/J/K as offsets from the start unless G90.1; a dialect that reads them
+    // as the absolute centre does so unless the program is in incremental mode (G91).
+    bool absolute = d_.centre == CentreReading::Absolute ? fr.absolute : fr.arc_absolute;
     for (int k = 0; k < 3; ++k) {
       if (k == a.normal) continue;
       double off = ijk_seen[k] ? ijk[k] : 0.0;
-      if (fr.arc_absolute)
+      if (absolute)
         c[k] = ijk_seen[k] ? fr.to_mm(k, off) : pos_[k];
       else
         c[k] = pos_[k] + off * fr.unit_mm;
@@ -331,7 +336,16 @@ class Interpreter {
     out_.frames.push_back(f);
   }
 
+  /// A word's number as the controller reads it: where the dialect counts numbers without
+  /// a decimal point in least increments (Fanuc "X1" = 0.001 mm), scaled to program units.
+  double number(const Word& w) const {
+    if (!d_.decimal_point || w.has_point || w.is_expr) return w.value;
+    double inc = frame_.unit_mm == 1.0 ? d_.integer_increment_mm : d_.integer_increment_inch;
+    return inc > 0 ? w.value * inc : w.value;
+  }
+
   const Program& p_;
+  const Dialect& d_;
   DiagnosticSink& sink_;
   Interpretation out_;
   Frame frame_;
@@ -345,8 +359,8 @@ class Interpreter {
 
 }  // namespace
 
-Interpretation interpret(const Program& program, DiagnosticSink& sink) {
-  return Interpreter(program, sink).run();
+Interpretation interpret(const Program& program, DiagnosticSink& sink, const Dialect& dialect) {
+  return Interpreter(program, dialect, sink).run();
 }
 
 }  // namespace arcpress

@@ -1,0 +1,96 @@
+#pragma once
+// What a target controller reads and refuses. A Dialect is data: it is loaded from a TOML
+// file under dialects/ (see dialect_loader.hpp and dialects/README.md for every field), and
+// the stages that read programs (model) and write them (emit) consult it instead of
+// branching on a controller's name. A default-constructed Dialect is generic RS274/NGC and
+// equals dialects/rs274.toml.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "arcpress/core/geometry.hpp"
+
+namespace arcpress {
+
+/// How the controller reads I/J/K.
+enum class CentreReading : uint8_t {
+  Incremental,  ///< offset from the arc's start (RS274 G91.1); G90.1 switches to absolute where allowed
+  Absolute,     ///< the centre itself in program coordinates (Heidenhain ISO); offset from the start under G91
+};
+
+/// The form in which arcpress writes an arc's centre.
+enum class ArcFormat : uint8_t {
+  Centre,  ///< I/J/K, read as CentreReading says
+  Radius,  ///< R, negative for sweeps over 180 degrees
+};
+
+/// Digits for numbers arcpress computes itself (centres, relative moves). Numbers copied
+/// from the input keep the input's own text.
+struct NumberDigits {
+  int axis = 4;        ///< decimals for X..W when arcpress computes the value
+  int centre = 4;      ///< decimals for I/J/K/R normally printed
+  int max = 6;         ///< most decimals the controller reads; centres may use up to this
+  int feed = 1;        ///< decimals for F
+  int e = 5;           ///< decimals for E
+};
+
+struct Dialect {
+  std::string name = "rs274";
+  std::string description = "Generic RS274/NGC: I/J/K incremental centres, all planes, helices";
+  std::string source;  ///< the file it was loaded from, empty for the built-in default
+
+  // --- arcs -------------------------------------------------------------------------
+  bool arcs = true;                             ///< false: never write G2/G3 (lines only)
+  CentreReading centre = CentreReading::Incremental;
+  bool centre_mode_words = true;                ///< G90.1/G91.1 are understood
+  bool radius_word = true;                      ///< R form accepted
+  ArcFormat format = ArcFormat::Centre;         ///< what arcpress writes unless told otherwise
+  std::string arc_header;                       ///< a block written once before the first arc, e.g. "G91.1"
+  uint8_t planes = 0b111;                       ///< bit 0 XY (G17), bit 1 ZX (G18), bit 2 YZ (G19)
+  bool helical = true;                          ///< linear motion along the plane's normal inside an arc
+  bool relative_arcs = true;                    ///< arcs allowed under G91
+  bool zx_reversed = false;                     ///< G2/G3 turn the other way in G18 (Klipper)
+  double max_sweep_deg = 180.0;                 ///< per block
+  double min_sweep_deg = 0.01;                  ///< below: read as no motion or a full circle
+  double min_radius_mm = 0.0;
+  double max_radius_mm = 1000.0;                ///< above: lines (huge I/J amplify rounding)
+  double min_arc_length_mm = 0.0;               ///< shorter arcs: lines (firmware re-segmentation)
+  int min_arc_moves = 0;                        ///< an arc must replace at least this many G1 moves
+  double min_chord_mm = 0.001;                  ///< closer printed end points read as a full circle
+  /// The controller refuses an arc whose start and end radius differ by more than
+  /// radius_abs_mm and (when radius_rel > 0) by more than radius_rel times the radius.
+  /// 0 for radius_abs_mm: the controller does not check (printers jump at the end).
+  double radius_abs_mm = 0.0283;
+  double radius_rel = 0.001;
+
+  // --- numbers ----------------------------------------------------------------------
+  NumberDigits mm{4, 4, 6, 1, 5};
+  NumberDigits inch{5, 5, 7, 2, 5};
+  bool decimal_point = false;        ///< every number needs a point ("X1." ; "X1" is 1 increment)
+  /// With decimal_point: what a number without a point means, in units of the least
+  /// increment (Fanuc IS-B: 0.001 mm, 0.0001 in). 0: a number without a point is whole units.
+  double integer_increment_mm = 0.0;
+  double integer_increment_inch = 0.0;
+  int max_significant_digits = 0;    ///< 0: no limit (Grbl parses 8)
+
+  // --- lines ------------------------------------------------------------------------
+  size_t max_line_length = 255;       ///< characters, end of line excluded
+  bool paren_comments = true;         ///< "( ... )" is a comment
+  bool semicolon_comments = true;     ///< ";" starts a comment to the end of the line
+  /// Words the controller refuses in a program: a letter ("O"), a code ("G90.1") or "%".
+  /// arcpress never writes them and warns where the input has them.
+  std::vector<std::string> refused;
+
+  bool plane_allowed(Plane p) const { return (planes >> int(p)) & 1u; }
+  const NumberDigits& digits(bool inch_units) const { return inch_units ? inch : mm; }
+  /// Largest end-radius difference arcpress lets through: the controller's rule, and never
+  /// more than kRadiusAimMm so every controller runs the arc as a true circle.
+  double radius_allowance_mm(double radius_mm) const;
+  /// True when the controller refuses `code` ("O", "G90.1", "%").
+  bool refuses(std::string_view code) const;
+};
+
+/// arcpress's own target for the end-radius error after rounding, for every controller.
+inline constexpr double kRadiusAimMm = 0.002;
+
+}  // namespace arcpress

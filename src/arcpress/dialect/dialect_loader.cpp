@@ -1,0 +1,285 @@
+#include "arcpress/dialect/dialect_loader.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <toml++/toml.h>
+
+#include "arcpress/core/error.hpp"
+
+#ifndef ARCPRESS_SOURCE_DIALECT_DIR
+#define ARCPRESS_SOURCE_DIALECT_DIR ""
+#endif
+
+namespace arcpress {
+
+double Dialect::radius_allowance_mm(double radius_mm) const {
+  if (radius_abs_mm <= 0) return kRadiusAimMm;
+  double controller = radius_rel > 0 ? std::max(radius_abs_mm, radius_rel * radius_mm) : radius_abs_mm;
+  return std::min(kRadiusAimMm, controller);
+}
+
+bool Dialect::refuses(std::string_view code) const {
+  return std::find(refused.begin(), refused.end(), code) != refused.end();
+}
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Walks one TOML table, reading known keys into a Dialect and rejecting everything else,
+/// with the place of the offending key in every message.
+class TableReader {
+ public:
+  TableReader(const toml::table& t, std::string path, std::string prefix)
+      : t_(t), path_(std::move(path)), prefix_(std::move(prefix)) {}
+
+  [[noreturn]] void fail(const toml::source_region& at, std::string_view key, const std::string& what) const {
+    throw Error(kExitInput, fmt::format("{}:{}:{}: {}{}: {}", path_, at.begin.line, at.begin.column, prefix_, key, what));
+  }
+
+  const toml::node* node(std::string_view key) {
+    seen_.insert(std::string(key));
+    return t_.get(key);
+  }
+
+  void boolean(std::string_view key, bool& out) {
+    if (auto* n = node(key)) {
+      auto v = n->value<bool>();
+      if (!n->is_boolean() || !v) fail(n->source(), key, "expected true or false");
+      out = *v;
+    }
+  }
+  void number(std::string_view key, double& out, double lo, double hi) {
+    if (auto* n = node(key)) {
+      if (!n->is_number()) fail(n->source(), key, "expected a number");
+      double v = *n->value<double>();
+      if (!(v >= lo && v <= hi)) fail(n->source(), key, fmt::format("{} is outside {} .. {}", v, lo, hi));
+      out = v;
+    }
+  }
+  template <class Int>
+  void integer(std::string_view key, Int& out, int64_t lo, int64_t hi) {
+    if (auto* n = node(key)) {
+      if (!n->is_integer()) fail(n->source(), key, "expected a whole number");
+      int64_t v = *n->value<int64_t>();
+      if (v < lo || v > hi) fail(n->source(), key, fmt::format("{} is outside {} .. {}", v, lo, hi));
+      out = Int(v);
+    }
+  }
+  void text(std::string_view key, std::string& out) {
+    if (auto* n = node(key)) {
+      if (!n->is_string()) fail(n->source(), key, "expected a string");
+      out = *n->value<std::string>();
+    }
+  }
+  /// A string that must be one of `choices`; returns its index, or -1 when absent.
+  int choice(std::string_view key, std::initializer_list<std::string_view> choices) {
+    auto* n = node(key);
+    if (!n) return -1;
+    if (n->is_string()) {
+      std::string v = *n->value<std::string>();
+      int i = 0;
+      for (auto c : choices) {
+        if (v == c) return i;
+        ++i;
+      }
+    }
+    std::string list;
+    for (auto c : choices) list += fmt::format("{}\"{}\"", list.empty() ? "" : ", ", c);
+    fail(n->source(), key, "expected one of " + list);
+  }
+  /// An array of strings, each one of `choices` when given.
+  bool strings(std::string_view key, std::vector<std::string>& out, std::initializer_list<std::string_view> choices = {}) {
+    auto* n = node(key);
+    if (!n) return false;
+    auto* arr = n->as_array();
+    if (!arr) fail(n->source(), key, "expected an array of strings");
+    out.clear();
+    for (auto& e : *arr) {
+      if (!e.is_string()) fail(e.source(), key, "expected an array of strings");
+      std::string v = *e.value<std::string>();
+      if (choices.size() && std::find(choices.begin(), choices.end(), v) == choices.end()) {
+        std::string list;
+        for (auto c : choices) list += fmt::format("{}\"{}\"", list.empty() ? "" : ", ", c);
+        fail(e.source(), key, fmt::format("\"{}\" is not one of {}", v, list));
+      }
+      out.push_back(v);
+    }
+    return true;
+  }
+  const toml::table* table(std::string_view key) {
+    auto* n = node(key);
+    if (!n) return nullptr;
+    if (!n->is_table()) fail(n->source(), key, "expected a table");
+    return n->as_table();
+  }
+  /// Every key not read is a mistake in the file.
+  void finish() const {
+    for (auto&& [k, v] : t_)
+      if (!seen_.count(std::string(k.str()))) fail(k.source(), k.str(), "unknown key");
+  }
+
+ private:
+  const toml::table& t_;
+  std::string path_;
+  std::string prefix_;
+  std::set<std::string> seen_;
+};
+
+void read_digits(TableReader& parent, const toml::table* t, const std::string& path, const std::string& prefix,
+                 NumberDigits& d) {
+  if (!t) return;
+  TableReader r(*t, path, prefix);
+  r.integer("axis", d.axis, 0, 9);
+  r.integer("centre", d.centre, 0, 9);
+  r.integer("max", d.max, 0, 9);
+  r.integer("feed", d.feed, 0, 9);
+  r.integer("e", d.e, 0, 9);
+  r.finish();
+  if (d.max < d.centre) parent.fail(t->source(), prefix + "max", "must be at least 'centre'");
+}
+
+}  // namespace
+
+Dialect parse_dialect(const std::string& text, const std::string& path) {
+  toml::table root;
+  try {
+    root = toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    throw Error(kExitInput, fmt::format("{}:{}:{}: {}", path, e.source().begin.line, e.source().begin.column,
+                                        e.description()));
+  }
+  Dialect d;
+  d.source = path;
+  TableReader top(root, path, "");
+  top.text("name", d.name);
+  top.text("description", d.description);
+  if (d.name.empty() || d.name.find_first_of(" /\t") != std::string::npos)
+    top.fail(root.source(), "name", "must be a non-empty word");
+
+  if (const toml::table* t = top.table("arcs")) {
+    TableReader r(*t, path, "arcs.");
+    r.boolean("enabled", d.arcs);
+    if (int c = r.choice("centre", {"incremental", "absolute"}); c >= 0) d.centre = CentreReading(c);
+    r.boolean("centre_mode_words", d.centre_mode_words);
+    r.boolean("radius_word", d.radius_word);
+    if (int c = r.choice("format", {"centre", "radius"}); c >= 0) d.format = ArcFormat(c);
+    r.text("header", d.arc_header);
+    std::vector<std::string> planes;
+    if (r.strings("planes", planes, {"G17", "G18", "G19"})) {
+      d.planes = 0;
+      for (auto& p : planes) d.planes |= uint8_t(1u << (p[2] - '7'));
+    }
+    r.boolean("helical", d.helical);
+    r.boolean("relative", d.relative_arcs);
+    r.boolean("zx_reversed", d.zx_reversed);
+    r.number("max_sweep_deg", d.max_sweep_deg, 1, 359);
+    r.number("min_sweep_deg", d.min_sweep_deg, 0, 90);
+    r.number("min_radius_mm", d.min_radius_mm, 0, 1e6);
+    r.number("max_radius_mm", d.max_radius_mm, 1e-3, 1e9);
+    r.number("min_length_mm", d.min_arc_length_mm, 0, 1e6);
+    r.integer("min_moves", d.min_arc_moves, 0, 1000);
+    r.number("min_chord_mm", d.min_chord_mm, 0, 10);
+    r.number("radius_check_mm", d.radius_abs_mm, 0, 100);
+    r.number("radius_check_relative", d.radius_rel, 0, 1);
+    r.finish();
+    if (d.format == ArcFormat::Radius && !d.radius_word)
+      top.fail(t->source(), "arcs.format", "\"radius\" needs radius_word = true");
+  }
+  if (const toml::table* t = top.table("numbers")) {
+    TableReader r(*t, path, "numbers.");
+    r.boolean("decimal_point", d.decimal_point);
+    r.number("integer_increment_mm", d.integer_increment_mm, 0, 1);
+    r.number("integer_increment_inch", d.integer_increment_inch, 0, 1);
+    r.integer("max_significant_digits", d.max_significant_digits, 0, 17);
+    read_digits(r, r.table("mm"), path, "numbers.mm.", d.mm);
+    read_digits(r, r.table("inch"), path, "numbers.inch.", d.inch);
+    r.finish();
+  }
+  if (const toml::table* t = top.table("lines")) {
+    TableReader r(*t, path, "lines.");
+    r.integer("max_length", d.max_line_length, 20, 100000);
+    std::vector<std::string> comments;
+    if (r.strings("comments", comments, {"paren", "semicolon"})) {
+      d.paren_comments = std::count(comments.begin(), comments.end(), "paren") > 0;
+      d.semicolon_comments = std::count(comments.begin(), comments.end(), "semicolon") > 0;
+    }
+    r.strings("refused", d.refused);
+    r.finish();
+  }
+  top.finish();
+  return d;
+}
+
+Dialect load_dialect_file(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw Error(kExitIo, fmt::format("cannot read dialect file '{}'", path));
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return parse_dialect(ss.str(), path);
+}
+
+std::vector<std::string> dialect_search_path(const std::string& exe_dir) {
+  std::vector<std::string> dirs;
+  if (const char* env = std::getenv("ARCPRESS_DIALECT_PATH")) {
+    std::string s(env);
+    size_t a = 0;
+    while (a <= s.size()) {
+      size_t b = s.find(':', a);
+      if (b == std::string::npos) b = s.size();
+      if (b > a) dirs.push_back(s.substr(a, b - a));
+      a = b + 1;
+    }
+  }
+  if (!exe_dir.empty()) {
+    dirs.push_back((fs::path(exe_dir) / ".." / "share" / "arcpress" / "dialects").lexically_normal().string());
+    dirs.push_back((fs::path(exe_dir) / ".." / "dialects").lexically_normal().string());
+  }
+  if (*ARCPRESS_SOURCE_DIALECT_DIR) dirs.push_back(ARCPRESS_SOURCE_DIALECT_DIR);
+  return dirs;
+}
+
+std::vector<Dialect> list_dialects(const std::vector<std::string>& search_path) {
+  std::vector<Dialect> out;
+  std::set<std::string> names;
+  for (const auto& dir : search_path) {
+    std::error_code ec;
+    std::vector<fs::path> files;
+    for (const auto& e : fs::directory_iterator(dir, ec))
+      if (e.path().extension() == ".toml") files.push_back(e.path());
+    std::sort(files.begin(), files.end());
+    for (const auto& p : files) {
+      if (names.count(p.stem().string())) continue;
+      names.insert(p.stem().string());
+      out.push_back(load_dialect_file(p.string()));
+    }
+  }
+  std::sort(out.begin(), out.end(), [](const Dialect& a, const Dialect& b) { return a.name < b.name; });
+  return out;
+}
+
+Dialect find_dialect(const std::string& name, const std::vector<std::string>& search_path) {
+  for (const auto& dir : search_path) {
+    fs::path p = fs::path(dir) / (name + ".toml");
+    std::error_code ec;
+    if (fs::is_regular_file(p, ec)) {
+      Dialect d = load_dialect_file(p.string());
+      if (d.name != name)
+        throw Error(kExitInput, fmt::format("{}: declares name = \"{}\", expected \"{}\"", p.string(), d.name, name));
+      return d;
+    }
+  }
+  std::string known;
+  for (const auto& d : list_dialects(search_path)) known += (known.empty() ? "" : ", ") + d.name;
+  throw Error(kExitInput, fmt::format("unknown dialect '{}' (known: {}; searched: {})", name,
+                                      known.empty() ? "none" : known, fmt::join(search_path, ", ")));
+}
+
+}  // namespace arcpress

@@ -1,0 +1,148 @@
+// LinuxCNC's own interpreter as an independent judge of what arcpress writes for the
+// linuxcnc dialect: `rs274 -i strict.ini -g` (the tightest arc-radius tolerance LinuxCNC
+// allows, 0.001 mm) must read every compressed CNC corpus program exactly as far as it
+// reads the original, and the path it reports must stay within the band of the path it
+// reports for the original.
+#include <catch2/catch.hpp>
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+
+#include "arcpress/api/arcpress.hpp"
+#include "arcpress/dialect/dialect_loader.hpp"
+#include "arcpress/lex/lexer.hpp"
+#include "arcpress/model/interpreter.hpp"
+#include "support.hpp"
+
+using namespace arcpress;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// What rs274 said about a program: its exit code, its error text, its canonical commands.
+struct Rs274 {
+  int exit_code = -1;
+  std::string error;  ///< stderr without the "executing" banner
+  std::string canon;  ///< stdout
+};
+
+Rs274 run_rs274(const fs::path& dir, const fs::path& program) {
+  fs::path out = dir / "canon.txt", err = dir / "err.txt";
+  std::string cmd = fmt::format("rs274 -i '{}' -t '{}' -g '{}' > '{}' 2> '{}'", (dir / "strict.ini").string(),
+                                (dir / "tools.tbl").string(), program.string(), out.string(), err.string());
+  int status = std::system(cmd.c_str());
+  Rs274 r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.canon = test::read_file(out);
+  std::istringstream in(test::read_file(err));
+  for (std::string line; std::getline(in, line);)
+    if (line != "executing") r.error += line + "\n";
+  return r;
+}
+
+/// Arguments of a canonical call "NAME(a, b, c)" as numbers.
+std::vector<double> args_of(const std::string& line, size_t open) {
+  std::vector<double> v;
+  std::string inner = line.substr(open + 1, line.rfind(')') - open - 1);
+  std::istringstream in(inner);
+  for (std::string tok; std::getline(in, tok, ',');) v.push_back(std::strtod(tok.c_str(), nullptr));
+  return v;
+}
+
+/// The motion of rs274's canonical output as a G-code program (absolute centres), so
+/// arcpress's verifier can measure it. Coordinates are printed to 4 decimals by rs274.
+std::string canon_to_gcode(const std::string& canon) {
+  std::string g = "G90 G90.1 G17 G21\n";
+  std::istringstream in(canon);
+  const char* plane_axes[3][3] = {{"X", "Y", "Z"}, {"Z", "X", "Y"}, {"Y", "Z", "X"}};
+  int plane = 0;
+  for (std::string line; std::getline(in, line);) {
+    auto has = [&](const char* name) { return line.find(name); };
+    if (size_t p = has("USE_LENGTH_UNITS("); p != std::string::npos) {
+      g += line.find("INCHES") != std::string::npos ? "G20\n" : "G21\n";
+    } else if (has("SELECT_PLANE(") != std::string::npos) {
+      plane = line.find("_XZ") != std::string::npos ? 1 : line.find("_YZ") != std::string::npos ? 2 : 0;
+      g += plane == 0 ? "G17\n" : plane == 1 ? "G18\n" : "G19\n";
+    } else if (size_t t = has("STRAIGHT_TRAVERSE("); t != std::string::npos) {
+      auto v = args_of(line, line.find('(', t));
+      g += fmt::format("G0 X{:.4f} Y{:.4f} Z{:.4f}\n", v[0], v[1], v[2]);
+    } else if (size_t f = has("STRAIGHT_FEED("); f != std::string::npos) {
+      auto v = args_of(line, line.find('(', f));
+      g += fmt::format("G1 X{:.4f} Y{:.4f} Z{:.4f}\n", v[0], v[1], v[2]);
+    } else if (size_t a = has("ARC_FEED("); a != std::string::npos) {
+      auto v = args_of(line, line.find('(', a));
+      const char** ax = plane_axes[plane];
+      const char* centre[3] = {"I", "J", "K"};
+      auto centre_of = [&](const char* axis) { return centre[axis[0] - 'X']; };
+      int rotation = int(v[4]);
+      g += fmt::format("{} {}{:.4f} {}{:.4f} {}{:.4f} {}{:.4f} {}{:.4f}{}\n", rotation > 0 ? "G3" : "G2", ax[0], v[0],
+                       ax[1], v[1], centre_of(ax[0]), v[2], centre_of(ax[1]), v[3], ax[2], v[5],
+                       std::abs(rotation) > 1 ? fmt::format(" P{}", std::abs(rotation)) : "");
+    }
+  }
+  return g;
+}
+
+bool rs274_available() { return std::system("command -v rs274 > /dev/null 2>&1") == 0; }
+
+}  // namespace
+
+TEST_CASE("LinuxCNC's rs274 accepts every compressed CNC corpus program and reads it within the band",
+          "[oracle][linuxcnc]") {
+  if (!rs274_available()) {
+    WARN("rs274 (Debian package linuxcnc-uspace) is not installed: skipped");
+    return;
+  }
+  ARCPRESS_CORPUS_FILES_OR_SKIP(files)
+  fs::path dir = test::temp_dir("rs274");
+  test::write_file(dir / "strict.ini",
+                   "[RS274NGC]\nCENTER_ARC_RADIUS_TOLERANCE_MM = 0.001\nCENTER_ARC_RADIUS_TOLERANCE_INCH = 0.00004\n");
+  std::string tools;
+  for (int t = 1; t <= 99; ++t) tools += fmt::format("T{} P{} D3.0 ;\n", t, t);
+  test::write_file(dir / "tools.tbl", tools);
+  Dialect linuxcnc = load_dialect_file(ARCPRESS_SOURCE_DIR "/dialects/linuxcnc.toml");
+
+  size_t judged = 0, arcs = 0;
+  for (const auto& f : files) {
+    if (f.parent_path().filename() == "printer") continue;  // CNC and laser programs only
+    Rs274 original = run_rs274(dir, f);
+    for (double tol : {0.01, 0.002}) {
+      INFO(fmt::format("{} at tolerance {} mm", f.string(), tol));
+      DiagnosticSink sink(f.string());
+      CompressOptions opt;
+      opt.fit.tolerance_mm = tol;
+      opt.dialect = linuxcnc;
+      auto r = compress(f.string(), test::read_file(f), opt, sink);
+      REQUIRE(r.ok);
+      REQUIRE(r.within_band());
+      arcs += r.stats.arcs_out;
+      fs::path out = dir / "out.ngc";
+      test::write_file(out, r.output);
+      Rs274 ours = run_rs274(dir, out);
+      // Accepted where the original is; where the original is refused (unknown M-codes, no
+      // program end, its own arcs over the strict tolerance), refused for the same block.
+      INFO("original: " << original.error << "compressed: " << ours.error);
+      CHECK(ours.exit_code == original.exit_code);
+      CHECK(ours.error == original.error);
+      if (original.exit_code == 0) ++judged;
+
+      // The path rs274 reads from our output against the path it reads from the original.
+      DiagnosticSink sa("rs274(original)"), sb("rs274(compressed)");
+      Program pa = lex("rs274(original)", canon_to_gcode(original.canon), sa);
+      Program pb = lex("rs274(compressed)", canon_to_gcode(ours.canon), sb);
+      Interpretation ia = interpret(pa, sa), ib = interpret(pb, sb);
+      CompareOptions co;
+      co.tolerance_mm = tol;
+      PathComparison c = compare_paths(pa, ia, pb, ib, co);
+      INFO(c.mismatch);
+      CHECK(c.matched);
+      // rs274 prints 4 decimals: end points and centres each move by up to 0.00005 per axis,
+      // which moves an arc by up to 0.00015 mm.
+      CHECK(c.max_deviation_mm <= tol + 0.00015);
+    }
+  }
+  CHECK(judged >= 5);
+  CHECK(arcs > 1000);
+}
