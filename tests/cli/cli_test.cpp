@@ -1,5 +1,7 @@
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "support.hpp"
@@ -120,4 +122,40 @@ TEST_CASE("compression measures its own output and reports the deviation", "[cli
   CHECK(c.err.find("mm max (band 0.01 mm)") != std::string::npos);
   auto n = run_arcpress("'" + in.string() + "' --stats --no-verify");
   CHECK(n.err.find("not measured") != std::string::npos);
+}
+
+TEST_CASE("arcpress dialects lists every shipped dialect, one line each", "[cli][dialect]") {
+  auto c = run_arcpress("dialects");
+  CHECK(c.exit_code == 0);
+  size_t lines = std::count(c.out.begin(), c.out.end(), '\n');
+  CHECK(lines == 16);
+  CHECK(c.out.find("heidenhain-iso  Heidenhain TNC DIN/ISO") != std::string::npos);
+}
+
+TEST_CASE("--dialect-file loads a user's own controller, and its mistakes name the file and line", "[cli][dialect]") {
+  auto dir = arcpress::test::temp_dir("dialect-file");
+  arcpress::test::write_file(dir / "mine.toml", "name = \"mine\"\ndescription = \"lines only\"\n[arcs]\nenabled = false\n");
+  std::string quarter = "G21 G90\nG0 X10 Y0 Z0\n";
+  for (int k = 1; k <= 32; ++k) {
+    double a = 3.14159265358979 / 2 * k / 32;
+    quarter += "G1 X" + std::to_string(10 * std::cos(a)) + " Y" + std::to_string(10 * std::sin(a)) + " F100\n";
+  }
+  auto rs = run_arcpress("--dialect rs274", quarter);
+  CHECK(rs.exit_code == 0);
+  CHECK(rs.out.find("G3") != std::string::npos);
+  auto mine = run_arcpress("--dialect-file " + (dir / "mine.toml").string(), quarter);
+  CHECK(mine.exit_code == 0);
+  CHECK(mine.out.find("G3") == std::string::npos);
+
+  arcpress::test::write_file(dir / "bad.toml", "name = \"bad\"\n[arcs]\nenabeld = false\n");
+  auto bad = run_arcpress("--dialect-file " + (dir / "bad.toml").string(), quarter);
+  CHECK(bad.exit_code == 2);
+  CHECK(bad.err.find("bad.toml:3:1: arcs.enabeld: unknown key") != std::string::npos);
+  CHECK(bad.out.empty());
+}
+
+TEST_CASE("R-form arcs for a controller that rejects them is a usage error", "[cli][dialect]") {
+  auto c = run_arcpress("--dialect klipper --arc-format r", kProgram);
+  CHECK(c.exit_code == 2);
+  CHECK(c.err.find("klipper does not read R-form arcs") != std::string::npos);
 }

@@ -256,7 +256,7 @@ class Emitter {
     }
     s += axis_words;
     if (arc) {
-      PrintedArc c = print_centre(run, fr, a, pr, end, st);
+      PrintedArc c = print_centre(run, fr, a, pr, end, st, sep);
       if (!c.ok) return std::nullopt;
       s += sep;
       s += c.words;
@@ -274,7 +274,7 @@ class Emitter {
   /// Tries the dialect's usual decimals, then more up to its maximum; at each, the rounded
   /// centre, then its grid neighbours nearest the bisector of the printed end points.
   PrintedArc print_centre(const Run& run, const Frame& fr, uint32_t a, const Primitive& pr, const AxisValues& end,
-                          const BlockStyle& st) {
+                          const BlockStyle& st, const std::string& sep) {
     PrintedArc out;
     auto axes = axes_of(run.plane);
     const AxisValues& from = run.vertex(in_, a);
@@ -290,7 +290,6 @@ class Emitter {
 
     const NumberDigits& dig = d().digits(fr.unit_mm != 1.0);
     const double unit = fr.unit_mm;
-    const std::string sep = st.spaced ? " " : "";
     // Where the controller takes I/J/K from: the start, or the program's origin.
     const bool offsets = d().centre == CentreReading::Absolute ? !fr.absolute : !fr.arc_absolute;
     const int first_dec = std::min(std::max(dig.centre, decimals_for_band(unit)), dig.max);

@@ -1,0 +1,278 @@
+// Dialects as data: every shipped file loads, mistakes in a file are reported with their
+// place, and every dialect writes arcs its controller reads back inside the band and its
+// own rules. Outputs are checked by re-reading them (interpreter + verifier), not by text
+// alone.
+#include <catch2/catch.hpp>
+#include <fmt/format.h>
+
+#include <regex>
+#include <sstream>
+
+#include "arcpress/api/arcpress.hpp"
+#include "arcpress/core/error.hpp"
+#include "arcpress/dialect/dialect_loader.hpp"
+#include "arcpress/lex/lexer.hpp"
+#include "arcpress/model/interpreter.hpp"
+#include "dialect/snippets.hpp"
+#include "support.hpp"
+
+using namespace arcpress;
+
+namespace {
+
+const std::vector<std::string> kShipped = {"rs274",   "linuxcnc", "fanuc",  "haas",  "mach3",
+                                           "mach4",   "grbl",     "grblhal", "siemens", "heidenhain-iso",
+                                           "okuma",   "marlin",   "klipper", "reprapfirmware",
+                                           "smoothieware", "prusa"};
+
+std::vector<std::string> source_dialect_path() { return {ARCPRESS_SOURCE_DIR "/dialects"}; }
+
+Dialect shipped(const std::string& name) { return find_dialect(name, source_dialect_path()); }
+
+std::string error_of(const std::string& toml) {
+  try {
+    parse_dialect(toml, "user.toml");
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+CompressResult compress_as(const Dialect& d, const std::string& text, double tol = 0.01,
+                           std::optional<ArcFormat> format = std::nullopt) {
+  DiagnosticSink sink;
+  CompressOptions opt;
+  opt.dialect = d;
+  opt.fit.tolerance_mm = tol;
+  opt.arc_format = format;
+  return compress("snippet.nc", text, opt, sink);
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+/// A block arcpress wrote for an arc: it has centre or radius words.
+bool is_arc_line(const std::string& l) { return std::regex_search(l, std::regex("(^|\\s)[IJKR]-?[\\d.]")); }
+
+/// Largest difference between start and end radius of the arcs in `text`, as `d`'s
+/// controller reads the printed numbers, relative to what `d` allows for that radius.
+double worst_radius_error_share(const Dialect& d, const std::string& text) {
+  DiagnosticSink sink;
+  Program p = lex("out", text, sink);
+  Interpretation in = interpret(p, sink, d);
+  double worst = 0;
+  for (size_t i = 0; i < in.moves.size(); ++i) {
+    const Move& m = in.moves[i];
+    if (m.kind != MoveKind::ArcCW && m.kind != MoveKind::ArcCCW) continue;
+    Vec2 c = project(m.center, m.plane);
+    const AxisValues& f = in.from(i);
+    Vec2 s = project(Vec3(f[kX], f[kY], f[kZ]), m.plane), e = project(m.xyz(), m.plane);
+    double rs = (s - c).norm(), dr = std::abs(rs - (e - c).norm());
+    worst = std::max(worst, dr / d.radius_allowance_mm(rs));
+  }
+  return worst;
+}
+
+}  // namespace
+
+TEST_CASE("every shipped dialect loads from dialects/ and names itself after its file", "[dialect]") {
+  for (const auto& name : kShipped) {
+    INFO(name);
+    Dialect d = shipped(name);
+    CHECK(d.name == name);
+    CHECK_FALSE(d.description.empty());
+  }
+  CHECK(list_dialects(source_dialect_path()).size() == kShipped.size());
+}
+
+TEST_CASE("rs274.toml spells out exactly the built-in default dialect", "[dialect]") {
+  Dialect file = shipped("rs274"), builtin;
+  CHECK(file.description == builtin.description);
+  CHECK(file.arcs == builtin.arcs);
+  CHECK(file.centre == builtin.centre);
+  CHECK(file.radius_word == builtin.radius_word);
+  CHECK(file.format == builtin.format);
+  CHECK(file.planes == builtin.planes);
+  CHECK(file.helical == builtin.helical);
+  CHECK(file.relative_arcs == builtin.relative_arcs);
+  CHECK(file.max_sweep_deg == builtin.max_sweep_deg);
+  CHECK(file.min_sweep_deg == builtin.min_sweep_deg);
+  CHECK(file.max_radius_mm == builtin.max_radius_mm);
+  CHECK(file.radius_abs_mm == builtin.radius_abs_mm);
+  CHECK(file.radius_rel == builtin.radius_rel);
+  CHECK(file.mm.centre == builtin.mm.centre);
+  CHECK(file.mm.max == builtin.mm.max);
+  CHECK(file.inch.centre == builtin.inch.centre);
+  CHECK(file.decimal_point == builtin.decimal_point);
+  CHECK(file.max_line_length == builtin.max_line_length);
+  CHECK(file.refused == builtin.refused);
+}
+
+TEST_CASE("a mistake in a dialect file is reported with the file, line, column and key", "[dialect]") {
+  CHECK(error_of("name = \"x\"\n[arcs]\nmax_sweep = 90\n") == "user.toml:3:1: arcs.max_sweep: unknown key");
+  CHECK(error_of("name = \"x\"\n[arcs]\nmax_sweep_deg = \"90\"\n") ==
+        "user.toml:3:17: arcs.max_sweep_deg: expected a number");
+  CHECK(error_of("name = \"x\"\n[arcs]\nmax_sweep_deg = 400\n") ==
+        "user.toml:3:17: arcs.max_sweep_deg: 400 is outside 1 .. 359");
+  CHECK(error_of("name = \"x\"\n[arcs]\nplanes = [\"G17\", \"XY\"]\n") ==
+        "user.toml:3:18: arcs.planes: \"XY\" is not one of \"G17\", \"G18\", \"G19\"");
+  CHECK(error_of("name = \"x\"\n[lines]\nmax_length = 80.5\n") ==
+        "user.toml:3:14: lines.max_length: expected a whole number");
+  CHECK(error_of("name = \"x\"\n[arcs\n").rfind("user.toml:2:", 0) == 0);  // TOML syntax, from toml++
+  CHECK(error_of("name = \"x\"\n[arcs]\nradius_word = false\nformat = \"radius\"\n") ==
+        "user.toml:2:1: arcs.format: \"radius\" needs radius_word = true");
+  CHECK(error_of("name = \"x\"\n").empty());
+}
+
+TEST_CASE("an unknown dialect name lists the known ones", "[dialect]") {
+  try {
+    find_dialect("fanuk", source_dialect_path());
+    FAIL("no error");
+  } catch (const Error& e) {
+    std::string what = e.what();
+    CHECK(what.find("unknown dialect 'fanuk'") != std::string::npos);
+    CHECK(what.find("fanuc") != std::string::npos);
+    CHECK(e.exit_code() == kExitInput);
+  }
+}
+
+TEST_CASE("every dialect writes the arc snippets so that its controller reads them inside the band and its rules",
+          "[dialect]") {
+  for (const auto& name : kShipped) {
+    Dialect d = shipped(name);
+    std::vector<std::optional<ArcFormat>> formats{std::nullopt};
+    if (d.radius_word) formats.push_back(ArcFormat::Radius);
+    for (const auto& format : formats) {
+      for (const auto& s : test::arc_snippets()) {
+        INFO(fmt::format("{} / {} / {}", name, s.name, format ? "R" : "default"));
+        CompressResult r = compress_as(d, s.text, 0.01, format);
+        REQUIRE(r.ok);
+        // Read back with the dialect's own reading of centres, directions and numbers.
+        REQUIRE(r.verified);
+        INFO(r.comparison.mismatch << "\n" << r.output);
+        CHECK(r.comparison.matched);
+        CHECK(r.comparison.max_deviation_mm <= 0.01);
+        CHECK(worst_radius_error_share(d, r.output) <= 1.0);
+        bool arcs_allowed = d.plane_allowed(s.plane) && (d.helical || !s.helical);
+        CHECK((r.stats.arcs_out > 0) == arcs_allowed);
+        for (const auto& l : lines_of(r.output)) {
+          CHECK(l.size() <= d.max_line_length);
+          if (!is_arc_line(l)) continue;
+          for (const auto& code : d.refused) CHECK(l.find(code) == std::string::npos);
+          if (d.decimal_point) {  // "X1." : no number without its point
+            CHECK_FALSE(std::regex_search(l, std::regex("[XYZIJKRABCUVWEF]-?\\d+(\\s|$)")));
+          }
+          if (format == ArcFormat::Radius)
+            CHECK((l.find(" R") != std::string::npos || l.find(" I") != std::string::npos));
+          else
+            CHECK(l.find(" R") == std::string::npos);
+        }
+      }
+    }
+  }
+}
+
+TEST_CASE("golden: a quarter circle in generic RS274, I/J from the start", "[dialect]") {
+  CompressResult r = compress_as(shipped("rs274"), test::arc_snippets()[0].text);
+  CHECK(r.output == "G21 G90 G17\nG0 X10. Y0. Z0.\nG3 X0. Y10. Z0. I-10.0029 J-0.0029 F300.\nM30\n");
+  CHECK(r.within_band());
+}
+
+TEST_CASE("golden: R form gives the radius, and I/J where R would be ambiguous (180 degrees)", "[dialect]") {
+  CompressResult q = compress_as(shipped("rs274"), test::arc_snippets()[0].text, 0.01, ArcFormat::Radius);
+  CHECK(q.output == "G21 G90 G17\nG0 X10. Y0. Z0.\nG3 X0. Y10. Z0. R10.0029 F300.\nM30\n");
+  CHECK(q.within_band());
+  CompressResult full = compress_as(shipped("rs274"), test::arc_snippets()[1].text, 0.01, ArcFormat::Radius);
+  CHECK(full.output.find("G3 X-10. Y0. Z0. I-10. J-0.0029") != std::string::npos);
+  CHECK(full.within_band());
+}
+
+TEST_CASE("golden: Heidenhain ISO writes the absolute centre in I/J", "[dialect]") {
+  CompressResult r = compress_as(shipped("heidenhain-iso"), test::arc_snippets()[0].text);
+  CHECK(r.output == "G21 G90 G17\nG0 X10. Y0. Z0.\nG3 X0. Y10. Z0. I-0.0029 J-0.0029 F300.\nM30\n");
+  CHECK(r.within_band());
+}
+
+TEST_CASE("golden: Klipper's G18 arcs turn the other way, so the same arc is G2 there", "[dialect]") {
+  const test::Snippet g18 = test::arc_snippets()[4];
+  CompressResult rs = compress_as(shipped("rs274"), g18.text), kl = compress_as(shipped("klipper"), g18.text);
+  CHECK(rs.output.find("\nG3 X10. Y0. Z0. I-0.0029 K-10.0029 F300.\n") != std::string::npos);
+  CHECK(kl.output.find("\nG2 X10. Y0. Z0. I-0.0029 K-10.0029 F300.\n") != std::string::npos);
+  CHECK(kl.within_band());
+}
+
+TEST_CASE("golden: Mach3 states G91.1 once before the first arc; a program that sets it itself is left alone",
+          "[dialect]") {
+  CompressResult r = compress_as(shipped("mach3"), test::arc_snippets()[0].text);
+  CHECK(r.output == "G21 G90 G17\nG0 X10. Y0. Z0.\nG91.1\nG3 X0. Y10. Z0. I-10.0029 J-0.0029 F300.\nM30\n");
+  std::string own = "G91.1\n" + test::arc_snippets()[0].text;
+  CompressResult o = compress_as(shipped("mach3"), own);
+  CHECK(o.output.find("G91.1") == o.output.rfind("G91.1"));
+}
+
+TEST_CASE("golden: Fanuc prints 3 decimals with a point, and reads X1 as one micrometre", "[dialect]") {
+  CompressResult r = compress_as(shipped("fanuc"), test::arc_snippets()[0].text);
+  CHECK(r.output == "G21 G90 G17\nG0 X10. Y0. Z0.\nG3 X0. Y10. Z0. I-10.003 J-0.003 F300.\nM30\n");
+  DiagnosticSink sink;
+  Program p = lex("f.nc", "G21 G90\nG0 X1 Y2.\n", sink);
+  Interpretation in = interpret(p, sink, shipped("fanuc"));
+  REQUIRE(in.moves.size() == 1);
+  CHECK(in.moves[0].to[kX] == Approx(0.001));
+  CHECK(in.moves[0].to[kY] == Approx(2.0));
+}
+
+TEST_CASE("printer dialects with no G18/G19 arcs, and no arcs under G91 for Klipper, keep those runs as lines",
+          "[dialect]") {
+  CompressResult m = compress_as(shipped("marlin"), test::arc_snippets()[4].text);
+  CHECK(m.stats.arcs_out == 0);
+  CHECK(m.output == test::arc_snippets()[4].text);
+  // The quarter circle again, in incremental moves.
+  std::string rel = "G21 G90\nG0 X10 Y0 Z0\nG91\n";
+  double px = 10, py = 0;
+  for (int k = 1; k <= 48; ++k) {
+    double a = kPi / 2 * k / 48, x = 10 * std::cos(a), y = 10 * std::sin(a);
+    rel += fmt::format("G1 X{:.4f} Y{:.4f} F300\n", x - px, y - py);
+    px = x, py = y;
+  }
+  CHECK(compress_as(shipped("klipper"), rel).stats.arcs_out == 0);
+  CompressResult rs = compress_as(shipped("rs274"), rel);
+  CHECK(rs.stats.arcs_out > 0);
+  CHECK(rs.within_band());
+}
+
+TEST_CASE("Grbl's 79-character limit: a block that cannot be made short enough stays as the input's lines",
+          "[dialect]") {
+  // Long words: every move carries A and B with many digits, so an arc block would need
+  // X Y Z I J A B F > 80 characters even without spaces.
+  std::string t = "G21 G90\nG0 X10 Y0 Z0 A123.456789 B-98.765432 C45.678901 U7.654321\n";
+  for (int k = 1; k <= 48; ++k) {
+    double a = kPi / 2 * k / 48;
+    t += fmt::format("G1 X{:.6f} Y{:.6f} Z-0.000001 A123.456789 B-98.765432 C45.678901 U7.654321 F1234.5678\n", 10 * std::cos(a),
+                     10 * std::sin(a));
+  }
+  CompressResult g = compress_as(shipped("grbl"), t);
+  for (const auto& l : lines_of(g.output)) {
+    if (l.rfind("G1 ", 0) == 0 && l.find("A123") != std::string::npos) continue;  // the input's own lines
+    CHECK(l.size() <= 79);
+  }
+  CHECK(g.within_band());
+  CHECK(g.stats.arcs_unprintable > 0);
+  CHECK(compress_as(shipped("grblhal"), t).stats.arcs_out > 0);  // 256 characters are enough
+}
+
+TEST_CASE("words a dialect refuses are reported where the input has them, and passed through", "[dialect]") {
+  DiagnosticSink sink("p.nc");
+  CompressOptions opt;
+  opt.dialect = shipped("grbl");
+  std::string text = "%\nO1000\nG90.1\nG0 X0 Y0\nM30\n%\n";
+  auto r = compress("p.nc", text, opt, sink);
+  CHECK(r.output == text);
+  CHECK(sink.warning_count("W-DIALECT-REFUSED") == 4);
+  std::string all = sink.format_all();
+  CHECK(all.find("p.nc:1:1: warning: W-DIALECT-REFUSED: '%' is refused by grbl") != std::string::npos);
+  CHECK(all.find("4 more") == std::string::npos);
+}
