@@ -132,7 +132,7 @@ TEST_CASE("arcpress dialects lists every shipped dialect, one line each", "[cli]
   CHECK(c.out.find("heidenhain-iso  Heidenhain TNC DIN/ISO") != std::string::npos);
 }
 
-TEST_CASE("a dialect file of the user's own (--dialect-file) loads a controller's own controller, and its mistakes name the file and line", "[cli][dialect]") {
+TEST_CASE("a user's own dialect file (--dialect-file) is loaded, and its mistakes name the file and line", "[cli][dialect]") {
   auto dir = arcpress::test::temp_dir("dialect-file");
   arcpress::test::write_file(dir / "mine.toml", "name = \"mine\"\ndescription = \"lines only\"\n[arcs]\nenabled = false\n");
   std::string quarter = "G21 G90\nG0 X10 Y0 Z0\n";
