@@ -13,6 +13,7 @@
 #include "arcpress/dialect/dialect_loader.hpp"
 #include "arcpress/lex/lexer.hpp"
 #include "arcpress/model/interpreter.hpp"
+#include "arcpress/verify/diff_plot.hpp"
 #include "file_io.hpp"
 
 namespace {
@@ -132,33 +133,37 @@ int run_compress(const CompressArgs& a) {
 struct DiffArgs {
   std::string a, b;
   double tolerance_mm = 0.01;
+  std::string dialect = "rs274";
+  std::string dialect_file;
+  bool json = false;
+  std::string plot;
+  std::string plane = "xy";
+  size_t top = 5;
 };
 
-/// `arcpress diff A B`: B's feed path against A's, for B written from A by arcpress (every
-/// move of B ends on A's path). Exit 0 inside the band, 1 outside or not matching.
+/// `arcpress diff A B`: any two programs, read the same way, compared by path, rapids,
+/// non-motion blocks, feed and extrusion. Exit 0 the same within the band, 1 different.
 int run_diff(const DiffArgs& d) {
+  Dialect dialect = chosen_dialect(d.dialect, d.dialect_file);
   DiagnosticSink sa(d.a), sb(d.b);
   Program pa = lex(d.a, cli::read_input(d.a), sa);
   Program pb = lex(d.b, cli::read_input(d.b), sb);
-  Interpretation ia = interpret(pa, sa), ib = interpret(pb, sb);
+  Interpretation ia = interpret(pa, sa, dialect), ib = interpret(pb, sb, dialect);
   std::string diags = sa.format_all() + sb.format_all();
   if (!diags.empty()) std::fputs(diags.c_str(), stderr);
-  CompareOptions co;
-  co.tolerance_mm = d.tolerance_mm;
-  PathComparison c = compare_paths(pa, ia, pb, ib, co);
-  fmt::print("{}: {} blocks, {} bytes; {}: {} blocks, {} bytes\n", d.a, pa.blocks.size(), pa.text.size(), d.b,
-             pb.blocks.size(), pb.text.size());
-  if (!c.matched) {
-    fmt::print("DIFFERENT: {}\n", c.mismatch);
-    return kExitVerifyFailed;
+  if (sa.error_count() + sb.error_count() > 0) return kExitInput;
+  DiffOptions opt;
+  opt.tolerance_mm = d.tolerance_mm;
+  opt.top = d.top;
+  ProgramDiff r = diff_programs(pa, ia, pb, ib, opt);
+  DiffNames names{d.a, d.b};
+  if (!d.plot.empty()) {
+    Plane pl = d.plane == "zx" ? Plane::ZX : d.plane == "yz" ? Plane::YZ : Plane::XY;
+    cli::write_output(d.plot, diff_svg(ia, ib, r, pl, d.tolerance_mm, names));
   }
-  fmt::print("feed moves compared: {} in {}, {} in {}\n", c.moves_a, d.a, c.moves_b, d.b);
-  fmt::print("max deviation {:.6f} mm at X{:.4f} Y{:.4f} Z{:.4f} ({} line {}, {} line {})\n", c.max_deviation_mm,
-             c.worst_point.x(), c.worst_point.y(), c.worst_point.z(), d.a, c.worst_line_a, d.b, c.worst_line_b);
-  bool ok = c.within(d.tolerance_mm);
-  fmt::print("{}: max deviation {:.6f} mm {} the {} mm band\n", ok ? "SAME PATH" : "DIFFERENT", c.max_deviation_mm,
-             ok ? "within" : "outside", d.tolerance_mm);
-  return ok ? kExitOk : kExitVerifyFailed;
+  std::string out = d.json ? diff_json(r, names, d.tolerance_mm) : diff_text(r, names, d.tolerance_mm);
+  std::fputs(out.c_str(), stdout);
+  return r.same(d.tolerance_mm) ? kExitOk : kExitVerifyFailed;
 }
 
 }  // namespace
@@ -211,10 +216,20 @@ int main(int argc, char** argv) {
 
   DiffArgs diff;
   CLI::App* diff_cmd = app.add_subcommand(
-      "diff", "Compare the feed path of B with A's (B written from A by arcpress); exit 1 outside the band");
-  diff_cmd->add_option("A", diff.a, "Original program")->required();
-  diff_cmd->add_option("B", diff.b, "Rewritten program")->required();
+      "diff",
+      "Compare two programs: feed paths (both ways, exactly), rapids, M/T/S/dwell/comment blocks, feed and "
+      "extrusion; exit 0 when they agree within the band, 1 when not");
+  diff_cmd->add_option("A", diff.a, "Reference program")->required();
+  diff_cmd->add_option("B", diff.b, "Program to check against A")->required();
   diff_cmd->add_option("--tolerance", diff.tolerance_mm, "Band in mm")->check(CLI::PositiveNumber)->capture_default_str();
+  diff_cmd->add_option("--dialect", diff.dialect, "How both programs are read")->capture_default_str();
+  diff_cmd->add_option("--dialect-file", diff.dialect_file, "Read both programs with this dialect file");
+  diff_cmd->add_flag("--json", diff.json, "Print one JSON document instead of text");
+  diff_cmd->add_option("--plot", diff.plot, "Write an SVG picture of both paths, B coloured by deviation");
+  diff_cmd->add_option("--plane", diff.plane, "Plane of the picture")->check(CLI::IsMember({"xy", "zx", "yz"}))
+      ->capture_default_str();
+  diff_cmd->add_option("--top", diff.top, "How many worst places to list")->check(CLI::Range(1, 1000))
+      ->capture_default_str();
   diff_cmd->footer(kExitCodesHelp);
 
   CLI::App* dialects_cmd = app.add_subcommand("dialects", "List the controller dialects, one line each");

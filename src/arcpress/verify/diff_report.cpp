@@ -1,0 +1,84 @@
+#include "arcpress/verify/diff_report.hpp"
+
+#include <fmt/format.h>
+
+namespace arcpress {
+namespace {
+
+std::string json_string(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\t': out += "\\t"; break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) out += fmt::format("\\u{:04x}", int(c));
+        else out += c;
+    }
+  }
+  return out + "\"";
+}
+
+std::string place_json(const DiffPlace& p) {
+  return fmt::format("{{\"deviation_mm\": {:.9f}, \"x\": {:.6f}, \"y\": {:.6f}, \"z\": {:.6f}, \"line_a\": {}, \"line_b\": {}}}",
+                     p.deviation_mm, p.at.x(), p.at.y(), p.at.z(), p.line_a, p.line_b);
+}
+
+std::string summary_json(const ProgramSummary& s, const std::string& name) {
+  return fmt::format(
+      "{{\"file\": {}, \"blocks\": {}, \"bytes\": {}, \"feed_moves\": {}, \"rapids\": {}, \"sections\": {}, "
+      "\"non_motion_blocks\": {}, \"path_mm\": {:.6f}}}",
+      json_string(name), s.blocks, s.bytes, s.feed_moves, s.rapids, s.sections, s.non_motion, s.path_mm);
+}
+
+}  // namespace
+
+std::string diff_text(const ProgramDiff& d, const DiffNames& n, double tol) {
+  std::string t;
+  for (auto [name, s] : {std::pair{n.a, d.a}, std::pair{n.b, d.b}})
+    t += fmt::format("{}: {} blocks, {} bytes, {} feed moves in {} sections, {} rapids, {:.3f} mm of feed path\n", name,
+                     s.blocks, s.bytes, s.feed_moves, s.sections, s.rapids, s.path_mm);
+  t += fmt::format("max deviation {:.6f} mm (band {} mm; arcs measured to {:.1e} mm)\n", d.max_deviation_mm, tol,
+                   d.arc_chord_mm);
+  for (size_t k = 0; k < d.worst.size(); ++k) {
+    const DiffPlace& p = d.worst[k];
+    t += fmt::format("  #{} {:.6f} mm at X{:.4f} Y{:.4f} Z{:.4f} ({} line {}, {} line {})\n", k + 1, p.deviation_mm,
+                     p.at.x(), p.at.y(), p.at.z(), n.a, p.line_a, n.b, p.line_b);
+  }
+  t += fmt::format("rapid end points: max {:.6f} mm apart", d.max_rapid_mm);
+  if (d.max_rapid_mm > 0) t += fmt::format(" ({} line {}, {} line {})", n.a, d.worst_rapid.line_a, n.b, d.worst_rapid.line_b);
+  t += "\n";
+  t += fmt::format("feed: max {:.4f} % apart; extrusion: max {:.5f} mm of E per section, {:.3f} % per mm of path\n",
+                   d.max_feed_difference_pct, d.max_extrusion_difference_mm, d.max_extrusion_per_mm_difference_pct);
+  t += fmt::format("non-motion blocks (M, T, S, dwell, comments): {} in A, {} in B, {} differ\n", d.a.non_motion,
+                   d.b.non_motion, d.non_motion_differences);
+  for (const auto& f : d.findings) t += "difference: " + f + "\n";
+  bool same = d.same(tol);
+  t += fmt::format("{}: max deviation {:.6f} mm {} the {} mm band{}\n", same ? "SAME" : "DIFFERENT", d.max_deviation_mm,
+                   d.max_deviation_mm <= tol ? "within" : "outside", tol,
+                   d.findings.empty() ? "" : fmt::format(", {} other difference(s)", d.findings.size()));
+  return t;
+}
+
+std::string diff_json(const ProgramDiff& d, const DiffNames& n, double tol) {
+  std::string worst;
+  for (const auto& p : d.worst) worst += (worst.empty() ? "" : ", ") + place_json(p);
+  std::string findings;
+  for (const auto& f : d.findings) findings += (findings.empty() ? "" : ", ") + json_string(f);
+  return fmt::format(
+      "{{\n  \"verdict\": \"{}\",\n  \"tolerance_mm\": {},\n  \"a\": {},\n  \"b\": {},\n"
+      "  \"max_deviation_mm\": {:.9f},\n  \"arc_precision_mm\": {:.9f},\n  \"worst\": [{}],\n"
+      "  \"rapids\": {{\"max_end_point_distance_mm\": {:.9f}, \"worst\": {}}},\n"
+      "  \"feed\": {{\"max_difference_percent\": {:.6f}, \"line_a\": {}, \"line_b\": {}}},\n"
+      "  \"extrusion\": {{\"max_section_difference_mm\": {:.9f}, \"max_per_mm_difference_percent\": {:.6f}}},\n"
+      "  \"non_motion\": {{\"blocks_a\": {}, \"blocks_b\": {}, \"differences\": {}}},\n"
+      "  \"differences\": [{}]\n}}\n",
+      d.same(tol) ? "same" : "different", tol, summary_json(d.a, n.a), summary_json(d.b, n.b), d.max_deviation_mm,
+      d.arc_chord_mm, worst, d.max_rapid_mm, place_json(d.worst_rapid), d.max_feed_difference_pct, d.worst_feed.line_a,
+      d.worst_feed.line_b, d.max_extrusion_difference_mm, d.max_extrusion_per_mm_difference_pct, d.a.non_motion,
+      d.b.non_motion, d.non_motion_differences, findings);
+}
+
+}  // namespace arcpress

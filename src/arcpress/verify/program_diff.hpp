@@ -1,0 +1,73 @@
+#pragma once
+// Comparison of any two interpreted programs (`arcpress diff`): the feed path section by
+// section (a section is the feed moves between two rapids), the rapids by their end points,
+// and what is not geometry: the sequence of M/T/S/dwell/comment blocks, feed rates along
+// the path, and extrusion per section.
+//
+// Distance is two-sided: every point of A's path to B's and of B's to A's. Each path is cut
+// into segments (arcs into chords whose sagitta is at most `arc_chord_mm`, far below the
+// tolerance) held in an AABB tree. Along each segment of the other path, the distance
+// function is 1-Lipschitz; a stretch whose two ends have their nearest point on the same
+// segment cannot be farther inside than at its ends (distance to a segment is convex), and
+// any other stretch is split until its Lipschitz bound cannot beat the maximum found. So
+// no bulge between samples is missed; lines are measured exactly and arcs to within
+// `arc_chord_mm`.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "arcpress/lex/block.hpp"
+#include "arcpress/model/move.hpp"
+
+namespace arcpress {
+
+struct DiffOptions {
+  double tolerance_mm = 0.01;  ///< the band B's path must stay in around A's
+  size_t top = 5;              ///< how many worst places to report
+};
+
+/// One place where the paths are apart.
+struct DiffPlace {
+  double deviation_mm = 0;
+  Vec3 at{0, 0, 0};      ///< the point (on A's or B's path) farthest from the other path, mm
+  uint32_t line_a = 0;   ///< 1-based line of the A move there
+  uint32_t line_b = 0;   ///< ... and of the B move
+};
+
+struct ProgramSummary {
+  size_t blocks = 0, bytes = 0, feed_moves = 0, rapids = 0, sections = 0;
+  size_t non_motion = 0;     ///< M/T/S/dwell/comment blocks compared
+  double path_mm = 0;        ///< length of the feed path
+};
+
+struct ProgramDiff {
+  ProgramSummary a, b;
+  double max_deviation_mm = 0;          ///< feed paths, both ways
+  std::vector<DiffPlace> worst;         ///< the worst places, largest first (at most `top`)
+  double max_rapid_mm = 0;              ///< rapid end points
+  DiffPlace worst_rapid;
+  double max_feed_difference_pct = 0;   ///< F at B's moves against A's nearest move
+  DiffPlace worst_feed;                 ///< deviation_mm holds nothing here; lines only
+  double max_extrusion_difference_mm = 0;     ///< E total per section
+  double max_extrusion_per_mm_difference_pct = 0;
+  size_t non_motion_differences = 0;
+  /// Human-readable findings that make the programs differ besides the distance, e.g.
+  /// "non-motion block differs: A line 12 'M3 S1000', B line 12 'M4 S1000'".
+  std::vector<std::string> findings;
+  /// Per B move (index into B's moves): its largest distance to A's path, for plots.
+  std::vector<double> deviation_of_b;
+  double arc_chord_mm = 0;  ///< the chord sagitta used for arcs (the measure's precision there)
+
+  bool same(double tolerance_mm) const {
+    return max_deviation_mm <= tolerance_mm && max_rapid_mm <= tolerance_mm && findings.empty();
+  }
+};
+
+ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Program& b, const Interpretation& ib,
+                          const DiffOptions& opt);
+
+/// Points of move `i` of `in` for drawing and measuring: the end point for lines, chords of
+/// sagitta at most `chord_mm` for arcs (start excluded).
+void move_path(const Interpretation& in, size_t i, double chord_mm, std::vector<Vec3>& out);
+
+}  // namespace arcpress

@@ -1,0 +1,35 @@
+#pragma once
+// Nearest-segment queries over a path: CGAL's AABB tree over 3D segments, behind a small
+// interface so the CGAL headers are compiled in one place.
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "arcpress/core/geometry.hpp"
+
+namespace arcpress {
+
+class SegmentIndex {
+ public:
+  struct Nearest {
+    double distance_mm = 0;
+    uint32_t segment = 0;  ///< index into the segments given to the constructor
+    Vec3 point{0, 0, 0};   ///< the closest point on that segment
+  };
+
+  /// Segments as consecutive pairs of `ends`: segment i runs from ends[2i] to ends[2i+1].
+  /// Zero-length segments are kept as points.
+  explicit SegmentIndex(const std::vector<Vec3>& ends);
+  ~SegmentIndex();
+  SegmentIndex(const SegmentIndex&) = delete;
+  SegmentIndex& operator=(const SegmentIndex&) = delete;
+
+  bool empty() const;
+  Nearest nearest(const Vec3& p) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace arcpress

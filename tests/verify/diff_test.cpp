@@ -1,0 +1,178 @@
+// `arcpress diff` as a specification: what it measures for known differences.
+#include <catch2/catch.hpp>
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdlib>
+
+#include "arcpress/lex/lexer.hpp"
+#include "arcpress/model/interpreter.hpp"
+#include "arcpress/verify/diff_plot.hpp"
+#include "arcpress/verify/program_diff.hpp"
+#include "support.hpp"
+
+using namespace arcpress;
+
+namespace {
+
+ProgramDiff diff_of(const std::string& a, const std::string& b, double tol = 0.01) {
+  DiagnosticSink sa("a.nc"), sb("b.nc");
+  Program pa = lex("a.nc", a, sa), pb = lex("b.nc", b, sb);
+  Interpretation ia = interpret(pa, sa), ib = interpret(pb, sb);
+  DiffOptions opt;
+  opt.tolerance_mm = tol;
+  return diff_programs(pa, ia, pb, ib, opt);
+}
+
+/// A zig-zag cut: rapid in, spindle on, ten feed moves, rapid out.
+std::string zigzag(double moved_y_at_5 = 0.0, const std::string& spindle = "M3 S1000") {
+  std::string t = "G21 G90\nG0 X0 Y0 Z1\n" + spindle + "\nG1 Z0 F300\n";
+  for (int k = 1; k <= 10; ++k)
+    t += fmt::format("G1 X{} Y{:.4f}\n", k, k == 5 ? moved_y_at_5 : 0.0);  // a straight line along X
+  return t + "G0 Z5\nM5\nM2\n";
+}
+
+}  // namespace
+
+TEST_CASE("identical programs differ by nothing", "[diff]") {
+  ProgramDiff d = diff_of(zigzag(), zigzag());
+  CHECK(d.max_deviation_mm == 0.0);
+  CHECK(d.findings.empty());
+  CHECK(d.same(0.01));
+  CHECK(d.a.feed_moves == 11);
+  CHECK(d.a.sections == 1);
+}
+
+TEST_CASE("one point moved by a known amount is found with that amount, at its lines", "[diff]") {
+  ProgramDiff d = diff_of(zigzag(), zigzag(0.0123));
+  CHECK(d.max_deviation_mm == Approx(0.0123).margin(1e-9));
+  REQUIRE_FALSE(d.worst.empty());
+  CHECK(d.worst[0].deviation_mm == Approx(0.0123).margin(1e-9));
+  CHECK(d.worst[0].line_b == 9);  // "G1 X5 Y0.0123"
+  CHECK(d.worst[0].at.x() == Approx(5.0));
+  CHECK_FALSE(d.same(0.01));
+  CHECK(d.same(0.013));
+}
+
+TEST_CASE("an arc replaced by its chord differs by the arc's sagitta", "[diff]") {
+  // 60 degrees of radius 10 about (0, 0): sagitta 10 * (1 - cos 30 degrees).
+  std::string arc = "G21 G90 G17\nG0 X10 Y0 Z0\nG3 X5 Y8.660254 I-10 J0 F100\nM2\n";
+  std::string chord = "G21 G90 G17\nG0 X10 Y0 Z0\nG1 X5 Y8.660254 F100\nM2\n";
+  double sagitta = 10 * (1 - std::cos(kPi / 6));
+  ProgramDiff d = diff_of(arc, chord);
+  CHECK(d.max_deviation_mm == Approx(sagitta).margin(d.arc_chord_mm));
+  CHECK(d.arc_chord_mm <= 1e-5);
+  REQUIRE_FALSE(d.worst.empty());
+  CHECK(d.worst[0].line_a == 3);
+  CHECK(d.worst[0].line_b == 3);
+}
+
+TEST_CASE("a bulge between the samples of either path is not missed", "[diff]") {
+  // B takes a long straight line where A makes a detour in the middle: A's vertices are all
+  // on B's line except one; B's vertices are all on A's path.
+  std::string a = "G21 G90\nG0 X0 Y0 Z0\nG1 X4.9 Y0 F100\nX5 Y0.05\nX5.1 Y0\nX10 Y0\nM2\n";
+  std::string b = "G21 G90\nG0 X0 Y0 Z0\nG1 X10 Y0 F100\nM2\n";
+  CHECK(diff_of(a, b).max_deviation_mm == Approx(0.05).margin(1e-9));
+  CHECK(diff_of(b, a).max_deviation_mm == Approx(0.05).margin(1e-9));
+}
+
+TEST_CASE("a swapped M-code is reported even where the paths agree", "[diff]") {
+  ProgramDiff d = diff_of(zigzag(), zigzag(0, "M4 S1000"));
+  CHECK(d.max_deviation_mm == 0.0);
+  CHECK(d.non_motion_differences == 1);
+  REQUIRE(d.findings.size() == 1);
+  CHECK(d.findings[0] == "non-motion block differs: A line 3 'M3 S1000', B line 3 'M4 S1000'");
+  CHECK_FALSE(d.same(0.01));
+}
+
+TEST_CASE("changed extrusion and feed are reported", "[diff]") {
+  std::string a = "G21 G90 M82\nG0 X0 Y0 Z0.2\nG1 X10 Y0 E1.0 F1200\nG1 X10 Y10 E2.0\nG0 Z1\n";
+  std::string more_e = "G21 G90 M82\nG0 X0 Y0 Z0.2\nG1 X10 Y0 E1.0 F1200\nG1 X10 Y10 E2.1\nG0 Z1\n";
+  ProgramDiff e = diff_of(a, more_e);
+  CHECK(e.max_deviation_mm == 0.0);
+  CHECK(e.max_extrusion_difference_mm == Approx(0.1));
+  CHECK_FALSE(e.same(0.01));
+  std::string slower = "G21 G90 M82\nG0 X0 Y0 Z0.2\nG1 X10 Y0 E1.0 F1200\nG1 X10 Y10 E2.0 F600\nG0 Z1\n";
+  ProgramDiff f = diff_of(a, slower);
+  CHECK(f.max_feed_difference_pct == Approx(50.0));
+  CHECK(f.worst_feed.line_b == 4);
+  CHECK_FALSE(f.same(0.01));
+}
+
+TEST_CASE("the same path in inches and in millimetres is the same", "[diff]") {
+  std::string mm = "G21 G90\nG0 X0 Y0 Z0\nG1 X25.4 Y0 F254\nG2 X50.8 Y0 I12.7 J0\nM2\n";
+  std::string inch = "G20 G90\nG0 X0 Y0 Z0\nG1 X1 Y0 F10\nG2 X2 Y0 I0.5 J0\nM2\n";
+  ProgramDiff d = diff_of(mm, inch);
+  CHECK(d.max_deviation_mm < 1e-9);
+  CHECK(d.findings.empty());
+  CHECK(d.same(0.001));
+}
+
+TEST_CASE("a different number of rapids or cutting sections is a difference", "[diff]") {
+  std::string one = "G21 G90\nG0 X0 Y0 Z0\nG1 X10 F100\nG1 X20\nM2\n";
+  std::string two = "G21 G90\nG0 X0 Y0 Z0\nG1 X10 F100\nG0 X10\nG1 X20\nM2\n";
+  ProgramDiff d = diff_of(one, two);
+  CHECK(d.max_deviation_mm < 1e-9);
+  CHECK(d.b.sections == 2);
+  CHECK_FALSE(d.same(0.01));
+}
+
+TEST_CASE("arcpress diff on the command line: text, JSON, exit codes", "[diff][cli]") {
+  auto dir = test::temp_dir("diff-cli");
+  test::write_file(dir / "a.nc", zigzag());
+  test::write_file(dir / "b.nc", zigzag(0.0123));
+  auto same = test::run_arcpress(fmt::format("diff {0}/a.nc {0}/a.nc", dir.string()));
+  CHECK(same.exit_code == 0);
+  CHECK(same.out.find("SAME: max deviation 0.000000 mm within the 0.01 mm band") != std::string::npos);
+  auto diff = test::run_arcpress(fmt::format("diff {0}/a.nc {0}/b.nc --top 2", dir.string()));
+  CHECK(diff.exit_code == 1);
+  CHECK(diff.out.find("#1 0.012300 mm at X5.0000 Y0.0123 Z0.0000") != std::string::npos);
+  CHECK(diff.out.find("DIFFERENT") != std::string::npos);
+  auto json = test::run_arcpress(fmt::format("diff {0}/a.nc {0}/b.nc --json", dir.string()));
+  CHECK(json.exit_code == 1);
+  CHECK(json.out.find("\"verdict\": \"different\"") != std::string::npos);
+  CHECK(json.out.find("\"max_deviation_mm\": 0.012300000") != std::string::npos);
+  CHECK(json.out.find("\"line_b\": 9") != std::string::npos);
+  auto ok = test::run_arcpress(fmt::format("diff {0}/a.nc {0}/b.nc --tolerance 0.02 --json", dir.string()));
+  CHECK(ok.exit_code == 0);
+  CHECK(ok.out.find("\"verdict\": \"same\"") != std::string::npos);
+}
+
+TEST_CASE("the SVG plot renders in headless Chromium: not blank, legend and worst place shown", "[diff][plot]") {
+  if (std::system("command -v chromium > /dev/null 2>&1") != 0) {
+    WARN("chromium is not installed (Debian package chromium): skipped");
+    return;
+  }
+  auto dir = test::temp_dir("plot");
+  // A circle as 360 lines, and a copy with one vertex pushed out.
+  std::string a = "G21 G90\nG0 X10 Y0 Z0\n", b = a;
+  for (int k = 1; k <= 360; ++k) {
+    double t = 2 * kPi * k / 360, r = k == 90 ? 10.02 : 10.0;
+    a += fmt::format("G1 X{:.4f} Y{:.4f} F300\n", 10 * std::cos(t), 10 * std::sin(t));
+    b += fmt::format("G1 X{:.4f} Y{:.4f} F300\n", r * std::cos(t), r * std::sin(t));
+  }
+  test::write_file(dir / "a.nc", a);
+  test::write_file(dir / "b.nc", b);
+  auto c = test::run_arcpress(fmt::format("diff {0}/a.nc {0}/b.nc --plot {0}/plot.svg", dir.string()));
+  CHECK(c.exit_code == 1);
+  std::string svg = test::read_file(dir / "plot.svg");
+  CHECK(svg.find("id=\"legend\"") != std::string::npos);
+  CHECK(svg.find("worst 0.020000 mm: ") != std::string::npos);
+  // A blank page of the same size, to compare the screenshots with.
+  test::write_file(dir / "blank.svg", "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"1200\" height=\"1210\">"
+                                      "<rect width=\"100%\" height=\"100%\" fill=\"white\"/></svg>\n");
+  auto shot = [&](const std::string& name) {
+    std::string cmd = fmt::format(
+        "cd {0} && timeout 120 chromium --headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
+        "--disable-background-networking --disable-component-update --disable-sync --user-data-dir={0}/profile "
+        "--window-size=1200,1210 --screenshot={0}/{1}.png file://{0}/{1}.svg > {0}/chromium.log 2>&1",
+        dir.string(), name);
+    CHECK(std::system(cmd.c_str()) == 0);
+    return std::filesystem::exists(dir / (name + ".png")) ? std::filesystem::file_size(dir / (name + ".png")) : 0;
+  };
+  auto plot_png = shot("plot"), blank_png = shot("blank");
+  INFO(test::read_file(dir / "chromium.log"));
+  REQUIRE(blank_png > 0);
+  // Drawn paths, text and the legend's gradient compress far worse than an empty page.
+  CHECK(plot_png > 5 * blank_png);
+}
