@@ -33,6 +33,9 @@ struct Path {
   Vec3 b(size_t s) const { return ends[2 * s + 1]; }
 };
 
+/// Longest piece of a path put into the index, mm.
+constexpr double kPieceMm = 2.0;
+
 Path path_of(const Interpretation& in, double chord_mm) {
   Path p;
   std::vector<Vec3> pts;
@@ -56,11 +59,18 @@ Path path_of(const Interpretation& in, double chord_mm) {
     pts.clear();
     move_path(in, i, chord_mm, pts);
     for (const Vec3& q : pts) {
-      p.ends.push_back(prev);
-      p.ends.push_back(q);
-      p.move_of.push_back(uint32_t(i));
-      p.section_of.push_back(sec);
-      p.section_length_mm[sec] += (q - prev).norm();
+      // Long segments are cut into pieces: an AABB over a long diagonal box is hit by
+      // nearly every query (travel moves across a printed layer).
+      double len = (q - prev).norm();
+      int pieces = std::max(1, int(std::ceil(len / kPieceMm)));
+      for (int k = 1; k <= pieces; ++k) {
+        Vec3 r = k == pieces ? q : Vec3(prev + (q - prev) * (double(k) / pieces));
+        p.ends.push_back(k == 1 ? prev : p.ends.back());
+        p.ends.push_back(r);
+        p.move_of.push_back(uint32_t(i));
+        p.section_of.push_back(sec);
+      }
+      p.section_length_mm[sec] += len;
       prev = q;
     }
   }
@@ -256,13 +266,18 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
       note(pa.move_of[n.segment], pb.move_of[s], n.distance_mm, p);
     });
     // Feed along the path: at the middle of each of B's segments (away from the joints,
-    // where two moves meet), against the A move nearest to it.
+    // where two moves meet), against the nearest A move that runs the same way.
     for (size_t sgm = 0; sgm < pb.size(); ++sgm) {
       Vec3 mid = (pb.a(sgm) + pb.b(sgm)) / 2;
       SegmentIndex::Nearest n = index_a.nearest(mid);
       const Move& mb = ib.moves[pb.move_of[sgm]];
       const Move& ma = ia.moves[pa.move_of[n.segment]];
       if (ma.feed_mm_min <= 0 || n.distance_mm > opt.tolerance_mm) continue;
+      // A path crossing or retracing another is not its counterpart.
+      Vec3 db = pb.b(sgm) - pb.a(sgm), da = pa.b(n.segment) - pa.a(n.segment);
+      if (db.norm() <= kLengthEpsMm || da.norm() <= kLengthEpsMm ||
+          db.normalized().dot(da.normalized()) < std::cos(deg_to_rad(10)))
+        continue;
       double pct = 100.0 * std::abs(mb.feed_mm_min - ma.feed_mm_min) / ma.feed_mm_min;
       if (pct > d.max_feed_difference_pct) {
         d.max_feed_difference_pct = pct;
