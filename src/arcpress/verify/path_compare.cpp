@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "arcpress/core/deviation.hpp"
+#include "arcpress/verify/move_geometry.hpp"
 
 namespace arcpress {
 namespace {
@@ -41,32 +42,11 @@ Vec3 from_plane(const Vec3& v, Plane pl) {
   return r;
 }
 
-ArcGeom arc_of(const Interpretation& in, size_t i) {
-  const Move& m = in.moves[i];
-  Vec3 s = in_plane(in.from(i), m.plane), e = in_plane(m.to, m.plane);
-  Vec3 c = in_plane(m.center, m.plane);
-  ArcGeom g = ArcGeom::through(s, e, Vec2(c.x(), c.y()), m.kind == MoveKind::ArcCCW);
-  if (std::abs(g.sweep) < 1e-12 || (s - e).norm() <= kSamePointMm) g.sweep = (g.sweep >= 0 ? 1 : -1) * 2 * kPi;
-  g.sweep += (g.sweep >= 0 ? 1 : -1) * 2 * kPi * std::max(0, m.turns - 1);
-  return g;
-}
-
-/// Appends the path of move i to `pts` (in `pl` coordinates); arcs as dense chords whose
-/// sagitta is below `chord_mm`.
+/// Appends the path of move i to `pts`, in `pl` coordinates.
 void append_path(const Interpretation& in, size_t i, Plane pl, double chord_mm, std::vector<Vec3>& pts) {
-  const Move& m = in.moves[i];
-  if (!is_arc(m.kind)) {
-    pts.push_back(in_plane(m.to, pl));
-    return;
-  }
-  ArcGeom g = arc_of(in, i);
-  double r = std::max(g.radius_mm, 1e-9);
-  double step = 2 * std::acos(std::clamp(1 - chord_mm / r, -1.0, 1.0));
-  size_t n = std::clamp<size_t>(size_t(std::ceil(std::abs(g.sweep) / std::max(step, 1e-6))), 1, 200000);
-  for (size_t k = 1; k <= n; ++k) {
-    Vec3 p = g.point_at(double(k) / double(n));
-    pts.push_back(in_plane(from_plane(p, m.plane), pl));
-  }
+  size_t first = pts.size();
+  move_path(in, i, chord_mm, pts);
+  for (size_t k = first; k < pts.size(); ++k) pts[k] = in_plane(pts[k], pl);
 }
 
 Vec2 start_tangent(const Interpretation& in, size_t i) {
@@ -136,7 +116,7 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
       if (input_is_same_arc) {
         d.max_mm = 0;
       } else if (is_arc(mb.kind)) {
-        d = arc_deviation(pts, arc_of(ib, j));
+        d = arc_deviation(pts, arc_of_move(ib, j));
       } else {
         d = line_deviation(pts);
       }

@@ -14,7 +14,6 @@ namespace arcpress {
 namespace {
 
 bool is_feed(MoveKind k) { return k == MoveKind::Line || k == MoveKind::ArcCW || k == MoveKind::ArcCCW; }
-bool is_arc(MoveKind k) { return k == MoveKind::ArcCW || k == MoveKind::ArcCCW; }
 
 Vec3 xyz(const AxisValues& v) { return {v[kX], v[kY], v[kZ]}; }
 
@@ -198,33 +197,6 @@ class Directed {
 };
 
 }  // namespace
-
-void move_path(const Interpretation& in, size_t i, double chord_mm, std::vector<Vec3>& out) {
-  const Move& m = in.moves[i];
-  if (!is_arc(m.kind)) {
-    out.push_back(xyz(m.to));
-    return;
-  }
-  auto ax = axes_of(m.plane);
-  auto plane3 = [&](const Vec3& v) { return Vec3(v[ax.first], v[ax.second], v[ax.normal]); };
-  Vec3 s = plane3(xyz(in.from(i))), e = plane3(xyz(m.to));
-  ArcGeom g = ArcGeom::through(s, e, project(m.center, m.plane), m.kind == MoveKind::ArcCCW);
-  if ((s - e).head<2>().norm() <= kLengthEpsMm) g.sweep = (m.kind == MoveKind::ArcCCW ? 1 : -1) * 2 * kPi;
-  g.sweep += (g.sweep >= 0 ? 1 : -1) * 2 * kPi * std::max(0, m.turns - 1);
-  double r = std::max(g.radius_mm, kLengthEpsMm);
-  double step = 2 * std::acos(std::clamp(1 - chord_mm / r, -1.0, 1.0));
-  size_t n = std::clamp<size_t>(size_t(std::ceil(std::abs(g.sweep) / std::max(step, 1e-6))), 1, 100000);
-  // An even count puts a vertex at the middle of the arc, where a chord's gap is largest.
-  if (n % 2) ++n;
-  for (size_t k = 1; k <= n; ++k) {
-    Vec3 p = g.point_at(double(k) / double(n));
-    Vec3 q;
-    q[ax.first] = p.x();
-    q[ax.second] = p.y();
-    q[ax.normal] = p.z();
-    out.push_back(k == n ? xyz(m.to) : q);
-  }
-}
 
 ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Program& b, const Interpretation& ib,
                           const DiffOptions& opt) {

@@ -18,6 +18,7 @@
 
 #include "arcpress/lex/block.hpp"
 #include "arcpress/model/move.hpp"
+#include "arcpress/verify/move_geometry.hpp"
 
 namespace arcpress {
 
@@ -65,9 +66,5 @@ struct ProgramDiff {
 
 ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Program& b, const Interpretation& ib,
                           const DiffOptions& opt);
-
-/// Points of move `i` of `in` for drawing and measuring: the end point for lines, chords of
-/// sagitta at most `chord_mm` for arcs (start excluded).
-void move_path(const Interpretation& in, size_t i, double chord_mm, std::vector<Vec3>& out);
 
 }  // namespace arcpress
