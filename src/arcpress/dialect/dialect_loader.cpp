@@ -33,6 +33,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
+/// "a", "b", "c"
+std::string quoted(std::initializer_list<std::string_view> choices) {
+  std::string list;
+  for (auto c : choices) list += fmt::format("{}\"{}\"", list.empty() ? "" : ", ", c);
+  return list;
+}
+
 /// Walks one TOML table, reading known keys into a Dialect and rejecting everything else,
 /// with the place of the offending key in every message.
 class TableReader {
@@ -91,9 +98,7 @@ class TableReader {
         ++i;
       }
     }
-    std::string list;
-    for (auto c : choices) list += fmt::format("{}\"{}\"", list.empty() ? "" : ", ", c);
-    fail(n->source(), key, "expected one of " + list);
+    fail(n->source(), key, "expected one of " + quoted(choices));
   }
   /// An array of strings, each one of `choices` when given.
   bool strings(std::string_view key, std::vector<std::string>& out, std::initializer_list<std::string_view> choices = {}) {
@@ -106,9 +111,7 @@ class TableReader {
       if (!e.is_string()) fail(e.source(), key, "expected an array of strings");
       std::string v = *e.value<std::string>();
       if (choices.size() && std::find(choices.begin(), choices.end(), v) == choices.end()) {
-        std::string list;
-        for (auto c : choices) list += fmt::format("{}\"{}\"", list.empty() ? "" : ", ", c);
-        fail(e.source(), key, fmt::format("\"{}\" is not one of {}", v, list));
+        fail(e.source(), key, fmt::format("\"{}\" is not one of {}", v, quoted(choices)));
       }
       out.push_back(v);
     }

@@ -316,7 +316,7 @@ class Emitter {
           bool big = sweep_ideal > kPi;
           double side = (pr.ccw ? 1.0 : -1.0) * (big ? -1.0 : 1.0);
           Vec2 c = (s2 + e2) / 2 + side * h * n;
-          if (h2 < 0 || !acceptable(s3, e3, c, pr.ccw, run)) continue;
+          if (h2 < 0 || !acceptable(s3, e3, c, pr.ccw)) continue;
           std::string t = format_number(big ? -Rp : Rp, NumberStyle{dec, true, st.keep_point});
           if (!digits_fit(t)) continue;
           out.words = st.letter('R') + t;
@@ -345,7 +345,7 @@ class Emitter {
       std::sort(cands + 1, cands + n, [](const Cand& x, const Cand& y) { return x.dr < y.dr; });
       for (int q = 0; q < n; ++q) {
         Vec2 c = ref + cands[q].w * unit;
-        if (!acceptable(s3, e3, c, pr.ccw, run)) continue;
+        if (!acceptable(s3, e3, c, pr.ccw)) continue;
         std::string t1 = format_number(cands[q].w.x(), NumberStyle{dec, true, st.keep_point});
         std::string t2 = format_number(cands[q].w.y(), NumberStyle{dec, true, st.keep_point});
         if (!digits_fit(t1) || !digits_fit(t2)) continue;
@@ -367,7 +367,7 @@ class Emitter {
 
   /// Whether an arc from s to e about c (as the controller reads the printed numbers) is one
   /// the controller runs as meant, inside the band of the input points pts_.
-  bool acceptable(const Vec3& s, const Vec3& e, const Vec2& c, bool ccw, const Run& run) const {
+  bool acceptable(const Vec3& s, const Vec3& e, const Vec2& c, bool ccw) const {
     double rs = (s.head<2>() - c).norm(), re = (e.head<2>() - c).norm();
     double dr = std::abs(rs - re);
     if (dr > d().radius_allowance_mm(rs)) return false;
@@ -376,7 +376,6 @@ class Emitter {
     double sweep_deg = rad_to_deg(std::abs(g.sweep));
     if (sweep_deg < d().min_sweep_deg || sweep_deg > d().max_sweep_deg + 1e-9) return false;
     if (rs * std::abs(g.sweep) < d().min_arc_length_mm) return false;
-    (void)run;
     // The controller ends on the printed end point: a spiral or a jump of at most dr.
     Deviation dev = arc_deviation(pts_, g, opt_.band_mm);
     return dev.ordered && dev.max_mm + dr <= opt_.band_mm;

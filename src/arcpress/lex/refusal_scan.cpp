@@ -3,34 +3,47 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <vector>
 
 namespace arcpress {
 namespace {
 
-/// "G90.1" for a G word of value 90.1; "O" for any O word.
-bool matches(const Word& w, std::string_view code) {
-  if (code.empty() || w.is_expr || std::toupper(static_cast<unsigned char>(code[0])) != w.letter) return false;
-  if (code.size() == 1) return true;
-  double v = 0;
-  try {
-    v = std::stod(std::string(code.substr(1)));
-  } catch (...) {
-    return false;
+/// A refused word as the dialect names it: a letter alone ("O": any O word) or a letter
+/// with a value ("G90.1").
+struct RefusedWord {
+  char letter = 0;
+  bool any_value = true;
+  double value = 0;
+};
+
+std::vector<RefusedWord> parse_refused(const Dialect& d) {
+  std::vector<RefusedWord> out;
+  for (const auto& code : d.refused) {
+    if (code.empty() || code == "%") continue;
+    RefusedWord r{char(std::toupper(static_cast<unsigned char>(code[0]))), code.size() == 1, 0};
+    if (!r.any_value) {
+      char* end = nullptr;
+      r.value = std::strtod(code.c_str() + 1, &end);
+      if (*end != '\0') continue;  // not a word: nothing in a program can match it
+    }
+    out.push_back(r);
   }
-  return std::abs(w.value - v) < 1e-6;
+  return out;
 }
 
 }  // namespace
 
 void scan_refusals(const Program& program, const Dialect& dialect, DiagnosticSink& sink) {
   const bool percent = dialect.refuses("%");
+  const std::vector<RefusedWord> refused = parse_refused(dialect);
   for (const Block& b : program.blocks) {
     if (b.kind == BlockKind::Percent && percent)
       sink.warning({b.line, 1}, "W-DIALECT-REFUSED",
                    fmt::format("'%' is refused by {}; the line is passed through unchanged", dialect.name));
     for (const Word* w = program.words_begin(b); w != program.words_end(b); ++w)
-      for (const auto& code : dialect.refused)
-        if (code != "%" && matches(*w, code))
+      for (const auto& r : refused)
+        if (!w->is_expr && w->letter == r.letter && (r.any_value || std::abs(w->value - r.value) < 1e-6))
           sink.warning({b.line, w->col}, "W-DIALECT-REFUSED",
                        fmt::format("'{}' is refused by {}; the block is passed through unchanged",
                                    program.raw(b, *w), dialect.name));
