@@ -86,15 +86,21 @@ int run_compress(const CompressArgs& a) {
     return kExitInput;
   }
   if (!r.within_band()) {
-    const auto& c = r.comparison;
-    if (!c.matched)
-      fmt::print(stderr, "arcpress: verification failed: {}; nothing written\n", c.mismatch);
-    else
+    const ProgramDiff& c = r.check;
+    if (!r.comparison.matched) fmt::print(stderr, "arcpress: verification failed: {}\n", r.comparison.mismatch);
+    if (c.max_deviation_mm > r.band_mm || r.comparison.max_deviation_mm > r.band_mm) {
+      DiffPlace w = c.worst.empty() ? DiffPlace{} : c.worst.front();
       fmt::print(stderr,
                  "arcpress: verification failed: output deviates {:.6f} mm from the input (band {:.6f} mm) at "
-                 "X{:.4f} Y{:.4f} Z{:.4f}, input line {}, output line {}; nothing written\n",
-                 c.max_deviation_mm, r.band_mm, c.worst_point.x(), c.worst_point.y(), c.worst_point.z(),
-                 c.worst_line_a, c.worst_line_b);
+                 "X{:.4f} Y{:.4f} Z{:.4f}, input line {}, output line {}\n",
+                 std::max(c.max_deviation_mm, r.comparison.max_deviation_mm), r.band_mm, w.at.x(), w.at.y(), w.at.z(),
+                 w.line_a, w.line_b);
+    }
+    if (c.max_rapid_mm > r.band_mm)
+      fmt::print(stderr, "arcpress: verification failed: a rapid ends {:.6f} mm away, input line {}, output line {}\n",
+                 c.max_rapid_mm, c.worst_rapid.line_a, c.worst_rapid.line_b);
+    for (const std::string& f : c.findings) fmt::print(stderr, "arcpress: verification failed: {}\n", f);
+    fmt::print(stderr, "arcpress: nothing written\n");
     return kExitVerifyFailed;
   }
   cli::write_output(out_path, r.output);
@@ -118,11 +124,12 @@ int run_compress(const CompressArgs& a) {
                st.arcs_unprintable, st.long_lines_kept, s);
     if (r.verified) {
       const auto& c = r.comparison;
+      DiffPlace w = r.check.worst.empty() ? DiffPlace{} : r.check.worst.front();
       fmt::print(stderr,
                  "  deviation      {:.6f} mm max (band {} mm), input line {}, output line {}\n"
                  "  smooth joints  {} made, max kink {:.3f} deg, {} over {} deg ({} forced by the band)\n",
-                 c.max_deviation_mm, r.band_mm, c.worst_line_a, c.worst_line_b, c.smooth_joints,
-                 c.max_smooth_kink_deg, c.smooth_joints_over_g1, a.opt.fit.g1_angle_deg, r.forced_kinks);
+                 r.check.max_deviation_mm, r.band_mm, w.line_a, w.line_b, c.smooth_joints, c.max_smooth_kink_deg,
+                 c.smooth_joints_over_g1, a.opt.fit.g1_angle_deg, r.forced_kinks);
     } else {
       fmt::print(stderr, "  deviation      not measured (--no-verify)\n");
     }

@@ -225,6 +225,23 @@ TEST_CASE("golden: Fanuc prints 3 decimals with a point, and reads X1 as one mic
   CHECK(in.moves[0].to[kY] == Approx(2.0));
 }
 
+TEST_CASE("an arc end word the input left modal keeps the input's own digits, finer than the dialect's", "[dialect]") {
+  // A curve flattening into a straight move that gives only X: the arc over that last move
+  // must print Y, which the input gave with 4 decimals where Fanuc prints 3.
+  std::string t = "G21 G90 G17\nG0 X50.0000 Y61.7000 Z0\nG1 F300\n";
+  for (int k = 1; k <= 15; ++k) {
+    double x = 50 - k * 0.26;
+    t += fmt::format("X{:.4f} Y{:.4f}\n", x, 61.5244 + 0.035 * (x - 46.1) * (x - 46.1));
+  }
+  t += "X44.0672\nM30\n";
+  CompressResult r = compress_as(shipped("fanuc"), t);
+  INFO(r.output);
+  REQUIRE(r.verified);
+  CHECK(r.comparison.matched);
+  CHECK(r.within_band());
+  CHECK(r.output.find("X44.0672 Y61.5244") != std::string::npos);
+}
+
 TEST_CASE("printer dialects with no G18/G19 arcs, and no arcs under G91 for Klipper, keep those runs as lines",
           "[dialect]") {
   CompressResult m = compress_as(shipped("marlin"), test::arc_snippets()[4].text);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "arcpress/api/arcpress.hpp"
 #include "arcpress/lex/lexer.hpp"
 #include "arcpress/model/interpreter.hpp"
 #include "arcpress/verify/diff_plot.hpp"
@@ -99,6 +100,31 @@ TEST_CASE("changed extrusion and feed are reported", "[diff]") {
   CHECK_FALSE(f.same(0.01));
 }
 
+TEST_CASE("feed is compared with the move at the same place in program order", "[diff]") {
+  // A prints along X at F1200, travels back and then retraces the printed line at F7800,
+  // 0.005 mm to the side. B prints the same line 0.004 mm to the side, in two moves: the
+  // travel is nearer B's print than A's print is, but comes later in the program.
+  auto program = [](const std::string& print) {
+    return "G21 G90 M83\nG0 X0 Y0 Z0.2\n" + print + "G1 X0 Y0.005 F7800\nG1 X10 Y0.005\nG0 Z1\n";
+  };
+  std::string a = program("G1 X10 Y0 E1.0 F1200\n");
+  std::string b = program("G1 X5 Y0.004 E0.5 F1200\nG1 X10 Y0.004 E0.5\n");
+  ProgramDiff same = diff_of(a, b);
+  CHECK(same.max_feed_difference_pct == 0.0);
+  CHECK(same.findings.empty());
+  std::string b_slow = program("G1 X5 Y0.004 E0.5 F1200\nG1 X10 Y0.004 E0.5 F1000\n");
+  ProgramDiff slow = diff_of(a, b_slow);
+  CHECK(slow.max_feed_difference_pct == Approx(100.0 * 200 / 1200));
+  CHECK(slow.worst_feed.line_a == 3);
+  CHECK(slow.worst_feed.line_b == 4);
+  // Where the feed changes at a joint, points within the band of it are not compared: the
+  // first chord of B's arc starts where the travel ends.
+  std::string travel_then_arc = "G21 G90 M83\nG0 X0 Y0 Z0.2\nG1 X10 Y0 F7800\nG1 X20 Y0 E1 F1200\n";
+  std::string travel_then_arc_b = "G21 G90 M83\nG0 X0 Y0 Z0.2\nG1 X10 Y0 F7800\nG2 X20 Y0 I5 J-200 E1 F1200\n";
+  ProgramDiff joint = diff_of(travel_then_arc, travel_then_arc_b, 0.1);
+  CHECK(joint.max_feed_difference_pct == 0.0);
+}
+
 TEST_CASE("the same path in inches and in millimetres is the same", "[diff]") {
   std::string mm = "G21 G90\nG0 X0 Y0 Z0\nG1 X25.4 Y0 F254\nG2 X50.8 Y0 I12.7 J0\nM2\n";
   std::string inch = "G20 G90\nG0 X0 Y0 Z0\nG1 X1 Y0 F10\nG2 X2 Y0 I0.5 J0\nM2\n";
@@ -175,4 +201,47 @@ TEST_CASE("the SVG plot renders in headless Chromium: not blank, legend and wors
   REQUIRE(blank_png > 0);
   // Drawn paths, text and the legend's gradient compress far worse than an empty page.
   CHECK(plot_png > 5 * blank_png);
+}
+
+TEST_CASE("compress checks its own output with the code of arcpress diff: an altered output is refused", "[diff]") {
+  // A quarter circle of short moves between a spindle start and a comment.
+  std::string t = "G21 G90 G17\nG0 X10 Y0 Z0\nM3 S1000\nG1 F300\n";
+  for (int k = 1; k <= 30; ++k)
+    t += fmt::format("X{:.4f} Y{:.4f}\n", 10 * std::cos(k * M_PI / 60), 10 * std::sin(k * M_PI / 60));
+  t += "(done)\nM5\nM30\n";
+  DiagnosticSink sink("q.nc");
+  CompressOptions opt;
+  CompressResult r = compress("q.nc", t, opt, sink);
+  REQUIRE(r.verified);
+  CHECK(r.within_band());
+  CHECK(r.check.max_deviation_mm <= 0.01);
+  CHECK(r.check.max_deviation_mm == Approx(r.comparison.max_deviation_mm).margin(r.check.arc_chord_mm));
+
+  Program prog = lex("q.nc", t, sink);
+  Interpretation in = interpret(prog, sink);
+  auto verified = [&](std::string output) {
+    CompressResult v = r;
+    v.output = std::move(output);
+    verify_output(prog, in, opt, v);
+    return v;
+  };
+  auto replaced = [&](const std::string& from, const std::string& to) {
+    std::string o = r.output;
+    size_t at = o.find(from);
+    REQUIRE(at != std::string::npos);
+    return o.replace(at, from.size(), to);
+  };
+  CHECK(verified(r.output).within_band());
+  // The arc's end moved 0.05 mm: outside the band.
+  CompressResult moved = verified(replaced("Y10.0000 ", "Y10.0500 "));
+  CHECK_FALSE(moved.within_band());
+  CHECK(moved.check.max_deviation_mm > 0.01);
+  // The path untouched, but the spindle turns the other way, a comment is lost, the feed changed.
+  CompressResult m4 = verified(replaced("M3", "M4"));
+  CHECK(m4.check.max_deviation_mm <= 0.01);
+  CHECK_FALSE(m4.within_band());
+  CompressResult no_comment = verified(replaced("(done)\n", ""));
+  CHECK_FALSE(no_comment.within_band());
+  CompressResult slower = verified(replaced("F300", "F200"));
+  CHECK_FALSE(slower.within_band());
 }

@@ -9,6 +9,7 @@
 #include "arcpress/emit/emitter.hpp"
 #include "arcpress/fit/primitive.hpp"
 #include "arcpress/verify/path_compare.hpp"
+#include "arcpress/verify/program_diff.hpp"
 
 namespace arcpress {
 
@@ -22,7 +23,9 @@ struct CompressOptions {
   std::optional<ArcFormat> arc_format;  ///< I/J/K or R; absent: the dialect's own choice
   bool passthrough = false;  ///< lex and write back every block unchanged
   bool strict = false;       ///< any unreadable block is an error
-  bool verify = true;        ///< re-read the output and measure it against the input
+  /// Re-read the output and compare it with the input as `arcpress diff` does (path both
+  /// ways, rapids, non-motion blocks, feed, extrusion) before it is used.
+  bool verify = true;
 };
 
 struct CompressResult {
@@ -32,16 +35,27 @@ struct CompressResult {
   size_t bytes_in = 0;
   EmitStats stats;
   size_t forced_kinks = 0;   ///< smooth joints where the band forced a tangent change
-  bool verified = false;     ///< `comparison` holds a measurement of the output
+  bool verified = false;     ///< `check` and `comparison` hold measurements of the output
+  /// The output against the input by diff_programs(), the code of `arcpress diff`: the
+  /// verdict on the output and its measured deviation.
+  ProgramDiff check;
+  /// Move by move: every output move ends on an input vertex, the deviation of each
+  /// replaced stretch, and the tangent change at smooth joints (fit statistics).
   PathComparison comparison;
-  /// True when the output may be used: read fine and, when verified, inside the band.
-  bool within_band() const { return !verified || comparison.within(band_mm); }
+  /// True when the output may be used: read fine and, when verified, the same program as
+  /// the input within the band, move by move and as a whole.
+  bool within_band() const { return !verified || (check.same(band_mm) && comparison.within(band_mm)); }
   double band_mm = 0;
 };
 
 /// The fit options for one run: the user's, tightened by what the dialect's controller
 /// accepts in that run's frame and plane.
 FitOptions fit_options_for(const FitOptions& user, const Dialect& dialect, const Frame& frame, Plane plane);
+
+/// Reads `r.output` back with the dialect and compares it with the input program `input`
+/// (interpreted as `in`): fills r.check and r.comparison and sets r.verified. compress()
+/// calls it when `opt.verify` is set; a caller that edits the output can call it again.
+void verify_output(const Program& input, const Interpretation& in, const CompressOptions& opt, CompressResult& r);
 
 /// Compresses `text` (the program called `name` in diagnostics). Never throws for bad
 /// input: problems go to `sink`, and in strict mode any of them makes `ok` false. With

@@ -24,6 +24,26 @@ FitOptions fit_options_for(const FitOptions& user, const Dialect& d, const Frame
   return o;
 }
 
+void verify_output(const Program& input, const Interpretation& in, const CompressOptions& opt, CompressResult& r) {
+  const std::string name = input.name + " (output)";
+  DiagnosticSink out_sink(name);
+  Program out_prog = lex(name, r.output, out_sink);
+  Interpretation out_in = interpret(out_prog, out_sink, opt.dialect);
+  CompareOptions co;
+  co.tolerance_mm = opt.fit.tolerance_mm;
+  co.g1_angle_deg = opt.fit.g1_angle_deg;
+  co.corner_angle_deg = opt.fit.corner_angle_deg;
+  r.comparison = compare_paths(input, in, out_prog, out_in, co);
+  DiffOptions dopt;
+  dopt.tolerance_mm = opt.fit.tolerance_mm;
+  dopt.top = 1;
+  r.check = diff_programs(input, in, out_prog, out_in, dopt);
+  if (out_sink.error_count() > 0)
+    r.check.findings.insert(r.check.findings.begin(), "the output does not read back: " + out_sink.format_all());
+  r.band_mm = opt.fit.tolerance_mm;
+  r.verified = true;
+}
+
 CompressResult compress(const std::string& name, std::string text, const CompressOptions& opt,
                         DiagnosticSink& sink) {
   sink.set_strict(opt.strict);
@@ -53,17 +73,7 @@ CompressResult compress(const std::string& name, std::string text, const Compres
   r.output = emit_program(prog, in, runs, fits, eo, &r.stats);
   r.ok = true;
   r.band_mm = opt.fit.tolerance_mm;
-  if (opt.verify && !opt.passthrough) {
-    DiagnosticSink out_sink(name + " (output)");
-    Program out_prog = lex(name + " (output)", r.output, out_sink);
-    Interpretation out_in = interpret(out_prog, out_sink, opt.dialect);
-    CompareOptions co;
-    co.tolerance_mm = opt.fit.tolerance_mm;
-    co.g1_angle_deg = opt.fit.g1_angle_deg;
-    co.corner_angle_deg = opt.fit.corner_angle_deg;
-    r.comparison = compare_paths(prog, in, out_prog, out_in, co);
-    r.verified = true;
-  }
+  if (opt.verify && !opt.passthrough) verify_output(prog, in, opt, r);
   return r;
 }
 

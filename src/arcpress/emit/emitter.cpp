@@ -12,6 +12,13 @@
 namespace arcpress {
 namespace {
 
+/// More decimals than any input number carries: the search for a value's own decimals
+/// stops here.
+constexpr int kMaxDecimals = 9;
+/// Relative difference below which a value printed at some decimals is the value itself
+/// (absorbs the unit conversion's rounding, far below any printed digit).
+constexpr double kSameValue = 1e-9;
+
 bool is_motion_gcode(double v) {
   int g = int(std::lround(v * 10));
   return g == 0 || g == 10 || g == 20 || g == 30 || (g >= 50 && g <= 53) || g == 330 || g == 331 ||
@@ -248,9 +255,15 @@ class Emitter {
         dst += sep;
         dst += p_.raw(*last_block[L - 'A'], *w);  // the input's own text
       } else {
-        // Not written in the covered blocks: the value from before, printed exactly enough.
-        double v = rounded(fr.to_program(ax, to[ax]), dig.max);
-        put_to(dst, L, format_number(v, NumberStyle{dig.max, true, st.keep_point}));
+        // Not written in the covered blocks: the value from before (read from the input's
+        // digits), printed with as many decimals as it has, so the end point stays where the
+        // input puts it even where that is finer than the dialect's usual digits.
+        double v = fr.to_program(ax, to[ax]);
+        int dec = 0;
+        while (dec < kMaxDecimals && std::abs(rounded(v, dec) - v) > kSameValue * std::max(1.0, std::abs(v))) ++dec;
+        dec = std::max(dec, dig.max);
+        v = rounded(v, dec);
+        put_to(dst, L, format_number(v, NumberStyle{dec, true, st.keep_point}));
         end[ax] = fr.to_mm(ax, v);
       }
     }

@@ -3,8 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
-#include <set>
 #include <tuple>
 
 #include "arcpress/core/deviation.hpp"
@@ -33,7 +33,7 @@ struct Path {
 };
 
 /// Longest piece of a path put into the index, mm.
-constexpr double kPieceMm = 2.0;
+constexpr double kPieceMm = 10.0;
 
 Path path_of(const Interpretation& in, double chord_mm) {
   Path p;
@@ -77,9 +77,17 @@ Path path_of(const Interpretation& in, double chord_mm) {
 }
 
 /// The key by which non-motion blocks are compared: their M, T, S words, a dwell, and
-/// their comment, so that units, spacing and modal G-codes do not count.
+/// their comment, so that units, spacing and modal G-codes do not count; for blocks that
+/// are not ordinary words (`%`, flow control, macros, host commands), their whole text.
 std::string non_motion_key(const Program& p, const Block& b) {
   std::string key;
+  if (b.kind != BlockKind::Code && b.kind != BlockKind::Empty) {
+    // Tape marks, flow control, macros, host commands, blocks not understood: their text.
+    std::string_view raw = p.raw(b);
+    while (!raw.empty() && std::isspace(static_cast<unsigned char>(raw.back()))) raw.remove_suffix(1);
+    while (!raw.empty() && std::isspace(static_cast<unsigned char>(raw.front()))) raw.remove_prefix(1);
+    return std::string(raw);
+  }
   bool dwell = false;
   for (auto* w = p.words_begin(b); w != p.words_end(b); ++w) {
     if (w->letter == 'G' && !w->is_expr && std::lround(w->value * 10) == 40) dwell = true;
@@ -111,7 +119,7 @@ NonMotion non_motion_of(const Program& p, const Interpretation& in) {
   NonMotion n;
   for (size_t bi = 0; bi < p.blocks.size(); ++bi) {
     const Block& b = p.blocks[bi];
-    if (b.kind == BlockKind::Empty || b.kind == BlockKind::Percent) continue;
+    if (b.kind == BlockKind::Empty && !b.has_comment) continue;
     if (bi < in.move_of_block.size() && in.move_of_block[bi] >= 0 && !b.has_comment) continue;
     std::string key = non_motion_key(p, b);
     if (key.empty()) continue;
@@ -121,14 +129,58 @@ NonMotion non_motion_of(const Program& p, const Interpretation& in) {
   return n;
 }
 
-/// Measures the distance from every point of `from` to `to` (one direction), updating the
-/// running maximum. See the header for why no point between evaluations can be farther.
+/// The largest distances found so far, at most `size` places with distinct line pairs,
+/// largest first. Below floor() nothing can enter.
+class TopPlaces {
+ public:
+  explicit TopPlaces(size_t size) : size_(std::max<size_t>(size, 1)) {}
+
+  double floor() const { return places_.size() < size_ ? 0.0 : places_.back().deviation_mm; }
+  double max() const { return places_.empty() ? 0.0 : places_.front().deviation_mm; }
+
+  void offer(const DiffPlace& p) {
+    auto same = std::find_if(places_.begin(), places_.end(), [&](const DiffPlace& q) {
+      return q.line_a == p.line_a && q.line_b == p.line_b;
+    });
+    if (same != places_.end()) {
+      if (p.deviation_mm <= same->deviation_mm) return;
+      *same = p;
+    } else if (places_.size() < size_) {
+      places_.push_back(p);
+    } else if (p.deviation_mm > places_.back().deviation_mm) {
+      places_.back() = p;
+    } else {
+      return;
+    }
+    std::sort(places_.begin(), places_.end(), [](const DiffPlace& x, const DiffPlace& y) {
+      return x.deviation_mm != y.deviation_mm ? x.deviation_mm > y.deviation_mm
+                                              : std::tie(x.line_a, x.line_b) < std::tie(y.line_a, y.line_b);
+    });
+  }
+
+  std::vector<DiffPlace> take() { return std::move(places_); }
+
+ private:
+  size_t size_;
+  std::vector<DiffPlace> places_;
+};
+
+/// Measures the distance from every point of `from` to `to` (one direction). See the
+/// header for why no point between evaluations can be farther.
+///
+/// Both paths usually run side by side in the same order, so each point is first measured
+/// against the stretch of `to` around the previous answer (a walk along `to` while the
+/// distance falls). That distance is an upper bound of the true one; only when it exceeds
+/// `floor_mm` (the smallest distance that could still change the result: enter the worst
+/// places, hence also raise the maximum) is the spatial index asked for the exact nearest
+/// segment. Bounds below use any point of `to`, so they hold for either answer.
 class Directed {
  public:
-  Directed(const Path& from, const Path& to, const SegmentIndex& index, double precision_mm, double& max_mm)
-      : from_(from), to_(to), index_(index), precision_mm_(precision_mm), max_mm_(max_mm) {}
+  Directed(const Path& from, const Path& to, const SegmentIndex& index, double precision_mm, const TopPlaces& top)
+      : from_(from), to_(to), index_(index), precision_mm_(precision_mm), top_(top) {}
 
-  /// `visit(from_segment, to_segment, distance, point)` for every evaluated point.
+  /// `visit(from_segment, nearest, point)` for every evaluated point; `nearest` is exact
+  /// when its distance exceeds the floor at the time of the visit.
   template <class Visit>
   void run(Visit&& visit) {
     if (index_.empty()) return;
@@ -136,9 +188,11 @@ class Directed {
     Vec3 last(NAN, NAN, NAN);
     for (size_t s = 0; s < from_.size(); ++s) {
       Vec3 p0 = from_.a(s), p1 = from_.b(s);
-      if (!(p0 == last)) n0 = index_.nearest(p0);
-      SegmentIndex::Nearest n1 = index_.nearest(p1);
-      visit(s, n0, p0);
+      if (!(p0 == last)) {
+        n0 = locate(p0, n0.segment);
+        visit(s, n0, p0);
+      }
+      SegmentIndex::Nearest n1 = locate(p1, n0.segment);
       visit(s, n1, p1);
       refine(s, p0, n0, p1, n1, 0, visit);
       n0 = n1;
@@ -147,13 +201,48 @@ class Directed {
   }
 
  private:
+  SegmentIndex::Nearest locate(const Vec3& p, uint32_t hint) const {
+    SegmentIndex::Nearest near = walk_nearest(p, hint);
+    return near.distance_mm <= top_.floor() ? near : index_.nearest(p, near.segment);
+  }
+
+  SegmentIndex::Nearest on_segment(const Vec3& p, uint32_t s) const {
+    Vec3 a = to_.a(s), d = to_.b(s) - a;
+    double len2 = d.squaredNorm();
+    Vec3 q = len2 > 0 ? Vec3(a + std::clamp((p - a).dot(d) / len2, 0.0, 1.0) * d) : a;
+    return {(q - p).norm(), s, q};
+  }
+
+  /// The nearest of `to`'s segments reached from `hint` by stepping along `to` either way
+  /// while the distance falls (a few steps of no gain are allowed, for zero-length pieces
+  /// and small zig-zags).
+  SegmentIndex::Nearest walk_nearest(const Vec3& p, uint32_t hint) const {
+    constexpr int kMaxSteps = 256, kMaxMisses = 3;
+    SegmentIndex::Nearest best = on_segment(p, hint);
+    for (int dir : {+1, -1}) {
+      int64_t s = hint;
+      for (int steps = 0, misses = 0; steps < kMaxSteps && misses <= kMaxMisses; ++steps) {
+        s += dir;
+        if (s < 0 || s >= int64_t(to_.size())) break;
+        SegmentIndex::Nearest n = on_segment(p, uint32_t(s));
+        if (n.distance_mm < best.distance_mm) {
+          best = n;
+          misses = 0;
+        } else {
+          ++misses;
+        }
+      }
+    }
+    return best;
+  }
+
   template <class Visit>
   void refine(size_t s, const Vec3& p0, const SegmentIndex::Nearest& n0, const Vec3& p1,
               const SegmentIndex::Nearest& n1, int depth, Visit& visit) {
     double bound = chain_bound(p0, n0, p1, n1);
-    if (bound <= max_mm_ + precision_mm_ || depth > 40 || (p1 - p0).norm() <= precision_mm_) return;
+    if (bound <= top_.max() + precision_mm_ || depth > 40 || (p1 - p0).norm() <= precision_mm_) return;
     Vec3 m = (p0 + p1) / 2;
-    SegmentIndex::Nearest nm = index_.nearest(m);
+    SegmentIndex::Nearest nm = locate(m, n0.segment);
     visit(s, nm, m);
     refine(s, p0, n0, m, nm, depth + 1, visit);
     refine(s, m, nm, p1, n1, depth + 1, visit);
@@ -192,9 +281,59 @@ class Directed {
   const Path& to_;
   const SegmentIndex& index_;
   double precision_mm_;
-  double& max_mm_;
+  const TopPlaces& top_;
   mutable std::vector<Vec3> walk_;
 };
+
+/// True when p lies within `radius_mm` of a joint of move i with a neighbouring feed move
+/// of another feed rate: which of the two moves p belongs to is ambiguous there.
+bool near_feed_change(const Interpretation& in, uint32_t i, const Vec3& p, double radius_mm) {
+  const Move& m = in.moves[i];
+  auto differs = [&](size_t j) { return is_feed(in.moves[j].kind) && in.moves[j].feed_mm_min != m.feed_mm_min; };
+  return (i > 0 && differs(i - 1) && (xyz(in.from(i)) - p).norm() <= radius_mm) ||
+         (i + 1 < in.moves.size() && differs(i + 1) && (xyz(m.to) - p).norm() <= radius_mm);
+}
+
+/// Pairs each of B's segments with its counterpart on A for the feed check, in program
+/// order: at the middle of the B segment (away from the joints, where two moves meet), the
+/// counterpart is the first A segment from the last one paired on that lies within the band
+/// and runs roughly the same way (an arc in the band may cross the input's chords at some
+/// angle). Travel that retraces a printed line elsewhere in the program is thus not taken
+/// for it. Only when no such segment follows within a window is the nearest A segment
+/// anywhere taken, if it lies ahead and runs the same way; a B segment with no counterpart
+/// is not compared, nor one whose middle is within the band of a joint where A's or B's
+/// feed changes. `visit(a_move, b_move, point)`.
+template <class Visit>
+void compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, const Interpretation& ib,
+                  const SegmentIndex& index_a, double tolerance_mm, Visit&& visit) {
+  constexpr size_t kWindow = 4096;  // A segments searched ahead of the cursor
+  const double along = std::cos(deg_to_rad(45)), same_way = std::cos(deg_to_rad(10));
+  auto cosine = [&](size_t sa, const Vec3& db) {
+    Vec3 da = pa.b(sa) - pa.a(sa);
+    return da.norm() > kLengthEpsMm ? db.normalized().dot(da.normalized()) : -1.0;
+  };
+  size_t cursor = 0;
+  for (size_t sb = 0; sb < pb.size(); ++sb) {
+    Vec3 db = pb.b(sb) - pb.a(sb);
+    if (db.norm() <= kLengthEpsMm) continue;
+    Vec3 mid = (pb.a(sb) + pb.b(sb)) / 2;
+    size_t found = pa.size();
+    for (size_t k = cursor; k < std::min(pa.size(), cursor + kWindow); ++k)
+      if (point_segment_distance(mid, pa.a(k), pa.b(k)) <= tolerance_mm && cosine(k, db) >= along) {
+        found = k;
+        break;
+      }
+    if (found == pa.size()) {
+      SegmentIndex::Nearest n = index_a.nearest(mid, uint32_t(std::min(cursor, pa.size() - 1)));
+      if (n.segment < cursor || n.distance_mm > tolerance_mm || cosine(n.segment, db) < same_way) continue;
+      found = n.segment;
+    }
+    cursor = found;
+    uint32_t move_a = pa.move_of[found], move_b = pb.move_of[sb];
+    if (near_feed_change(ia, move_a, mid, tolerance_mm) || near_feed_change(ib, move_b, mid, tolerance_mm)) continue;
+    if (ia.moves[move_a].feed_mm_min > 0) visit(ia.moves[move_a], ib.moves[move_b], mid);
+  }
+}
 
 }  // namespace
 
@@ -218,60 +357,34 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
   d.b = summary(b, pb);
   d.deviation_of_b.assign(ib.moves.size(), 0.0);
 
-  // Feed paths, both ways. Per pair of moves, the largest distance seen and where.
+  // Feed paths, both ways: the maximum, the worst places, and each B move's deviation.
   SegmentIndex index_a(pa.ends), index_b(pb.ends);
-  // The worst place seen on each move of A and of B.
-  std::vector<DiffPlace> worst_on_a(ia.moves.size()), worst_on_b(ib.moves.size());
+  TopPlaces top(opt.top);
   auto note = [&](uint32_t move_a, uint32_t move_b, double dist, const Vec3& at) {
     d.deviation_of_b[move_b] = std::max(d.deviation_of_b[move_b], dist);
-    for (DiffPlace* pl : {&worst_on_a[move_a], &worst_on_b[move_b]})
-      if (dist > pl->deviation_mm || pl->line_a == 0)
-        *pl = {dist, at, a.blocks[ia.moves[move_a].block].line, b.blocks[ib.moves[move_b].block].line};
+    if (dist > top.floor())
+      top.offer({dist, at, a.blocks[ia.moves[move_a].block].line, b.blocks[ib.moves[move_b].block].line});
   };
   if (!pa.ends.empty() && !pb.ends.empty()) {
-    Directed(pa, pb, index_b, precision_mm, d.max_deviation_mm).run([&](size_t s, const SegmentIndex::Nearest& n, const Vec3& p) {
-      d.max_deviation_mm = std::max(d.max_deviation_mm, n.distance_mm);
+    Directed(pa, pb, index_b, precision_mm, top).run([&](size_t s, const SegmentIndex::Nearest& n, const Vec3& p) {
       note(pa.move_of[s], pb.move_of[n.segment], n.distance_mm, p);
     });
-    Directed(pb, pa, index_a, precision_mm, d.max_deviation_mm).run([&](size_t s, const SegmentIndex::Nearest& n, const Vec3& p) {
-      d.max_deviation_mm = std::max(d.max_deviation_mm, n.distance_mm);
+    Directed(pb, pa, index_a, precision_mm, top).run([&](size_t s, const SegmentIndex::Nearest& n, const Vec3& p) {
       note(pa.move_of[n.segment], pb.move_of[s], n.distance_mm, p);
     });
-    // Feed along the path: at the middle of each of B's segments (away from the joints,
-    // where two moves meet), against the nearest A move that runs the same way.
-    for (size_t sgm = 0; sgm < pb.size(); ++sgm) {
-      Vec3 mid = (pb.a(sgm) + pb.b(sgm)) / 2;
-      SegmentIndex::Nearest n = index_a.nearest(mid);
-      const Move& mb = ib.moves[pb.move_of[sgm]];
-      const Move& ma = ia.moves[pa.move_of[n.segment]];
-      if (ma.feed_mm_min <= 0 || n.distance_mm > opt.tolerance_mm) continue;
-      // A path crossing or retracing another is not its counterpart.
-      Vec3 db = pb.b(sgm) - pb.a(sgm), da = pa.b(n.segment) - pa.a(n.segment);
-      if (db.norm() <= kLengthEpsMm || da.norm() <= kLengthEpsMm ||
-          db.normalized().dot(da.normalized()) < std::cos(deg_to_rad(10)))
-        continue;
+    compare_feed(pa, ia, pb, ib, index_a, opt.tolerance_mm, [&](const Move& ma, const Move& mb, const Vec3& at) {
       double pct = 100.0 * std::abs(mb.feed_mm_min - ma.feed_mm_min) / ma.feed_mm_min;
       if (pct > d.max_feed_difference_pct) {
         d.max_feed_difference_pct = pct;
-        d.worst_feed = {0, mid, a.blocks[ma.block].line, b.blocks[mb.block].line};
+        d.worst_feed = {0, at, a.blocks[ma.block].line, b.blocks[mb.block].line};
       }
-    }
+    });
   } else if (pa.ends.empty() != pb.ends.empty()) {
     d.findings.push_back(fmt::format("only {} has feed moves", pa.ends.empty() ? "B" : "A"));
   }
-  std::vector<DiffPlace> all;
-  for (auto* list : {&worst_on_a, &worst_on_b})
-    for (const DiffPlace& pl : *list)
-      if (pl.line_a != 0) all.push_back(pl);
-  std::sort(all.begin(), all.end(), [](const DiffPlace& x, const DiffPlace& y) {
-    return x.deviation_mm != y.deviation_mm ? x.deviation_mm > y.deviation_mm
-                                            : std::tie(x.line_a, x.line_b) < std::tie(y.line_a, y.line_b);
-  });
-  std::set<std::pair<uint32_t, uint32_t>> seen;
-  for (const DiffPlace& pl : all) {
-    if (d.worst.size() >= opt.top) break;
-    if (seen.insert({pl.line_a, pl.line_b}).second) d.worst.push_back(pl);
-  }
+  d.max_deviation_mm = top.max();
+  d.worst = top.take();
+  if (d.worst.size() > opt.top) d.worst.resize(opt.top);
 
   if (d.a.sections != d.b.sections)
     d.findings.push_back(fmt::format("cutting sections between rapids: {} in A, {} in B", d.a.sections, d.b.sections));

@@ -12,6 +12,11 @@
 // any other stretch is split until its Lipschitz bound cannot beat the maximum found. So
 // no bulge between samples is missed; lines are measured exactly and arcs to within
 // `arc_chord_mm`.
+//
+// Speed: the two paths usually run side by side in the same order, so each point is first
+// measured against the stretch of the other path around the previous answer; the AABB tree
+// is asked (and built) only for points where that could change the maximum or the worst
+// places. The maximum and the listed places are exact either way.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -37,7 +42,7 @@ struct DiffPlace {
 
 struct ProgramSummary {
   size_t blocks = 0, bytes = 0, feed_moves = 0, rapids = 0, sections = 0;
-  size_t non_motion = 0;     ///< M/T/S/dwell/comment blocks compared
+  size_t non_motion = 0;     ///< M/T/S/dwell/comment and other non-word blocks compared
   double path_mm = 0;        ///< length of the feed path
 };
 

@@ -5,6 +5,7 @@
 #include <CGAL/AABB_tree.h>
 #include <CGAL/Simple_cartesian.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace arcpress {
@@ -20,11 +21,14 @@ using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
 /// Zero-length segments are stretched by this much so the tree's projections stay defined;
 /// far below any tolerance a user can give (a length epsilon, not a tolerance).
 constexpr double kPointAsSegmentMm = 1e-9;
+
+Vec3 vec(const Point& p) { return {p.x(), p.y(), p.z()}; }
+Point point(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 }  // namespace
 
 struct SegmentIndex::Impl {
   std::vector<Segment> segments;
-  Tree tree;
+  Tree tree;  ///< built by CGAL at the first query: a caller that never needs it pays nothing
 };
 
 SegmentIndex::SegmentIndex(const std::vector<Vec3>& ends) : impl_(std::make_unique<Impl>()) {
@@ -32,26 +36,25 @@ SegmentIndex::SegmentIndex(const std::vector<Vec3>& ends) : impl_(std::make_uniq
   for (size_t i = 0; i + 1 < ends.size(); i += 2) {
     Vec3 a = ends[i], b = ends[i + 1];
     if ((b - a).norm() < kPointAsSegmentMm) b = a + Vec3(kPointAsSegmentMm, 0, 0);
-    impl_->segments.emplace_back(Point(a.x(), a.y(), a.z()), Point(b.x(), b.y(), b.z()));
+    impl_->segments.emplace_back(point(a), point(b));
   }
-  if (!impl_->segments.empty()) {
-    impl_->tree.insert(impl_->segments.cbegin(), impl_->segments.cend());
-    impl_->tree.build();
-    impl_->tree.accelerate_distance_queries();
-  }
+  if (!impl_->segments.empty()) impl_->tree.insert(impl_->segments.cbegin(), impl_->segments.cend());
 }
 
 SegmentIndex::~SegmentIndex() = default;
 
 bool SegmentIndex::empty() const { return impl_->segments.empty(); }
 
-SegmentIndex::Nearest SegmentIndex::nearest(const Vec3& p) const {
+SegmentIndex::Nearest SegmentIndex::nearest(const Vec3& p, uint32_t hint) const {
   Nearest n;
   if (empty()) return n;
-  Point q(p.x(), p.y(), p.z());
-  auto [cp, id] = impl_->tree.closest_point_and_primitive(q);
+  // The hint's own nearest point bounds the search radius from the start.
+  Iterator it = impl_->segments.cbegin() + std::min<size_t>(hint, impl_->segments.size() - 1);
+  Vec3 a = vec(it->source()), d = vec(it->target()) - a;
+  Vec3 on = a + std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0) * d;
+  auto [cp, id] = impl_->tree.closest_point_and_primitive(point(p), std::make_pair(point(on), it));
   n.segment = uint32_t(id - impl_->segments.cbegin());
-  n.point = Vec3(cp.x(), cp.y(), cp.z());
+  n.point = vec(cp);
   n.distance_mm = (n.point - p).norm();
   return n;
 }

@@ -25,7 +25,9 @@ class SegmentIndex {
   SegmentIndex& operator=(const SegmentIndex&) = delete;
 
   bool empty() const;
-  Nearest nearest(const Vec3& p) const;
+  /// The nearest segment to p. The search starts from segment `hint`'s distance, so it is
+  /// fast when the hint is near p (e.g. the answer of the previous query along a path).
+  Nearest nearest(const Vec3& p, uint32_t hint) const;
 
  private:
   struct Impl;
