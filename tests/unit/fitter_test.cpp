@@ -229,3 +229,31 @@ TEST_CASE("extrusion is kept at every end point and a change of rate ends a prim
   CHECK(o.r.output.find("E0.45") != std::string::npos);
   CHECK(o.r.output.find("E0.9") != std::string::npos);
 }
+
+TEST_CASE("the trigonometry-free arc measure equals the measure by angles on flat arcs", "[fit][deviation]") {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  int unordered = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    Vec2 c(u(rng) * 100 - 50, u(rng) * 100 - 50);
+    double r = 0.05 + u(rng) * 50;
+    double sweep = (0.01 + u(rng) * 6.2) * (u(rng) < 0.5 ? 1 : -1);
+    double start = u(rng) * 2 * kPi, z = u(rng) * 10;
+    int n = 2 + int(u(rng) * 40);
+    double noise = (u(rng) < 0.5 ? 0.01 : 0.5) * std::min(r, 1.0);
+    std::vector<Vec3> pts;
+    for (int k = 0; k <= n; ++k) {
+      double t = double(k) / n, a = start + sweep * t;
+      if (k > 0 && k < n) a += (u(rng) - 0.5) * (trial % 7 == 0 ? 0.5 : 0.01) * std::abs(sweep) / n * n;
+      double rr = k == 0 || k == n ? r : r + (u(rng) - 0.5) * noise;
+      pts.emplace_back(c.x() + rr * std::cos(a), c.y() + rr * std::sin(a), z);
+    }
+    ArcGeom g = ArcGeom::through(pts.front(), pts.back(), c, sweep > 0);
+    Deviation fast = arc_deviation(pts, g), slow = arc_deviation_by_angles(pts, g);
+    INFO("trial " << trial);
+    CHECK(fast.ordered == slow.ordered);
+    CHECK(fast.max_mm == Approx(slow.max_mm).epsilon(1e-9).margin(1e-12));
+    if (!slow.ordered) ++unordered;
+  }
+  CHECK(unordered > 0);  // both kinds of polyline were met
+}

@@ -63,7 +63,101 @@ Deviation line_deviation(std::span<const Vec3> pts, double stop_above_mm) {
   return dev;
 }
 
+namespace {
+
+/// arc_deviation() for the common case of a flat arc and a polyline in its plane, without
+/// trigonometry: angles along the arc are pseudo-angles in the arc's own frame, and the arc
+/// points measured (at the vertices' angles, piece middles, and where the arc runs parallel
+/// to a segment) are built from unit vectors. The same measure as the general code.
+Deviation planar_arc_deviation(std::span<const Vec3> pts, const ArcGeom& arc, double stop_above_mm) {
+  Deviation dev;
+  const double r = arc.radius_mm, z = arc.h0;
+  const Vec2 c = arc.center;
+  const size_t n = pts.size();
+  auto rel = [&](size_t m) { return Vec2(pts[m].x() - c.x(), pts[m].y() - c.y()); };
+  const Vec2 s_hat = rel(0).normalized();
+  const double dir = arc.sweep >= 0 ? 1.0 : -1.0;
+  // Pseudo-angle from the start, in the arc's direction.
+  auto along = [&](const Vec2& v) { return pseudo_angle(v.dot(s_hat), dir * cross2(s_hat, v)); };
+  const double total = std::abs(arc.sweep) >= 2 * kPi - 1e-9 ? 4.0 : along(rel(n - 1));
+  auto note = [&](double d, size_t m) {
+    if (d > dev.max_mm) {
+      dev.max_mm = d;
+      dev.at_index = m;
+    }
+  };
+  std::vector<double> phi(n), radial(n);
+  std::vector<Vec2> unit(n);
+  for (size_t m = 0; m < n; ++m) {
+    Vec2 v = rel(m);
+    double len = v.norm();
+    unit[m] = len > 0 ? Vec2(v / len) : s_hat;
+    radial[m] = std::abs(len - r);
+    double a = m == 0 ? 0.0 : m + 1 == n ? total : along(v);
+    // A vertex just behind the start (within rounding) reads as almost a full turn.
+    if (a > total && a > 4 - 1e-9) a = 0;
+    phi[m] = a;
+    if (m > 0 && phi[m] < phi[m - 1] - 1e-12) dev.ordered = false;
+  }
+  if (!dev.ordered && stop_above_mm < HUGE_VAL) return dev;
+  // A piece between two vertices of half a turn or more has no middle from unit vectors.
+  for (size_t m = 0; m + 1 < n; ++m)
+    if (phi[m + 1] - phi[m] >= 2) return arc_deviation_by_angles(pts, arc, stop_above_mm);
+  unit[0] = s_hat;
+  // Input vertices to the arc.
+  for (size_t m = 1; m + 1 < n; ++m) {
+    note(phi[m] <= total ? radial[m] : std::min((pts[m] - pts.front()).norm(), (pts[m] - pts.back()).norm()), m);
+    if (dev.max_mm > stop_above_mm) return dev;
+  }
+  // Input segments bulge towards the centre: the point of a chord nearest the centre.
+  for (size_t m = 0; m + 1 < n; ++m) {
+    Vec2 a(pts[m].x(), pts[m].y()), ab = Vec2(pts[m + 1].x(), pts[m + 1].y()) - a;
+    double len2 = ab.squaredNorm();
+    if (len2 <= 0) continue;
+    double t = (c - a).dot(ab) / len2;
+    if (t <= 0 || t >= 1) continue;
+    note(std::max(r - (a + t * ab - c).norm(), 0.0), m);
+    if (dev.max_mm > stop_above_mm) return dev;
+  }
+  // Arc to input: each piece of the arc between two vertices' angles against that segment.
+  if (!dev.ordered || arc.sweep == 0) return dev;
+  auto on_arc = [&](const Vec2& u) { return Vec3(c.x() + r * u.x(), c.y() + r * u.y(), z); };
+  for (size_t m = 0; m + 1 < n; ++m) {
+    const Vec2 &u0 = unit[m], &u1 = unit[m + 1];
+    {
+      // Cheap bound first: the piece is within its sagitta of its own chord, and that chord
+      // within the vertices' radial distances of the input segment.
+      double cos_half = std::sqrt(std::max(0.0, 0.5 * (1 + u0.dot(u1))));
+      if (r * (1 - cos_half) + std::max(radial[m], radial[m + 1]) <= dev.max_mm) continue;
+      Vec2 mid = u0 + u1;
+      Vec2 cand[4] = {u0, u1, mid.squaredNorm() > 0 ? Vec2(mid.normalized()) : u0, Vec2(0, 0)};
+      int count = 3;
+      Vec2 ab(pts[m + 1].x() - pts[m].x(), pts[m + 1].y() - pts[m].y());
+      if (ab.squaredNorm() > 0) {
+        // The arc point whose radius is perpendicular to the segment, if inside the piece.
+        Vec2 nrm = left_normal(ab.normalized());
+        for (double sgn : {1.0, -1.0}) {
+          double a = along(sgn * nrm);
+          if (a > phi[m] && a < phi[m + 1]) cand[count++] = sgn * nrm;
+        }
+      }
+      for (int k = 0; k < count; ++k) note(point_segment_distance(on_arc(cand[k]), pts[m], pts[m + 1]), m);
+    }
+    if (dev.max_mm > stop_above_mm) return dev;
+  }
+  return dev;
+}
+
+}  // namespace
+
 Deviation arc_deviation(std::span<const Vec3> pts, const ArcGeom& arc, double stop_above_mm) {
+  bool planar = arc.h0 == arc.h1 && pts.size() >= 2;
+  for (const Vec3& p : pts) planar = planar && p.z() == arc.h0;
+  if (planar) return planar_arc_deviation(pts, arc, stop_above_mm);
+  return arc_deviation_by_angles(pts, arc, stop_above_mm);
+}
+
+Deviation arc_deviation_by_angles(std::span<const Vec3> pts, const ArcGeom& arc, double stop_above_mm) {
   Deviation dev;
   const double r = arc.radius_mm;
   const double dir = arc.sweep >= 0 ? 1.0 : -1.0;

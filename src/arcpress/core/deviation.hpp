@@ -40,6 +40,10 @@ Deviation line_deviation(std::span<const Vec3> pts, double stop_above_mm = HUGE_
 /// Two-sided deviation between the polyline `pts` and `arc` (which should start at
 /// pts.front() and end at pts.back()).
 Deviation arc_deviation(std::span<const Vec3> pts, const ArcGeom& arc, double stop_above_mm = HUGE_VAL);
+/// The same measure by angles (atan2, sin, cos) for any arc and polyline, helices included.
+/// arc_deviation() uses it for helices and polylines off the arc's plane, and a faster
+/// trigonometry-free form of it otherwise.
+Deviation arc_deviation_by_angles(std::span<const Vec3> pts, const ArcGeom& arc, double stop_above_mm = HUGE_VAL);
 /// True when the path a -> b -> c has a real corner at b: it turns by more than
 /// `corner_angle_deg`, or so sharply for its segment lengths that no tangent-continuous
 /// path through b stays within `band_mm` of both segments. (With tangent T at b making

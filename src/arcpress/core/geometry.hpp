@@ -20,6 +20,18 @@ inline double rad_to_deg(double rad) { return rad * 180.0 / kPi; }
 /// z-component of the 2D cross product: > 0 when b turns left of a.
 inline double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 inline Vec2 left_normal(const Vec2& t) { return {-t.y(), t.x()}; }
+/// A stand-in for the angle of (x, y) in [0, 2π): in [0, 4), growing with the angle, with
+/// no trigonometry (0 at +x, 1 at +y, 2 at -x, 3 at -y). Comparing two of them compares
+/// the angles exactly, which is all that ordering and span tests need.
+inline double pseudo_angle(double x, double y) {
+  double den = std::abs(x) + std::abs(y);
+  if (den == 0) return 0;
+  double p = y / den;  // [-1, 1]
+  if (x < 0) return 2 - p;
+  return y < 0 ? 4 + p : p;
+}
+/// pseudo_angle() of the direction at angle `rad` in [0, 2π).
+inline double pseudo_angle_of(double rad) { return pseudo_angle(std::cos(rad), std::sin(rad)); }
 
 /// Working plane of an arc: the two in-plane axes and the normal axis (indices into XYZ),
 /// oriented as RS274 defines G17/G18/G19 (G18's first axis is Z, so CCW is seen from +Y).

@@ -51,6 +51,12 @@ class RunFitter {
     }
     eps_ = o.tolerance_mm * (1.0 - kRoundingReserve);
     line_kink_ = deg_to_rad(o.g1_angle_deg) / 4;
+    // Limits on the tangent-chord angle alpha (the sweep is 2 alpha) as pseudo-angles of
+    // |alpha| in [0, π], so scan() tests each vertex without trigonometry.
+    const double half_max_sweep = deg_to_rad(o.max_sweep_deg) / 2;
+    max_alpha_ = half_max_sweep >= kPi ? 3.0 : pseudo_angle_of(half_max_sweep);
+    min_alpha_ = pseudo_angle_of(std::min(deg_to_rad(o.min_sweep_deg) / 2, kPi));
+    line_alpha_ = pseudo_angle_of(line_kink_);
     hard_.assign(n_ + 1, 0);
     soft_.assign(n_ + 1, 0);
     for (uint32_t v = 1; v < n_; ++v) {
@@ -107,8 +113,6 @@ class RunFitter {
     double lo3 = -kInf, hi3 = kInf;  // ... in-plane share, for primitives that climb
     const double h0 = p_[a].z();
     bool flat = true;
-    const double max_sweep = deg_to_rad(o_.max_sweep_deg);
-    const double min_sweep = deg_to_rad(o_.min_sweep_deg);
     for (uint32_t e = a + 1; e <= limit; ++e) {
       if (e > a + 1) {
         uint32_t m = e - 1;  // becomes an interior vertex
@@ -136,19 +140,22 @@ class RunFitter {
         if (!flat) continue;
         break;  // back at the start: a full circle is not a single primitive here
       }
-      double alpha = std::atan2(u.dot(N), u.dot(T));  // tangent-chord angle; sweep = 2 alpha
-      if (std::abs(2 * alpha) > max_sweep) break;
+      // The tangent-chord angle alpha (sweep = 2 alpha), as the pseudo-angle of |alpha|.
+      double abs_alpha = pseudo_angle(u.dot(T), std::abs(u.dot(N)));
+      if (abs_alpha > max_alpha_) break;
       double k = 2 * u.dot(N) / uu;
       double slack = 1e-12 * (1 + std::abs(k));
       if (k < L - slack || k > H + slack) continue;
-      bool line = std::abs(alpha) <= line_kink_;
+      bool line = abs_alpha <= line_alpha_;
       if (!line) {
         if (!o_.arcs) continue;
         double r = 1 / std::abs(k);
-        double len = r * std::abs(2 * alpha);
-        if (r > o_.max_radius_mm || r < o_.min_radius_mm || len < o_.min_arc_length_mm) continue;
-        if (e - a < o_.min_arc_moves || std::abs(2 * alpha) < min_sweep) continue;
+        if (r > o_.max_radius_mm || r < o_.min_radius_mm) continue;
+        if (e - a < o_.min_arc_moves || abs_alpha < min_alpha_) continue;
         if (!flat && !o_.helical) continue;
+        if (o_.min_arc_length_mm > 0 &&
+            r * 2 * std::atan2(std::abs(u.dot(N)), u.dot(T)) < o_.min_arc_length_mm)
+          continue;
       }
       out.push_back({e, k, line});
     }
@@ -189,8 +196,9 @@ class RunFitter {
     ch.prim.ccw = ccw;
     ch.prim.center = center;
     ch.prim.radius_mm = g.radius_mm;
-    double ang = g.sweep;
-    ch.end_tangent = Vec2(T.x() * std::cos(ang) - T.y() * std::sin(ang), T.x() * std::sin(ang) + T.y() * std::cos(ang));
+    // The tangent at the end: the radius there turned a quarter in the arc's direction.
+    Vec2 out = left_normal((q(c.e) - center).normalized());
+    ch.end_tangent = ccw ? out : Vec2(-out);
     return ch;
   }
 
@@ -352,6 +360,7 @@ class RunFitter {
   uint32_t stretch_start_ = 0;    // first vertex of the current corner-free stretch
   double eps_ = 0;                // band the fitter works to, mm
   double line_kink_ = 0;          // largest tangent-chord angle written as a line, rad
+  double max_alpha_ = 0, min_alpha_ = 0, line_alpha_ = 0;  // pseudo-angles, see the constructor
   bool extra_axes_move_ = false;
 };
 
