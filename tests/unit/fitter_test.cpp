@@ -114,6 +114,22 @@ TEST_CASE("a smooth curve is fitted with tangent-continuous joints", "[fit]") {
   CHECK(so.r.comparison.max_smooth_kink_deg <= 0.5);
 }
 
+TEST_CASE("rounding the printed centres keeps smooth joints within the G1 angle", "[fit]") {
+  // Xu's plum: tips of radius 0.009 mm, where a centre digit turns the tangent by degrees.
+  std::vector<Pt> p;
+  for (int i = 0; i <= 4700; ++i) {
+    double t = 1.5 * kPi * i / 4700, r = 10 - 9 * std::pow(std::sin(2.5 * t), 2);
+    p.push_back({r * std::cos(t), r * std::sin(t), 0});
+  }
+  FitOptions f;
+  f.min_radius_mm = 0;
+  auto o = compress_text(program(p), f);
+  CHECK(o.arcs >= 20);
+  CHECK(o.r.comparison.smooth_joints >= 20);
+  CHECK(o.r.comparison.max_smooth_kink_deg <= 0.5);
+  CHECK(o.r.comparison.smooth_joints_over_g1 == 0);
+}
+
 TEST_CASE("no arc sweeps more than the maximum; a full circle needs at least two", "[fit]") {
   auto o = compress_text(program(arc_points(5, 5, 8, 0, 360, 2)));
   CHECK(o.arcs >= 2);

@@ -307,6 +307,7 @@ class Emitter {
     const bool offsets = d().centre == CentreReading::Absolute ? !fr.absolute : !fr.arc_absolute;
     const int first_dec = std::min(std::max(dig.centre, decimals_for_band(unit)), dig.max);
     const Vec2 ideal = pr.center;
+    ideal_ = ideal;
     const double r_ideal = (s2 - ideal).norm();
     const double sweep_ideal = std::abs(ArcGeom::through(s3, e3, ideal, pr.ccw).sweep);
     bool use_radius = opt_.format == ArcFormat::Radius && d().radius_word &&
@@ -315,58 +316,62 @@ class Emitter {
 
     // Program-unit reference point for the centre words.
     const Vec2 ref = offsets ? s2 : Vec2(fr.to_mm(axes.first, 0.0), fr.to_mm(axes.second, 0.0));
-    for (int dec = first_dec; dec <= dig.max; ++dec) {
-      const double step = std::pow(10.0, -dec);
-      if (use_radius) {
-        double R = rounded(r_ideal / unit, dec);
-        for (double dr : {0.0, step, -step}) {
-          double Rp = R + dr;
-          if (Rp <= 0) continue;
-          // The controller's centre from the printed R (as the model stage reads it).
-          double h2 = Rp * unit * Rp * unit - chord * chord / 4;
-          double h = h2 > 0 ? std::sqrt(h2) : 0.0;
-          Vec2 n = left_normal((e2 - s2) / chord);
-          bool big = sweep_ideal > kPi;
-          double side = (pr.ccw ? 1.0 : -1.0) * (big ? -1.0 : 1.0);
-          Vec2 c = (s2 + e2) / 2 + side * h * n;
-          if (h2 < 0 || !acceptable(s3, e3, c, pr.ccw)) continue;
-          std::string t = format_number(big ? -Rp : Rp, NumberStyle{dec, true, st.keep_point});
-          if (!digits_fit(t)) continue;
-          out.words = st.letter('R') + t;
+    // First only centres that keep the end tangents within the slack; when the digits allow
+    // none, the arc is still better than the input's lines (which turn by far more).
+    for (bool tangent : {true, false}) {
+      for (int dec = first_dec; dec <= dig.max; ++dec) {
+        const double step = std::pow(10.0, -dec);
+        if (use_radius) {
+          double R = rounded(r_ideal / unit, dec);
+          for (double dr : {0.0, step, -step}) {
+            double Rp = R + dr;
+            if (Rp <= 0) continue;
+            // The controller's centre from the printed R (as the model stage reads it).
+            double h2 = Rp * unit * Rp * unit - chord * chord / 4;
+            double h = h2 > 0 ? std::sqrt(h2) : 0.0;
+            Vec2 n = left_normal((e2 - s2) / chord);
+            bool big = sweep_ideal > kPi;
+            double side = (pr.ccw ? 1.0 : -1.0) * (big ? -1.0 : 1.0);
+            Vec2 c = (s2 + e2) / 2 + side * h * n;
+            if (h2 < 0 || !acceptable(s3, e3, c, pr.ccw, tangent)) continue;
+            std::string t = format_number(big ? -Rp : Rp, NumberStyle{dec, true, st.keep_point});
+            if (!digits_fit(t)) continue;
+            out.words = st.letter('R') + t;
+            out.ok = true;
+            return out;
+          }
+          continue;
+        }
+        // Centre words: the rounded centre and its 8 neighbours on the printed grid.
+        Vec2 v = (ideal - ref) / unit;
+        Vec2 base(rounded(v.x(), dec), rounded(v.y(), dec));
+        struct Cand {
+          Vec2 w;
+          double dr;
+        };
+        Cand cands[9];
+        int n = 0;
+        for (int i = -1; i <= 1; ++i)
+          for (int j = -1; j <= 1; ++j) {
+            Vec2 w(base.x() + i * step, base.y() + j * step);
+            Vec2 c = ref + w * unit;
+            cands[n++] = {w, std::abs((s2 - c).norm() - (e2 - c).norm())};
+          }
+        // The rounded centre first (closest to the fit), then its neighbours nearest the bisector.
+        std::swap(cands[0], cands[4]);
+        std::sort(cands + 1, cands + n, [](const Cand& x, const Cand& y) { return x.dr < y.dr; });
+        for (int q = 0; q < n; ++q) {
+          Vec2 c = ref + cands[q].w * unit;
+          if (!acceptable(s3, e3, c, pr.ccw, tangent)) continue;
+          std::string t1 = format_number(cands[q].w.x(), NumberStyle{dec, true, st.keep_point});
+          std::string t2 = format_number(cands[q].w.y(), NumberStyle{dec, true, st.keep_point});
+          if (!digits_fit(t1) || !digits_fit(t2)) continue;
+          out.words = st.letter(char('I' + axes.first)) + t1 + sep + st.letter(char('I' + axes.second)) + t2;
+          if (axes.first > axes.second)  // I before J before K, as controllers print them
+            out.words = st.letter(char('I' + axes.second)) + t2 + sep + st.letter(char('I' + axes.first)) + t1;
           out.ok = true;
           return out;
         }
-        continue;
-      }
-      // Centre words: the rounded centre and its 8 neighbours on the printed grid.
-      Vec2 v = (ideal - ref) / unit;
-      Vec2 base(rounded(v.x(), dec), rounded(v.y(), dec));
-      struct Cand {
-        Vec2 w;
-        double dr;
-      };
-      Cand cands[9];
-      int n = 0;
-      for (int i = -1; i <= 1; ++i)
-        for (int j = -1; j <= 1; ++j) {
-          Vec2 w(base.x() + i * step, base.y() + j * step);
-          Vec2 c = ref + w * unit;
-          cands[n++] = {w, std::abs((s2 - c).norm() - (e2 - c).norm())};
-        }
-      // The rounded centre first (closest to the fit), then its neighbours nearest the bisector.
-      std::swap(cands[0], cands[4]);
-      std::sort(cands + 1, cands + n, [](const Cand& x, const Cand& y) { return x.dr < y.dr; });
-      for (int q = 0; q < n; ++q) {
-        Vec2 c = ref + cands[q].w * unit;
-        if (!acceptable(s3, e3, c, pr.ccw)) continue;
-        std::string t1 = format_number(cands[q].w.x(), NumberStyle{dec, true, st.keep_point});
-        std::string t2 = format_number(cands[q].w.y(), NumberStyle{dec, true, st.keep_point});
-        if (!digits_fit(t1) || !digits_fit(t2)) continue;
-        out.words = st.letter(char('I' + axes.first)) + t1 + sep + st.letter(char('I' + axes.second)) + t2;
-        if (axes.first > axes.second)  // I before J before K, as controllers print them
-          out.words = st.letter(char('I' + axes.second)) + t2 + sep + st.letter(char('I' + axes.first)) + t1;
-        out.ok = true;
-        return out;
       }
     }
     return out;
@@ -380,7 +385,8 @@ class Emitter {
 
   /// Whether an arc from s to e about c (as the controller reads the printed numbers) is one
   /// the controller runs as meant, inside the band of the input points pts_.
-  bool acceptable(const Vec3& s, const Vec3& e, const Vec2& c, bool ccw) const {
+  /// With `tangent`, also whether its end tangents are within the slack of the fitted arc's.
+  bool acceptable(const Vec3& s, const Vec3& e, const Vec2& c, bool ccw, bool tangent) const {
     double rs = (s.head<2>() - c).norm(), re = (e.head<2>() - c).norm();
     double dr = std::abs(rs - re);
     if (dr > d().radius_allowance_mm(rs)) return false;
@@ -389,6 +395,12 @@ class Emitter {
     double sweep_deg = rad_to_deg(std::abs(g.sweep));
     if (sweep_deg < d().min_sweep_deg || sweep_deg > d().max_sweep_deg + 1e-9) return false;
     if (rs * std::abs(g.sweep) < d().min_arc_length_mm) return false;
+    // Rounding the centre turns the arc's radii at its ends, and with them its tangents.
+    for (const Vec3* p : {&s, &e}) {
+      if (!tangent) break;
+      Vec2 printed = p->head<2>() - c, fitted = p->head<2>() - ideal_;
+      if (std::atan2(std::abs(cross2(printed, fitted)), printed.dot(fitted)) > tangent_slack_rad_) return false;
+    }
     // The controller ends on the printed end point: a spiral or a jump of at most dr.
     Deviation dev = arc_deviation(pts_, g, opt_.band_mm);
     return dev.ordered && dev.max_mm + dr <= opt_.band_mm;
@@ -413,6 +425,8 @@ class Emitter {
   EmitStats* stats_;
   const EmitOptions& opt_;
   std::vector<Vec3> pts_;     // scratch: input points of the arc being printed
+  Vec2 ideal_{0, 0};          // scratch: the fitted centre of the arc being printed
+  double tangent_slack_rad_ = deg_to_rad(opt_.tangent_slack_deg);
   bool header_done_ = false;  // the dialect's arc header is written, or the program set the mode
   std::string out_;
   bool padded_ = false;

@@ -30,11 +30,15 @@ struct EmitOptions {
   double band_mm = 0.01;
   Dialect dialect;                           ///< what the controller reads
   ArcFormat format = ArcFormat::Centre;      ///< I/J/K or R (R only where the dialect reads it)
+  /// How far rounding the printed centre may turn an arc's tangent at either end, degrees.
+  /// The fitter leaves joints at most 0.9 of the G1 angle apart; 0.05 of it per side keeps
+  /// the printed joints inside the G1 angle.
+  double tangent_slack_deg = 0.025;
 };
 
 /// Writes the program with each run replaced by its fit. Every arc is printed, read back
 /// from the printed digits as the controller would, and checked (band, end-radius rule,
-/// sweep, chord, digits, line length); one that fails any check is written as the input's
+/// sweep, chord, digits, line length, end tangents); one that fails any check is written as the input's
 /// own G1 blocks instead.
 std::string emit_program(const Program& program, const Interpretation& in, const std::vector<Run>& runs,
                          const std::vector<FitResult>& fits, const EmitOptions& options = {},
