@@ -63,8 +63,8 @@ int main(int argc, char** argv) {
        1000, 7},
   };
   fmt::print("Xu 2021 test curves, --min-radius 0 (B-spline 1 and 2 are left out: their control points are only in the paper)\n");
-  fmt::print("{:<9} {:>6} {:>8} {:>6} {:>6} {:>6} {:>10} {:>10} {:>8} {:>8}\n", "curve", "points", "tol mm", "segs",
-             "arcs", "Xu", "max dev", "max kink", "forced", "ms");
+  fmt::print("{:<9} {:>6} {:>8} {:>6} {:>6} {:>6} {:>10} {:>10} {:>8} {:>8} {:>7}\n", "curve", "points", "tol mm", "segs",
+             "arcs", "Xu", "max dev", "max kink", "forced", "ms", "greedy");
   for (const Curve& c : curves) {
     std::string text = program(c);
     for (double tol : {0.01, 0.005, 0.001}) {
@@ -81,9 +81,13 @@ int main(int argc, char** argv) {
         CompressResult q = compress(c.name, text, opt, s2);
         best = std::min(best, std::chrono::duration<double, std::milli>(clk::now() - t0).count());
       }
-      fmt::print("{:<9} {:>6} {:>8.3f} {:>6} {:>6} {:>6} {:>10.6f} {:>9.3f}° {:>8} {:>8.2f}\n", c.name, c.samples, tol,
-                 r.stats.lines_out + r.stats.arcs_out, r.stats.arcs_out, tol == 0.01 ? std::to_string(c.xu_arcs) : "",
-                 r.comparison.max_deviation_mm, r.comparison.max_smooth_kink_deg, r.forced_kinks, best);
+      opt.fit.method = FitOptions::Method::Greedy;  // segments the one-step method needs, for comparison
+      DiagnosticSink s3;
+      CompressResult g = compress(c.name, text, opt, s3);
+      fmt::print("{:<9} {:>6} {:>8.3f} {:>6} {:>6} {:>6} {:>10.6f} {:>9.3f}° {:>8} {:>8.2f} {:>7}\n", c.name, c.samples,
+                 tol, r.stats.lines_out + r.stats.arcs_out, r.stats.arcs_out,
+                 tol == 0.01 ? std::to_string(c.xu_arcs) : "", r.comparison.max_deviation_mm,
+                 r.comparison.max_smooth_kink_deg, r.forced_kinks, best, g.stats.lines_out + g.stats.arcs_out);
     }
   }
 
@@ -93,35 +97,48 @@ int main(int argc, char** argv) {
     for (const auto& e : fs::recursive_directory_iterator(ARCPRESS_CORPUS_DIR))
       if (e.is_regular_file() && e.path().extension() != ".md") files.push_back(e.path());
   std::sort(files.begin(), files.end());
-  size_t points = 0;
-  double seconds = 0, seconds_keep = 0;
+  // Whole pipeline without verification, best of the repeats, per method; the fitter's share
+  // is the time over the pipeline that keeps every G1.
+  struct Tally {
+    const char* name;
+    FitOptions::Method method;
+    size_t points = 0, blocks = 0;
+    double seconds = 0;
+  };
+  std::vector<Tally> tallies = {{"keep", FitOptions::Method::Keep},
+                                {"arcs", FitOptions::Method::Arcs},
+                                {"greedy", FitOptions::Method::Greedy}};
   for (const auto& f : files) {
     std::ifstream in(f, std::ios::binary);
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    double best = 1e9, best_keep = 1e9;
-    size_t n = 0;
-    for (int k = 0; k < repeats; ++k) {
-      for (bool keep : {false, true}) {
+    for (Tally& t : tallies) {
+      double best = 1e9;
+      CompressResult r;
+      for (int k = 0; k < repeats; ++k) {
         CompressOptions opt;
         opt.verify = false;
-        opt.fit.method = keep ? FitOptions::Method::Keep : FitOptions::Method::Arcs;
+        opt.fit.method = t.method;
         DiagnosticSink sink;
         auto t0 = clk::now();
-        CompressResult r = compress(f.string(), text, opt, sink);
-        double s = std::chrono::duration<double>(clk::now() - t0).count();
-        (keep ? best_keep : best) = std::min(keep ? best_keep : best, s);
-        n = r.stats.moves_in;
+        r = compress(f.string(), text, opt, sink);
+        best = std::min(best, std::chrono::duration<double>(clk::now() - t0).count());
       }
+      t.points += r.stats.moves_in;
+      t.blocks += r.stats.lines_out + r.stats.arcs_out;
+      t.seconds += best;
     }
-    points += n;
-    seconds += best;
-    seconds_keep += best_keep;
   }
-  if (points > 0) {
-    double fit_s = std::max(seconds - seconds_keep, 1e-9);
-    fmt::print("\ncorpus: {} run points in {} files; pipeline {:.3f} s, of which fitting {:.3f} s\n", points,
-               files.size(), seconds, fit_s);
-    fmt::print("fitter throughput: {:.2f} million input points/s (one core)\n", double(points) / fit_s / 1e6);
+  if (tallies[0].points > 0) {
+    fmt::print("\ncorpus: {} run points in {} files (default options, rs274)\n", tallies[0].points, files.size());
+    fmt::print("{:<8} {:>12} {:>8} {:>12} {:>12} {:>22}\n", "method", "blocks out", "ratio", "pipeline s",
+               "fitting s", "fitter M points/s");
+    for (const Tally& t : tallies) {
+      double fit_s = std::max(t.seconds - tallies[0].seconds, 1e-9);
+      fmt::print("{:<8} {:>12} {:>7.1f}% {:>12.3f} {:>12.3f} {:>22}\n", t.name, t.blocks,
+                 100.0 * double(t.blocks) / double(t.points), t.seconds, t.method == FitOptions::Method::Keep ? 0.0 : fit_s,
+                 t.method == FitOptions::Method::Keep ? std::string("-")
+                                                      : fmt::format("{:.2f}", double(t.points) / fit_s / 1e6));
+    }
   }
   return 0;
 }

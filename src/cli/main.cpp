@@ -69,7 +69,9 @@ int run_compress(const CompressArgs& a) {
     throw Error(kExitInput, fmt::format("output '{}' is the input file; use --in-place to overwrite it", out_path));
   }
   CompressOptions opt = a.opt;
-  opt.fit.method = a.method == "keep" ? FitOptions::Method::Keep : FitOptions::Method::Arcs;
+  opt.fit.method = a.method == "keep"     ? FitOptions::Method::Keep
+                   : a.method == "greedy" ? FitOptions::Method::Greedy
+                                          : FitOptions::Method::Arcs;
   opt.dialect = chosen_dialect(a.dialect, a.dialect_file);
   if (a.arc_format == "ijk") opt.arc_format = ArcFormat::Centre;
   if (a.arc_format == "r") opt.arc_format = ArcFormat::Radius;
@@ -198,8 +200,10 @@ int main(int argc, char** argv) {
   app.add_option("--arc-format", a.arc_format, "ijk: centre words; r: radius words where the dialect reads them "
                                                 "(default: the dialect's choice)")
       ->check(CLI::IsMember({"ijk", "r"}));
-  app.add_option("--method", a.method, "keep: leave every G1 as it is; arcs: fit lines and arcs")
-      ->check(CLI::IsMember({"keep", "arcs"}))->capture_default_str();
+  app.add_option("--method", a.method,
+                 "keep: leave every G1 as it is; arcs: fit lines and arcs, fewest blocks; "
+                 "greedy: fit lines and arcs one at a time, faster")
+      ->check(CLI::IsMember({"keep", "arcs", "greedy"}))->capture_default_str();
   app.add_option("--g1-angle", a.opt.fit.g1_angle_deg, "Max tangent change in degrees at smooth joints")
       ->check(CLI::PositiveNumber)->capture_default_str();
   app.add_option("--corner-angle", a.opt.fit.corner_angle_deg,

@@ -214,6 +214,42 @@ TEST_CASE("degenerate input gives valid output: reversals, tiny steps, noise", "
   CHECK(n.r.output.find("e-") == std::string::npos);
 }
 
+TEST_CASE("the chain search never needs more primitives than the greedy chain, and keeps every guarantee",
+          "[fit][search]") {
+  // Xu's quadratic Bézier 1 and y = x³: curvature changes everywhere, so which joint each
+  // primitive ends at decides how many follow.
+  auto bezier = [](double t) {
+    double u = 1 - t;
+    return Pt{u * u * 1 + 2 * t * u * 5 + t * t * 1, u * u * 1 + 2 * t * u * 1 + t * t * 2.75, 0};
+  };
+  std::vector<Pt> b, c;
+  for (int i = 0; i < 1000; ++i) b.push_back(bezier(i / 999.0));
+  for (int i = 0; i < 2000; ++i) {
+    double x = -2 + 4 * i / 1999.0;
+    c.push_back({x, x * x * x, 0});
+  }
+  size_t fewer = 0;
+  for (const auto* pts : {&b, &c}) {
+    for (double tol : {0.01, 0.005, 0.001}) {
+      FitOptions greedy, search;
+      greedy.method = FitOptions::Method::Greedy;
+      greedy.min_radius_mm = search.min_radius_mm = 0;
+      greedy.tolerance_mm = search.tolerance_mm = tol;
+      auto g = compress_text(program(*pts), greedy);
+      auto s = compress_text(program(*pts), search);
+      INFO("tolerance " << tol << ": greedy " << g.arcs + g.lines << ", search " << s.arcs + s.lines);
+      CHECK(s.arcs + s.lines <= g.arcs + g.lines);
+      fewer += s.arcs + s.lines < g.arcs + g.lines;
+      for (const auto* o : {&g, &s}) {
+        CHECK(o->r.comparison.max_deviation_mm <= tol);
+        CHECK(o->r.comparison.max_smooth_kink_deg <= 0.5);
+        CHECK(o->r.forced_kinks == 0);
+      }
+    }
+  }
+  CHECK(fewer >= 2);
+}
+
 TEST_CASE("random polylines always stay inside the band", "[fit][property]") {
   std::mt19937 rng(2024);
   std::uniform_real_distribution<double> turn(-0.3, 0.3), step(0.05, 1.5);

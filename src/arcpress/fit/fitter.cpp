@@ -34,6 +34,7 @@ struct Candidate {
 struct Chosen {
   Primitive prim;
   Vec2 end_tangent;
+  bool kinked = false;  ///< starts with a tangent change the band forced (greedy chains)
 };
 
 class RunFitter {
@@ -74,21 +75,26 @@ class RunFitter {
   FitResult fit() {
     FitResult r;
     if (o_.method == FitOptions::Method::Keep || extra_axes_move_ || n_ < 2) return keep();
-    uint32_t a = 0;
-    std::optional<Vec2> tangent;
-    while (a < n_) {
+    // Stretches run from corner to corner; the tangent is free at both ends.
+    for (uint32_t a = 0; a < n_;) {
       uint32_t limit = a + 1;
       while (limit < n_ && !hard_[limit]) ++limit;
-      if (a == 0 || hard_[a]) stretch_start_ = a;
-      std::optional<Chosen> c;
-      if (tangent) c = best_near(a, *tangent, limit);
-      if (!c) {
-        if (tangent && a > 0 && !hard_[a]) ++r.forced_kinks;
-        c = best_free(a, limit);
+      stretch_start_ = a;
+      size_t forced = 0;
+      std::vector<Chosen> chain = greedy_chain(a, std::nullopt, limit, forced);
+      // The greedy chain is the answer for stretches it covers in one or two primitives;
+      // longer ones are searched again and the shorter chain wins.
+      if (o_.method == FitOptions::Method::Arcs && o_.beam_width > 1 && chain.size() > 2) {
+        size_t beam_forced = 0;
+        auto b = beam_stretch(a, limit, chain, beam_forced);
+        if (std::pair(beam_forced, b.size()) < std::pair(forced, chain.size())) {
+          chain.swap(b);
+          forced = beam_forced;
+        }
       }
-      r.prims.push_back(c->prim);
-      a = c->prim.end_vertex;
-      tangent = hard_[a] ? std::nullopt : std::optional<Vec2>(c->end_tangent);
+      r.forced_kinks += forced;
+      for (const auto& c : chain) r.prims.push_back(c.prim);
+      a = limit;
     }
     return r;
   }
@@ -246,36 +252,27 @@ class RunFitter {
     return sc;
   }
 
-  /// Among the checked primitives from `a` along `T`, the one after which the chain reaches
-  /// furthest in the next step (two-step look-ahead over a few long candidates); ties go
-  /// to the longer primitive. A primitive after which the chain cannot go on tangentially
-  /// is taken only when there is no other.
-  std::optional<Chosen> best_from(uint32_t a, const Vec2& T, uint32_t limit) const {
+  /// Up to `count` primitives from `a` along `T` that pass the exact check, spread over the
+  /// longer half of the scan's candidates, longest first. After a failure the walk steps
+  /// back by growing strides to bound the work, and still tries the shortest candidate.
+  void checked_from(uint32_t a, const Vec2& T, uint32_t limit, int count, std::vector<Chosen>& out) const {
     std::vector<Candidate> cand;
     scan(a, T, limit, cand);
-    std::optional<Chosen> best;
-    Score best_score;
     int checked = 0;
-    // Longest first; after a failure step back by growing strides to bound the work.
     size_t stride = 1;
-    for (size_t i = cand.size(); i > 0 && checked < kLookahead;) {
+    for (size_t i = cand.size(); i > 0 && checked < count;) {
       --i;
       if (auto c = make(a, T, cand[i])) {
         ++checked;
-        Score sc = score(*c, limit);
-        if (!best || sc > best_score) {
-          best = c;
-          best_score = sc;
-        }
-        // Spread the look-ahead over the longer half of the candidates.
-        size_t step = std::max<size_t>(1, cand.size() / (2 * kLookahead));
+        out.push_back(*c);
+        size_t step = std::max<size_t>(1, cand.size() / (2 * static_cast<size_t>(count)));
         i = i >= step ? i - step + 1 : 0;
         if (i == 0) break;
         continue;
       }
       if (i < stride) {
         if (i > 0 && stride > 1) {
-          i = 1;  // still try the shortest candidate
+          i = 1;
           stride = 1;
           continue;
         }
@@ -283,6 +280,24 @@ class RunFitter {
       }
       i -= stride - 1;
       stride *= 2;
+    }
+  }
+
+  /// Among the checked primitives from `a` along `T`, the one after which the chain reaches
+  /// furthest in the next step (two-step look-ahead over a few long candidates); ties go
+  /// to the longer primitive. A primitive after which the chain cannot go on tangentially
+  /// is taken only when there is no other.
+  std::optional<Chosen> best_from(uint32_t a, const Vec2& T, uint32_t limit) const {
+    std::vector<Chosen> made;
+    checked_from(a, T, limit, kLookahead, made);
+    std::optional<Chosen> best;
+    Score best_score;
+    for (const Chosen& c : made) {
+      Score sc = score(c, limit);
+      if (!best || sc > best_score) {
+        best = c;
+        best_score = sc;
+      }
     }
     return best;
   }
@@ -315,6 +330,181 @@ class RunFitter {
       best = c;
       best_score = sc;
     }
+  }
+
+  /// The chain from `a` to `limit` built one primitive at a time, each the best-scoring of a
+  /// few checked candidates. Where nothing leaves a smooth joint tangentially, the tangent
+  /// breaks there and `forced` counts it.
+  std::vector<Chosen> greedy_chain(uint32_t a, std::optional<Vec2> tangent, uint32_t limit, size_t& forced) const {
+    std::vector<Chosen> chain;
+    while (a < limit) {
+      std::optional<Chosen> c;
+      if (tangent) c = best_near(a, *tangent, limit);
+      if (!c) {
+        c = best_free(a, limit);
+        if (tangent && a > 0 && !hard_[a]) {
+          ++forced;
+          c->kinked = true;
+        }
+      }
+      chain.push_back(*c);
+      a = c->prim.end_vertex;
+      tangent = c->end_tangent;
+    }
+    return chain;
+  }
+
+  /// One node of the beam search: the chain reached vertex `v` and leaves it along `T`.
+  struct Node {
+    Chosen last;  ///< the primitive that ended here (none at a root)
+    int parent;   ///< index of the node it left from; -1 at a root
+    uint32_t v;
+    Vec2 T;
+  };
+
+  /// The G1 chain from `a` to `limit` with the fewest primitives a beam search finds. Layer k
+  /// holds the chains of k primitives, at most `beam_width` of them, those reaching furthest
+  /// with distinct end tangents; each is extended along its end tangent and along tangents
+  /// turned by a little under half the G1 angle each way. The first chain reaching `limit`
+  /// wins. Without `T0` (a corner or the run start) the roots are a fan of start tangents
+  /// read off the input. When no chain goes on tangentially, the one reaching furthest is
+  /// returned (empty when none leaves `a`), and the caller takes a kink there.
+  std::vector<Chosen> beam_chain(uint32_t a, uint32_t limit, const std::vector<Chosen>* greedy) const {
+    std::vector<Node> nodes;
+    std::vector<int> layer, next;
+    for (const Vec2& T : start_tangents(a, limit)) nodes.push_back({{}, -1, a, T});
+    for (int i = 0; i < static_cast<int>(nodes.size()); ++i) layer.push_back(i);
+    const double turn = 0.45 * deg_to_rad(o_.g1_angle_deg);
+    const double bin_rad = deg_to_rad(o_.g1_angle_deg) / 8;
+    const size_t width = o_.beam_width;
+    struct Made {
+      int from;
+      Chosen c;
+      Score sc;
+    };
+    std::vector<Made> made;
+    std::vector<Chosen> out;
+    std::vector<std::pair<uint32_t, long>> seen;
+    int furthest = -1;
+    int guide = -1;  // the node the greedy chain would be at: the beam never does worse
+    size_t step = 0;
+    while (!layer.empty()) {
+      made.clear();
+      // The greedy chain's next primitive: read off `greedy` (whose first kink ends it) when
+      // given, else chosen again.
+      std::optional<Chosen> g;
+      if (guide == -1) {
+        guide = layer.front();
+        if (greedy) {
+          g = greedy->front();
+        } else {
+          g = best_free(a, limit);
+        }
+      } else if (guide >= 0) {
+        if (greedy) {
+          if (step < greedy->size() && !(*greedy)[step].kinked) g = (*greedy)[step];
+        } else {
+          g = best_near(nodes[guide].v, nodes[guide].T, limit);
+        }
+      }
+      ++step;
+      for (int i : layer) {
+        const Node nd = nodes[i];
+        out.clear();
+        checked_from(nd.v, nd.T, limit, o_.beam_branch, out);
+        if (nd.parent >= 0) {
+          checked_from(nd.v, rotated(nd.T, turn), limit, o_.beam_branch, out);
+          checked_from(nd.v, rotated(nd.T, -turn), limit, o_.beam_branch, out);
+        }
+        for (const Chosen& c : out) {
+          if (c.prim.end_vertex >= limit) {
+            nodes.push_back({c, i, c.prim.end_vertex, c.end_tangent});
+            return chain_to(nodes, static_cast<int>(nodes.size()) - 1);
+          }
+          made.push_back({i, c, score(c, limit)});
+        }
+      }
+      // Half the beam goes to the chains whose next step reaches furthest, half to those
+      // heading where the input heads (then reaching furthest): either alone loses chains
+      // the other finds.
+      next.clear();
+      seen.clear();
+      if (g) {
+        nodes.push_back({*g, guide, g->prim.end_vertex, g->end_tangent});
+        guide = static_cast<int>(nodes.size()) - 1;
+        if (g->prim.end_vertex >= limit) return chain_to(nodes, guide);
+        next.push_back(guide);
+        if (furthest < 0 || nodes[furthest].v < g->prim.end_vertex) furthest = guide;
+      } else {
+        guide = -2;
+      }
+      auto keep_best = [&](size_t count, auto better) {
+        std::stable_sort(made.begin(), made.end(), better);
+        for (const Made& m : made) {
+          if (next.size() >= count) break;
+          uint32_t e = m.c.prim.end_vertex;
+          long bin = std::lround(std::atan2(m.c.end_tangent.y(), m.c.end_tangent.x()) / bin_rad);
+          std::pair<uint32_t, long> key{e, bin};
+          if (std::find(seen.begin(), seen.end(), key) != seen.end()) continue;
+          seen.push_back(key);
+          nodes.push_back({m.c, m.from, e, m.c.end_tangent});
+          int id = static_cast<int>(nodes.size()) - 1;
+          if (furthest < 0 || nodes[furthest].v < e) furthest = id;
+          next.push_back(id);
+        }
+      };
+      keep_best(width / 2, [](const Made& x, const Made& y) {
+        return std::pair(x.sc.reach, x.sc.end) > std::pair(y.sc.reach, y.sc.end);
+      });
+      keep_best(width, [](const Made& x, const Made& y) { return x.sc > y.sc; });
+      layer.swap(next);
+    }
+    return furthest < 0 ? std::vector<Chosen>{} : chain_to(nodes, furthest);
+  }
+
+  /// The beam search's chain from `a` to `limit`. Where no chain goes on tangentially, the
+  /// tangent breaks at the furthest one's end (counted in `forced`) and the search restarts.
+  std::vector<Chosen> beam_stretch(uint32_t a, uint32_t limit, const std::vector<Chosen>& greedy, size_t& forced) const {
+    std::vector<Chosen> chain;
+    while (a < limit) {
+      if (!chain.empty()) ++forced;
+      auto part = beam_chain(a, limit, chain.empty() ? &greedy : nullptr);
+      if (part.empty()) part.push_back(best_free(a, limit));
+      chain.insert(chain.end(), part.begin(), part.end());
+      a = part.back().prim.end_vertex;
+    }
+    return chain;
+  }
+
+  static std::vector<Chosen> chain_to(const std::vector<Node>& nodes, int id) {
+    std::vector<Chosen> chain;
+    for (; nodes[id].parent >= 0; id = nodes[id].parent) chain.push_back(nodes[id].last);
+    std::reverse(chain.begin(), chain.end());
+    return chain;
+  }
+
+  static Vec2 rotated(const Vec2& T, double rad) {
+    return {T.x() * std::cos(rad) - T.y() * std::sin(rad), T.x() * std::sin(rad) + T.y() * std::cos(rad)};
+  }
+
+  /// Start tangents at `a` where the tangent is free: those of circles through the next
+  /// vertices and of the first chord, each fanned out by a few degrees.
+  std::vector<Vec2> start_tangents(uint32_t a, uint32_t limit) const {
+    std::vector<Vec2> base, out;
+    Vec2 chord = q(a + 1) - q(a);
+    for (uint32_t w : {2u, 4u, 8u, 16u}) {
+      if (a + w > limit) break;
+      if (auto t = circle_tangent(q(a), q(a + w / 2), q(a + w))) base.push_back(*t);
+    }
+    if (chord.norm() > kLengthEpsMm) base.push_back(chord.normalized());
+    for (const Vec2& T : base) {
+      out.push_back(T);
+      for (double deg : {1.0, 3.0}) {
+        out.push_back(rotated(T, deg_to_rad(deg)));
+        out.push_back(rotated(T, -deg_to_rad(deg)));
+      }
+    }
+    return out;
   }
 
   /// Start of a smooth stretch (or after a forced kink): try a few start tangents read off

@@ -21,7 +21,8 @@ struct Primitive {
 struct FitOptions {
   enum class Method : uint8_t {
     Keep,  ///< every G1 stays as it is (the pipeline without fitting)
-    Arcs,  ///< G1-continuous lines and arcs (default)
+    Arcs,    ///< G1-continuous lines and arcs, fewest found by a beam search over chains (default)
+    Greedy,  ///< G1-continuous lines and arcs, one primitive at a time with a short look-ahead
   };
   Method method = Method::Arcs;
   bool arcs = true;                ///< false: lines only (the controller takes no arcs here)
@@ -35,6 +36,8 @@ struct FitOptions {
   double min_arc_length_mm = 0.0;  ///< shorter arcs become lines (firmware re-segmentation)
   uint32_t min_arc_moves = 0;      ///< an arc must replace at least this many input moves
   bool helical = true;             ///< arcs may move along the plane's normal axis
+  uint32_t beam_width = 8;  ///< Arcs method: chains kept per primitive count
+  int beam_branch = 3;             ///< Arcs method: checked primitives per chain and start tangent
 };
 
 struct FitResult {
