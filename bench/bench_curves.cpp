@@ -63,8 +63,8 @@ int main(int argc, char** argv) {
        1000, 7},
   };
   fmt::print("Xu 2021 test curves, --min-radius 0 (B-spline 1 and 2 are left out: their control points are only in the paper)\n");
-  fmt::print("{:<9} {:>6} {:>8} {:>6} {:>6} {:>6} {:>10} {:>10} {:>8} {:>8} {:>7}\n", "curve", "points", "tol mm", "segs",
-             "arcs", "Xu", "max dev", "max kink", "forced", "ms", "greedy");
+  fmt::print("{:<9} {:>6} {:>8} {:>6} {:>6} {:>6} {:>10} {:>10} {:>8} {:>8} {:>7} {:>7}\n", "curve", "points", "tol mm", "segs",
+             "arcs", "Xu", "max dev", "max kink", "forced", "ms", "greedy", "stream");
   for (const Curve& c : curves) {
     std::string text = program(c);
     for (double tol : {0.01, 0.005, 0.001}) {
@@ -84,10 +84,14 @@ int main(int argc, char** argv) {
       opt.fit.method = FitOptions::Method::Greedy;  // segments the one-step method needs, for comparison
       DiagnosticSink s3;
       CompressResult g = compress(c.name, text, opt, s3);
-      fmt::print("{:<9} {:>6} {:>8.3f} {:>6} {:>6} {:>6} {:>10.6f} {:>9.3f}° {:>8} {:>8.2f} {:>7}\n", c.name, c.samples,
+      opt.fit.method = FitOptions::Method::Stream;  // ... and the seeds' method, whose joints are not tangent
+      DiagnosticSink s4;
+      CompressResult st = compress(c.name, text, opt, s4);
+      fmt::print("{:<9} {:>6} {:>8.3f} {:>6} {:>6} {:>6} {:>10.6f} {:>9.3f}° {:>8} {:>8.2f} {:>7} {:>7}\n", c.name, c.samples,
                  tol, r.stats.lines_out + r.stats.arcs_out, r.stats.arcs_out,
                  tol == 0.01 ? std::to_string(c.xu_arcs) : "", r.comparison.max_deviation_mm,
-                 r.comparison.max_smooth_kink_deg, r.forced_kinks, best, g.stats.lines_out + g.stats.arcs_out);
+                 r.comparison.max_smooth_kink_deg, r.forced_kinks, best, g.stats.lines_out + g.stats.arcs_out,
+                 st.stats.lines_out + st.stats.arcs_out);
     }
   }
 
@@ -107,7 +111,8 @@ int main(int argc, char** argv) {
   };
   std::vector<Tally> tallies = {{"keep", FitOptions::Method::Keep},
                                 {"arcs", FitOptions::Method::Arcs},
-                                {"greedy", FitOptions::Method::Greedy}};
+                                {"greedy", FitOptions::Method::Greedy},
+                                {"stream", FitOptions::Method::Stream}};
   for (const auto& f : files) {
     std::ifstream in(f, std::ios::binary);
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

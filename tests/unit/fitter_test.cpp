@@ -250,6 +250,38 @@ TEST_CASE("the chain search never needs more primitives than the greedy chain, a
   CHECK(fewer >= 2);
 }
 
+TEST_CASE("the streaming seed method: arcs through both end points, grown in a bounded window", "[fit][stream]") {
+  FitOptions f;
+  f.method = FitOptions::Method::Stream;
+  // Half circles crossing the ±180° polar angle, both ways round: one arc each, the right way.
+  auto ccw = compress_text(program(arc_points(0, 0, 20, 100, 260, 1)), f);
+  CHECK(ccw.arcs == 1);
+  CHECK(ccw.lines == 0);
+  CHECK(ccw.r.output.find("G3") != std::string::npos);
+  auto cw = compress_text(program(arc_points(0, 0, 20, 260, 100, 1)), f);
+  CHECK(cw.arcs == 1);
+  CHECK(cw.r.output.find("G2 ") != std::string::npos);
+  CHECK(cw.r.comparison.max_deviation_mm <= f.tolerance_mm);
+
+  // The window bounds the moves one primitive may replace.
+  f.stream_window = 40;
+  auto w = compress_text(program(arc_points(0, 0, 20, 0, 170, 0.5)), f);  // 340 moves
+  CHECK(w.arcs + w.lines >= 340 / 40);
+  CHECK(w.r.comparison.max_deviation_mm <= f.tolerance_mm);
+
+  // Joints are not made tangent: on a curve of changing curvature they kink, and are counted.
+  std::vector<Pt> c;
+  for (int i = 0; i < 2000; ++i) {
+    double x = -2 + 4 * i / 1999.0;
+    c.push_back({x, x * x * x, 0});
+  }
+  f.stream_window = 256;
+  auto k = compress_text(program(c), f);
+  CHECK(k.r.comparison.max_deviation_mm <= f.tolerance_mm);
+  CHECK(k.r.comparison.smooth_joints_over_g1 > 0);
+  CHECK(k.r.forced_kinks > 0);
+}
+
 TEST_CASE("random polylines always stay inside the band", "[fit][property]") {
   std::mt19937 rng(2024);
   std::uniform_real_distribution<double> turn(-0.3, 0.3), step(0.05, 1.5);
@@ -263,9 +295,12 @@ TEST_CASE("random polylines always stay inside the band", "[fit][property]") {
     }
     FitOptions f;
     f.tolerance_mm = trial % 2 ? 0.01 : 0.002;
-    auto o = compress_text(program(p), f);
     INFO("trial " << trial);
-    CHECK(o.r.comparison.max_deviation_mm <= f.tolerance_mm);
+    for (auto m : {FitOptions::Method::Arcs, FitOptions::Method::Greedy, FitOptions::Method::Stream}) {
+      f.method = m;
+      auto o = compress_text(program(p), f);
+      CHECK(o.r.comparison.max_deviation_mm <= f.tolerance_mm);
+    }
   }
 }
 

@@ -81,7 +81,8 @@ class RunFitter {
       while (limit < n_ && !hard_[limit]) ++limit;
       stretch_start_ = a;
       size_t forced = 0;
-      std::vector<Chosen> chain = greedy_chain(a, std::nullopt, limit, forced);
+      std::vector<Chosen> chain = o_.method == FitOptions::Method::Stream ? stream_chain(a, limit, forced)
+                                                                         : greedy_chain(a, std::nullopt, limit, forced);
       // The greedy chain is the answer for stretches it covers in one or two primitives;
       // longer ones are searched again and the shorter chain wins.
       if (o_.method == FitOptions::Method::Arcs && o_.beam_width > 1 && chain.size() > 2) {
@@ -169,24 +170,40 @@ class RunFitter {
 
   /// Builds and checks the primitive for candidate `c` from `a` along `T`.
   std::optional<Chosen> make(uint32_t a, const Vec2& T, const Candidate& c) const {
-    std::span<const Vec3> pts(p_.data() + a, c.e - a + 1);
+    if (c.line) return make_line(a, c.e, T);
+    return make_arc(a, c.e, q(a) + left_normal(T) / c.k, c.k > 0);
+  }
+
+  /// The line from vertex a to vertex e, if the moves between stay inside the band.
+  std::optional<Chosen> make_line(uint32_t a, uint32_t e, const Vec2& fallback_tangent) const {
+    std::span<const Vec3> pts(p_.data() + a, e - a + 1);
+    Deviation d = line_deviation(pts, eps_);
+    if (!d.ordered || d.max_mm > eps_) return std::nullopt;
     Chosen ch;
-    ch.prim.end_vertex = c.e;
+    ch.prim.end_vertex = e;
+    ch.prim.kind = Primitive::Kind::Line;
+    Vec2 chord = q(e) - q(a);
+    ch.end_tangent = chord.norm() > 0 ? Vec2(chord.normalized()) : fallback_tangent;
+    return ch;
+  }
+
+  /// The arc from vertex a to vertex e about `center`, if the moves between stay inside the
+  /// band (in-plane share when it climbs) and the arc keeps the options' limits.
+  std::optional<Chosen> make_arc(uint32_t a, uint32_t e, const Vec2& center, bool ccw) const {
+    if (!o_.arcs || e - a < std::max<uint32_t>(o_.min_arc_moves, 1)) return std::nullopt;
+    std::span<const Vec3> pts(p_.data() + a, e - a + 1);
     bool flat = true;
     for (const auto& p : pts) flat = flat && std::abs(p.z() - pts.front().z()) <= kLengthEpsMm;
-    if (c.line) {
-      Deviation d = line_deviation(pts, eps_);
-      if (!d.ordered || d.max_mm > eps_) return std::nullopt;
-      ch.prim.kind = Primitive::Kind::Line;
-      Vec2 chord = q(c.e) - q(a);
-      ch.end_tangent = chord.norm() > 0 ? Vec2(chord.normalized()) : T;
-      return ch;
-    }
-    Vec2 center = q(a) + left_normal(T) / c.k;
-    bool ccw = c.k > 0;
+    if (!flat && !o_.helical) return std::nullopt;
     ArcGeom g = ArcGeom::through(pts.front(), pts.back(), center, ccw);
-    Deviation d = arc_deviation(pts, g, eps_);
-    if (!d.ordered || d.max_mm > eps_) return std::nullopt;
+    if (!std::isfinite(g.radius_mm) || g.radius_mm < o_.min_radius_mm || g.radius_mm > o_.max_radius_mm)
+      return std::nullopt;
+    const double sweep_deg = std::abs(g.sweep) * 180 / kPi;
+    if (sweep_deg > o_.max_sweep_deg + 1e-9 || sweep_deg < o_.min_sweep_deg) return std::nullopt;
+    if (g.radius_mm * std::abs(g.sweep) < o_.min_arc_length_mm) return std::nullopt;
+    const double band = flat ? eps_ : eps_ * kPlaneShare;
+    Deviation d = arc_deviation(pts, g, band);
+    if (!d.ordered || d.max_mm > band) return std::nullopt;
     if (!flat) {
       // Height must follow the helix closely enough for the 3D distance to stay in the band.
       double len_sum = 0;
@@ -198,12 +215,14 @@ class RunFitter {
         if (std::abs(pts[m].z() - h) > eps_ * kHeightShare) return std::nullopt;
       }
     }
+    Chosen ch;
+    ch.prim.end_vertex = e;
     ch.prim.kind = Primitive::Kind::Arc;
     ch.prim.ccw = ccw;
     ch.prim.center = center;
     ch.prim.radius_mm = g.radius_mm;
     // The tangent at the end: the radius there turned a quarter in the arc's direction.
-    Vec2 out = left_normal((q(c.e) - center).normalized());
+    Vec2 out = left_normal((q(e) - center).normalized());
     ch.end_tangent = ccw ? out : Vec2(-out);
     return ch;
   }
@@ -354,6 +373,78 @@ class RunFitter {
     return chain;
   }
 
+  /// Seeds 001 and 003: each primitive grows one vertex at a time through a window of at
+  /// most `stream_window` moves, as a controller would buffer them. The arc through both end
+  /// points whose centre, on the chord's bisector, best fits the points between (least
+  /// squares) is kept while it stays inside the band; at the first vertex where neither it
+  /// nor a line does, the last fit that did is written and the next primitive starts there.
+  /// Joints are not made tangent: every joint where the input is smooth and the tangents
+  /// differ by more than the G1 angle counts as forced.
+  std::vector<Chosen> stream_chain(uint32_t a, uint32_t limit, size_t& forced) const {
+    std::vector<Chosen> chain;
+    const double g1 = deg_to_rad(o_.g1_angle_deg);
+    while (a < limit) {
+      Vec2 chord = q(a + 1) - q(a);
+      Chosen best;
+      best.prim = {a + 1, Primitive::Kind::Line};
+      best.end_tangent = chord.norm() > kLengthEpsMm ? Vec2(chord.normalized()) : Vec2(1, 0);
+      Vec2 start_tangent = best.end_tangent;
+      for (uint32_t e = a + 2; e <= limit && e - a <= o_.stream_window && !soft_[e - 1]; ++e) {
+        std::optional<Chosen> c = make_line(a, e, best.end_tangent);
+        std::optional<Vec2> T;
+        if (!c) {
+          c = through_ends(a, e);
+          if (c) T = left_normal(q(a) - c->prim.center) * (c->prim.ccw ? 1.0 : -1.0);
+        } else {
+          T = c->end_tangent;
+        }
+        if (!c) break;
+        best = *c;
+        start_tangent = T->normalized();
+      }
+      if (!chain.empty() && !hard_[a]) {
+        const Vec2& before = chain.back().end_tangent;
+        if (std::atan2(std::abs(cross2(before, start_tangent)), before.dot(start_tangent)) > g1) {
+          ++forced;
+          best.kinked = true;
+        }
+      }
+      chain.push_back(best);
+      a = best.prim.end_vertex;
+    }
+    return chain;
+  }
+
+  /// Seed 001's circle: through vertices a and e, centre on the chord's perpendicular
+  /// bisector at the offset that minimises the squared algebraic residuals |p - c|² - r² of
+  /// the vertices between (linear in the offset, so closed-form); CW or CCW from the polar
+  /// angles of the start, second and end vertex about that centre, wrap-around included.
+  std::optional<Chosen> through_ends(uint32_t a, uint32_t e) const {
+    Vec2 p0 = q(a), p1 = q(e), m = (p0 + p1) / 2;
+    Vec2 chord = p1 - p0;
+    double h2 = chord.squaredNorm() / 4;
+    if (h2 <= kLengthEpsMm * kLengthEpsMm) return std::nullopt;
+    Vec2 n = left_normal(chord.normalized());
+    double num = 0, den = 0;
+    for (uint32_t v = a + 1; v < e; ++v) {
+      Vec2 d = q(v) - m;
+      double resid = d.squaredNorm() - h2, slope = 2 * d.dot(n);  // residual = resid - s·slope
+      num += resid * slope;
+      den += slope * slope;
+    }
+    if (den <= 0) return std::nullopt;
+    Vec2 center = m + n * (num / den);
+    auto angle = [&](const Vec2& p) { return std::atan2(p.y() - center.y(), p.x() - center.x()); };
+    auto ccw_from_start = [&](double t) {
+      double d = t - angle(p0);
+      while (d < 0) d += 2 * kPi;
+      while (d >= 2 * kPi) d -= 2 * kPi;
+      return d;
+    };
+    bool ccw = ccw_from_start(angle(q(a + 1))) < ccw_from_start(angle(p1));
+    return make_arc(a, e, center, ccw);
+  }
+
   /// One node of the beam search: the chain reached vertex `v` and leaves it along `T`.
   struct Node {
     Chosen last;  ///< the primitive that ended here (none at a root)
@@ -499,7 +590,7 @@ class RunFitter {
     if (chord.norm() > kLengthEpsMm) base.push_back(chord.normalized());
     for (const Vec2& T : base) {
       out.push_back(T);
-      for (double deg : {1.0, 3.0}) {
+      for (double deg : {0.5, 1.0, 2.0, 4.0}) {
         out.push_back(rotated(T, deg_to_rad(deg)));
         out.push_back(rotated(T, -deg_to_rad(deg)));
       }

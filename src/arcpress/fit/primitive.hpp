@@ -23,6 +23,7 @@ struct FitOptions {
     Keep,  ///< every G1 stays as it is (the pipeline without fitting)
     Arcs,    ///< G1-continuous lines and arcs, fewest found by a beam search over chains (default)
     Greedy,  ///< G1-continuous lines and arcs, one primitive at a time with a short look-ahead
+    Stream,  ///< seeds 001/003: arcs through both end points grown one vertex at a time, no G1
   };
   Method method = Method::Arcs;
   bool arcs = true;                ///< false: lines only (the controller takes no arcs here)
@@ -38,6 +39,7 @@ struct FitOptions {
   bool helical = true;             ///< arcs may move along the plane's normal axis
   uint32_t beam_width = 8;  ///< Arcs method: chains kept per primitive count
   int beam_branch = 3;             ///< Arcs method: checked primitives per chain and start tangent
+  uint32_t stream_window = 256;    ///< Stream method: most moves one primitive may replace
 };
 
 struct FitResult {
