@@ -34,7 +34,7 @@ struct Candidate {
 struct Chosen {
   Primitive prim;
   Vec2 end_tangent;
-  bool kinked = false;  ///< starts with a tangent change the band forced (greedy chains)
+  bool kinked = false;  ///< starts with a tangent change at a joint where the input is smooth
 };
 
 class RunFitter {
@@ -332,11 +332,7 @@ class RunFitter {
       if (best_score.on_course && (best->prim.end_vertex - a >= 4 || best->prim.end_vertex == limit)) return best;
     }
     double g1 = deg_to_rad(o_.g1_angle_deg);
-    for (double f : {0.45, -0.45, 0.9, -0.9}) {
-      double t = f * g1;
-      Vec2 R(T.x() * std::cos(t) - T.y() * std::sin(t), T.x() * std::sin(t) + T.y() * std::cos(t));
-      consider(a, R, limit, best, best_score);
-    }
+    for (double f : {0.45, -0.45, 0.9, -0.9}) consider(a, rotated(T, f * g1), limit, best, best_score);
     return best;
   }
 
@@ -388,21 +384,17 @@ class RunFitter {
       Chosen best;
       best.prim = {a + 1, Primitive::Kind::Line};
       best.end_tangent = chord.norm() > kLengthEpsMm ? Vec2(chord.normalized()) : Vec2(1, 0);
-      Vec2 start_tangent = best.end_tangent;
       for (uint32_t e = a + 2; e <= limit && e - a <= o_.stream_window && !soft_[e - 1]; ++e) {
         std::optional<Chosen> c = make_line(a, e, best.end_tangent);
-        std::optional<Vec2> T;
-        if (!c) {
-          c = through_ends(a, e);
-          if (c) T = left_normal(q(a) - c->prim.center) * (c->prim.ccw ? 1.0 : -1.0);
-        } else {
-          T = c->end_tangent;
-        }
+        if (!c) c = through_ends(a, e);
         if (!c) break;
         best = *c;
-        start_tangent = T->normalized();
       }
       if (!chain.empty() && !hard_[a]) {
+        // A line leaves along its end tangent; an arc along its radius at `a` turned a quarter.
+        Vec2 start_tangent = best.end_tangent;
+        if (best.prim.kind == Primitive::Kind::Arc)
+          start_tangent = left_normal((q(a) - best.prim.center).normalized()) * (best.prim.ccw ? 1.0 : -1.0);
         const Vec2& before = chain.back().end_tangent;
         if (std::atan2(std::abs(cross2(before, start_tangent)), before.dot(start_tangent)) > g1) {
           ++forced;
@@ -457,8 +449,9 @@ class RunFitter {
   /// holds the chains of k primitives, at most `beam_width` of them, those reaching furthest
   /// with distinct end tangents; each is extended along its end tangent and along tangents
   /// turned by a little under half the G1 angle each way. The first chain reaching `limit`
-  /// wins. Without `T0` (a corner or the run start) the roots are a fan of start tangents
-  /// read off the input. When no chain goes on tangentially, the one reaching furthest is
+  /// wins. The tangent at `a` is free, so the roots are a fan of start tangents read off the
+  /// input. The greedy chain (read off `greedy` up to its first kink, or chosen again when
+  /// null) is always kept. When no chain goes on tangentially, the one reaching furthest is
   /// returned (empty when none leaves `a`), and the caller takes a kink there.
   std::vector<Chosen> beam_chain(uint32_t a, uint32_t limit, const std::vector<Chosen>* greedy) const {
     std::vector<Node> nodes;
@@ -578,17 +571,24 @@ class RunFitter {
     return {T.x() * std::cos(rad) - T.y() * std::sin(rad), T.x() * std::sin(rad) + T.y() * std::cos(rad)};
   }
 
-  /// Start tangents at `a` where the tangent is free: those of circles through the next
-  /// vertices and of the first chord, each fanned out by a few degrees.
-  std::vector<Vec2> start_tangents(uint32_t a, uint32_t limit) const {
-    std::vector<Vec2> base, out;
-    Vec2 chord = q(a + 1) - q(a);
+  /// The input's own directions at `a`, where the tangent is free: those of circles through
+  /// the next vertices, of the first chord, and of the input around `a` inside the stretch.
+  std::vector<Vec2> input_tangents(uint32_t a, uint32_t limit) const {
+    std::vector<Vec2> out;
     for (uint32_t w : {2u, 4u, 8u, 16u}) {
       if (a + w > limit) break;
-      if (auto t = circle_tangent(q(a), q(a + w / 2), q(a + w))) base.push_back(*t);
+      if (auto t = circle_tangent(q(a), q(a + w / 2), q(a + w))) out.push_back(*t);
     }
-    if (chord.norm() > kLengthEpsMm) base.push_back(chord.normalized());
-    for (const Vec2& T : base) {
+    Vec2 chord = q(a + 1) - q(a);
+    if (chord.norm() > kLengthEpsMm) out.push_back(chord.normalized());
+    if (auto t = input_tangent(a, stretch_start_, limit)) out.push_back(*t);
+    return out;
+  }
+
+  /// The beam's roots at `a`: the input's directions, each fanned out by a few degrees.
+  std::vector<Vec2> start_tangents(uint32_t a, uint32_t limit) const {
+    std::vector<Vec2> out;
+    for (const Vec2& T : input_tangents(a, limit)) {
       out.push_back(T);
       for (double deg : {0.5, 1.0, 2.0, 4.0}) {
         out.push_back(rotated(T, deg_to_rad(deg)));
@@ -601,18 +601,11 @@ class RunFitter {
   /// Start of a smooth stretch (or after a forced kink): try a few start tangents read off
   /// the input and keep the one whose primitive reaches furthest.
   Chosen best_free(uint32_t a, uint32_t limit) const {
-    std::vector<Vec2> tangents;
-    Vec2 chord = q(a + 1) - q(a);
-    for (uint32_t w : {2u, 4u, 8u, 16u}) {
-      if (a + w > limit) break;
-      if (auto t = circle_tangent(q(a), q(a + w / 2), q(a + w))) tangents.push_back(*t);
-    }
-    if (chord.norm() > kLengthEpsMm) tangents.push_back(chord.normalized());
-    if (auto t = input_tangent(a, stretch_start_, limit)) tangents.push_back(*t);
     std::optional<Chosen> best;
     Score best_score;
-    for (const Vec2& T : tangents) consider(a, T, limit, best, best_score);
+    for (const Vec2& T : input_tangents(a, limit)) consider(a, T, limit, best, best_score);
     if (best) return *best;
+    Vec2 chord = q(a + 1) - q(a);
     Chosen line;  // the input's own segment is always inside the band
     line.prim = {a + 1, Primitive::Kind::Line};
     line.end_tangent = chord.norm() > kLengthEpsMm ? Vec2(chord.normalized()) : Vec2(1, 0);
