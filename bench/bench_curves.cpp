@@ -44,6 +44,53 @@ std::string program(const Curve& c) {
   return s + "M2\n";
 }
 
+/// ∫|dκ/ds|^(1/3) ds of the curve, from 200 000 samples (turning angle per length).
+/// The asymptotic count of a G1 arc spline inside a band ε is 0.200·ε^(-1/3) times this
+/// (reference/algorithms.md §5): the yardstick under a max-deviation band.
+double curvature_rate_integral(const Curve& c) {
+  const int n = 200000;
+  std::vector<Vec2> p(n);
+  for (int i = 0; i < n; ++i) p[i] = c.f(c.t0 + (c.t1 - c.t0) * i / (n - 1));
+  std::vector<double> k(n, 0.0), ds(n, 0.0);
+  for (int i = 1; i + 1 < n; ++i) {
+    Vec2 a = p[i] - p[i - 1], b = p[i + 1] - p[i];
+    ds[i] = 0.5 * (a.norm() + b.norm());
+    k[i] = ds[i] > 0 ? std::atan2(cross2(a, b), a.dot(b)) / ds[i] : 0;
+  }
+  double sum = 0;
+  for (int i = 2; i + 2 < n; ++i) {
+    double span = ds[i - 1] + ds[i + 1];
+    if (span > 0) sum += std::cbrt(std::abs(k[i + 1] - k[i - 1]) / span) * ds[i];
+  }
+  return sum;
+}
+
+/// Cubic B-spline with clamped uniform knots over control points `cp`, at t in [0, 1]
+/// (de Boor's algorithm).
+Vec2 bspline(const std::vector<Vec2>& cp, double t) {
+  const int deg = 3, n = int(cp.size());
+  const int spans = n - deg;  // knot intervals of non-zero length
+  std::vector<double> knots;
+  for (int i = 0; i < deg; ++i) knots.push_back(0);
+  for (int i = 0; i <= spans; ++i) knots.push_back(double(i) / spans);
+  for (int i = 0; i < deg; ++i) knots.push_back(1);
+  int k = std::min(deg + int(t * spans), n - 1);  // knots[k] <= t < knots[k + 1]
+  std::vector<Vec2> d(cp.begin() + (k - deg), cp.begin() + k + 1);
+  for (int r = 1; r <= deg; ++r)
+    for (int j = deg; j >= r; --j) {
+      int i = j + k - deg;
+      double den = knots[i + deg - r + 1] - knots[i];
+      double a = den > 0 ? (t - knots[i]) / den : 0;
+      d[j] = (1 - a) * d[j - 1] + a * d[j];
+    }
+  return d[deg];
+}
+
+const std::vector<Vec2> kBspline1 = {{0, 0}, {1, 5}, {4, 5}, {6, 1}, {9, -3}, {11, -4}, {12, 5}, {14, 6}, {17, -2}, {20, -2}, {21, 1}};
+const std::vector<Vec2> kBspline2 = {{0, 10}, {1, 8},   {4, 7.5}, {5, 10}, {6, 10}, {7, 8.5}, {8, 8.3},
+                                     {12, 11}, {12, -1}, {6, 4.3}, {4, 10}, {2, 8},  {1, 7.5}, {0, 0},
+                                     {3, 0},  {5, 2.7}, {8, 7},   {10, 7}, {11, 3}, {7.3, -1}, {9.3, -2}};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -52,6 +99,8 @@ int main(int argc, char** argv) {
       {"bezier1", [](double t) { return bezier({1, 1}, {5, 1}, {1, 2.75}, t); }, 0, 1, 1000, 5},
       {"bezier2", [](double t) { return bezier({0.54, 3.40}, {7.22, 3.61}, {7.39, 3.14}, t); }, 0, 1, 1000, 2},
       {"leaf", [](double t) { return Vec2(30 * t / (1 + t * t * t), 30 * t * t / (1 + t * t * t)); }, 0, 5, 1000, 7},
+      {"bspline1", [](double t) { return bspline(kBspline1, t); }, 0, 1, 1000, 9},
+      {"bspline2", [](double t) { return bspline(kBspline2, t); }, 0, 1, 1000, 11},
       {"y=x^3", [](double x) { return Vec2(x, x * x * x); }, -2, 2, 2000, 8},
       {"plum",
        [](double t) {
@@ -62,11 +111,13 @@ int main(int argc, char** argv) {
       {"loop", [](double t) { return Vec2(10 * (t * t * t - t) / (t * t + 1), 10 * (t * t - 1) / (t * t + 1)); }, -2, 2,
        1000, 7},
   };
-  fmt::print("Xu 2021 test curves, --min-radius 0 (B-spline 1 and 2 are left out: their control points are only in the paper)\n");
-  fmt::print("{:<9} {:>6} {:>8} {:>6} {:>6} {:>6} {:>10} {:>10} {:>8} {:>8} {:>7} {:>7}\n", "curve", "points", "tol mm", "segs",
-             "arcs", "Xu", "max dev", "max kink", "forced", "ms", "greedy", "stream");
+  fmt::print("Xu 2021 test curves, --min-radius 0 (B-splines: cubic, clamped uniform knots, the paper's control points)\n");
+  fmt::print("Xu's ε bounds a mean square; 'estimate' is the asymptotic G1 count under a max-deviation band\n");
+  fmt::print("{:<9} {:>6} {:>8} {:>6} {:>6} {:>6} {:>9} {:>10} {:>10} {:>8} {:>8} {:>7} {:>7}\n", "curve", "points", "tol mm",
+             "segs", "arcs", "Xu", "estimate", "max dev", "max kink", "forced", "ms", "greedy", "stream");
   for (const Curve& c : curves) {
     std::string text = program(c);
+    const double rate_integral = curvature_rate_integral(c);
     for (double tol : {0.01, 0.005, 0.001}) {
       CompressOptions opt;
       opt.fit.tolerance_mm = tol;
@@ -87,9 +138,10 @@ int main(int argc, char** argv) {
       opt.fit.method = FitOptions::Method::Stream;  // ... and the seeds' method, whose joints are not tangent
       DiagnosticSink s4;
       CompressResult st = compress(c.name, text, opt, s4);
-      fmt::print("{:<9} {:>6} {:>8.3f} {:>6} {:>6} {:>6} {:>10.6f} {:>9.3f}° {:>8} {:>8.2f} {:>7} {:>7}\n", c.name, c.samples,
-                 tol, r.stats.lines_out + r.stats.arcs_out, r.stats.arcs_out,
-                 tol == 0.01 ? std::to_string(c.xu_arcs) : "", r.comparison.max_deviation_mm,
+      fmt::print("{:<9} {:>6} {:>8.3f} {:>6} {:>6} {:>6} {:>9.1f} {:>10.6f} {:>9.3f}° {:>8} {:>8.2f} {:>7} {:>7}\n", c.name,
+                 c.samples, tol, r.stats.lines_out + r.stats.arcs_out, r.stats.arcs_out,
+                 tol == 0.01 ? std::to_string(c.xu_arcs) : "", 0.200 * std::cbrt(1 / tol) * rate_integral,
+                 r.comparison.max_deviation_mm,
                  r.comparison.max_smooth_kink_deg, r.forced_kinks, best, g.stats.lines_out + g.stats.arcs_out,
                  st.stats.lines_out + st.stats.arcs_out);
     }

@@ -250,6 +250,33 @@ TEST_CASE("the chain search never needs more primitives than the greedy chain, a
   CHECK(fewer >= 2);
 }
 
+TEST_CASE("merging after the search: two primitives become one, three become two, joints stay tangent",
+          "[fit][search]") {
+  // Xu's plum curve r = 10 - 9 sin²(2.5t): sharp inner tips and fast curvature changes, where
+  // the chain search alone leaves neighbours that fewer primitives can replace.
+  std::vector<Pt> plum;
+  for (int i = 0; i < 4700; ++i) {
+    double t = 1.5 * kPi * i / 4699, r = 10 - 9 * std::pow(std::sin(2.5 * t), 2);
+    plum.push_back({r * std::cos(t), r * std::sin(t), 0});
+  }
+  size_t fewer = 0;
+  for (double tol : {0.01, 0.005}) {
+    FitOptions merged, searched;
+    merged.min_radius_mm = searched.min_radius_mm = 0;
+    merged.tolerance_mm = searched.tolerance_mm = tol;
+    searched.merge = false;
+    auto m = compress_text(program(plum), merged);
+    auto s = compress_text(program(plum), searched);
+    INFO("tolerance " << tol << ": search alone " << s.arcs + s.lines << ", merged " << m.arcs + m.lines);
+    CHECK(m.arcs + m.lines <= s.arcs + s.lines);
+    fewer += m.arcs + m.lines < s.arcs + s.lines;
+    CHECK(m.r.comparison.max_deviation_mm <= tol);
+    CHECK(m.r.comparison.max_smooth_kink_deg <= 0.5);
+    CHECK(m.r.forced_kinks == 0);
+  }
+  CHECK(fewer >= 1);
+}
+
 TEST_CASE("the streaming seed method: arcs through both end points, grown in a bounded window", "[fit][stream]") {
   FitOptions f;
   f.method = FitOptions::Method::Stream;

@@ -21,6 +21,8 @@ constexpr double kPlaneShare = 0.8;
 constexpr double kHeightShare = 0.6;
 /// Candidates per primitive whose next step is looked at before choosing.
 constexpr int kLookahead = 6;
+/// Splits of a stretch into two primitives checked exactly per start tangent when merging.
+constexpr size_t kSplitsTried = 12;
 /// A primitive whose end tangent is within this of the input's direction is "on course".
 constexpr double kOnCourseRad = 1.5 * kPi / 180;
 
@@ -93,6 +95,7 @@ class RunFitter {
           forced = beam_forced;
         }
       }
+      if (o_.method == FitOptions::Method::Arcs && o_.merge && forced == 0) tighten(a, chain);
       r.forced_kinks += forced;
       for (const auto& c : chain) r.prims.push_back(c.prim);
       a = limit;
@@ -435,6 +438,127 @@ class RunFitter {
     };
     bool ccw = ccw_from_start(angle(q(a + 1))) < ccw_from_start(angle(p1));
     return make_arc(a, e, center, ccw);
+  }
+
+  /// The tangent with which `c`, starting at vertex `from`, leaves it.
+  Vec2 start_tangent(const Chosen& c, uint32_t from) const {
+    if (c.prim.kind == Primitive::Kind::Line) {
+      Vec2 chord = q(c.prim.end_vertex) - q(from);
+      return chord.norm() > kLengthEpsMm ? Vec2(chord.normalized()) : c.end_tangent;
+    }
+    Vec2 t = left_normal((q(from) - c.prim.center).normalized());
+    return c.prim.ccw ? t : Vec2(-t);
+  }
+
+  /// The line or arc leaving vertex a along T and ending exactly at vertex e, checked.
+  std::optional<Chosen> through(uint32_t a, const Vec2& T, uint32_t e) const {
+    Vec2 u = q(e) - q(a);
+    double uu = u.squaredNorm();
+    if (uu <= kLengthEpsMm * kLengthEpsMm || u.dot(T) <= 0) return std::nullopt;
+    for (uint32_t m = a + 1; m < e; ++m)
+      if (soft_[m]) return std::nullopt;  // a change of extrusion rate ends a primitive
+    Vec2 N = left_normal(T);
+    bool line = pseudo_angle(u.dot(T), std::abs(u.dot(N))) <= line_alpha_;
+    return make(a, T, Candidate{e, 2 * u.dot(N) / uu, line});
+  }
+
+  /// Signed angle from a to b, radians.
+  static double angle_to(const Vec2& a, const Vec2& b) { return std::atan2(cross2(a, b), a.dot(b)); }
+
+  /// The end tangent of the arc leaving `from` along T through `to`: T reflected about the
+  /// chord (a line's is the chord itself, within the line allowance of that).
+  Vec2 reflected_end(uint32_t from, const Vec2& T, uint32_t to) const {
+    Vec2 c = q(to) - q(from);
+    double len = c.norm();
+    if (len <= kLengthEpsMm) return T;
+    c /= len;
+    return 2 * c.dot(T) * c - T;
+  }
+
+  /// Local merging after the search: wherever two consecutive primitives can become one, or
+  /// three can become two, that leave the joint before them and meet the joint after them
+  /// within the turn allowed at a joint, they are replaced, and the joint before is tried again.
+  /// The tangent is free at the stretch's ends (a corner or the run's end). Turning an arc's
+  /// start tangent by φ turns its end tangent by -φ (the end tangent is the start tangent
+  /// reflected about the chord), so the turn that meets the next joint is solved for, and
+  /// only primitives that can meet it are checked exactly.
+  void tighten(uint32_t a, std::vector<Chosen>& chain) const {
+    const double turn = 0.45 * deg_to_rad(o_.g1_angle_deg);
+    std::vector<Candidate> cand;
+    std::vector<size_t> split;
+    // The start along `in` turned within the allowance so that the arc to `to` ends as close
+    // to `out` as it can; nothing when even the largest turn misses it.
+    auto aimed = [&](uint32_t from, const Vec2& in, uint32_t to, const std::optional<Vec2>& out) -> std::optional<Vec2> {
+      if (!out) return in;
+      double d0 = angle_to(reflected_end(from, in, to), *out);
+      if (std::abs(d0) > 2 * turn + line_kink_) return std::nullopt;
+      return rotated(in, std::clamp(-d0, -turn, turn));
+    };
+    // After a merge at i, the joint before it may merge too: step back one.
+    for (size_t i = 0; i + 1 < chain.size();) {
+      bool changed = false;
+      {
+        const uint32_t from = i == 0 ? a : chain[i - 1].prim.end_vertex;
+        for (size_t w : {size_t(2), size_t(3)}) {
+          if (i + w > chain.size()) break;
+          const uint32_t to = chain[i + w - 1].prim.end_vertex;
+          std::optional<Vec2> out;
+          if (i + w < chain.size()) out = start_tangent(chain[i + w], to);
+          auto meets = [&](const Chosen& c) { return !out || std::abs(angle_to(c.end_tangent, *out)) <= turn; };
+          // Start tangents: the incoming one (turned below), or at the stretch's start the
+          // input's own directions; with a fixed next joint, the one ending exactly on it.
+          std::vector<Vec2> starts;
+          if (i > 0) {
+            starts.push_back(chain[i - 1].end_tangent);
+          } else {
+            if (w == 2 && out) starts.push_back(reflected_end(from, *out, to));
+            for (const Vec2& T : start_tangents(a, to)) starts.push_back(T);
+          }
+          std::vector<Chosen> repl;
+          for (const Vec2& T0 : starts) {
+            if (w == 2) {
+              std::optional<Vec2> T = i > 0 ? aimed(from, T0, to, out) : std::optional<Vec2>(T0);
+              if (!T) continue;
+              auto c = through(from, *T, to);
+              if (c && meets(*c)) repl = {*c};
+            } else {
+              std::vector<Vec2> firsts;
+              if (i > 0) {
+                for (double f : {0.0, 1.0, -1.0}) firsts.push_back(rotated(T0, f * turn));
+              } else {
+                firsts.push_back(T0);
+              }
+              for (const Vec2& T : firsts) {
+                scan(from, T, to - 1, cand);
+                // Splits whose second primitive can meet the next joint, longest first; at
+                // most kSplitsTried of them, spread evenly, are checked exactly.
+                split.clear();
+                for (size_t k = cand.size(); k-- > 0;)
+                  if (aimed(cand[k].e, reflected_end(from, T, cand[k].e), to, out)) split.push_back(k);
+                const double stride = std::max(1.0, double(split.size()) / kSplitsTried);
+                for (double x = 0; x < double(split.size()) && repl.empty(); x += stride) {
+                  const Candidate& c = cand[split[size_t(x)]];
+                  auto first = make(from, T, c);
+                  if (!first) continue;
+                  auto T2 = aimed(c.e, first->end_tangent, to, out);
+                  if (!T2) continue;
+                  auto second = through(c.e, *T2, to);
+                  if (second && meets(*second)) repl = {*first, *second};
+                }
+                if (!repl.empty()) break;
+              }
+            }
+            if (!repl.empty()) break;
+          }
+          if (repl.empty()) continue;
+          chain.erase(chain.begin() + i, chain.begin() + i + w);
+          chain.insert(chain.begin() + i, repl.begin(), repl.end());
+          changed = true;
+          break;
+        }
+      }
+      i = changed ? (i > 0 ? i - 1 : 0) : i + 1;
+    }
   }
 
   /// One node of the beam search: the chain reached vertex `v` and leaves it along `T`.

@@ -39,6 +39,7 @@ struct FitOptions {
   bool helical = true;             ///< arcs may move along the plane's normal axis
   uint32_t beam_width = 8;  ///< Arcs method: chains kept per primitive count
   int beam_branch = 3;             ///< Arcs method: checked primitives per chain and start tangent
+  bool merge = true;               ///< Arcs method: merge neighbouring primitives after the search
   uint32_t stream_window = 256;    ///< Stream method: most moves one primitive may replace
 };
 
