@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace arcpress {
 
@@ -86,8 +87,12 @@ Deviation planar_arc_deviation(std::span<const Vec3> pts, const ArcGeom& arc, do
       dev.at_index = m;
     }
   };
-  std::vector<double> phi(n), radial(n);
-  std::vector<Vec2> unit(n);
+  // Scratch kept between calls: the fitter measures many short candidates.
+  thread_local std::vector<double> phi, radial;
+  thread_local std::vector<Vec2> unit;
+  phi.resize(n);
+  radial.resize(n);
+  unit.resize(n);
   for (size_t m = 0; m < n; ++m) {
     Vec2 v = rel(m);
     double len = v.norm();

@@ -61,6 +61,7 @@ class RunFitter {
     min_alpha_ = pseudo_angle_of(std::min(deg_to_rad(o.min_sweep_deg) / 2, kPi));
     line_alpha_ = pseudo_angle_of(line_kink_);
     hard_.assign(n_ + 1, 0);
+    heading_.assign(n_ + 1, std::nullopt);
     soft_.assign(n_ + 1, 0);
     for (uint32_t v = 1; v < n_; ++v) {
       double l1 = (p_[v] - p_[v - 1]).norm(), l2 = (p_[v + 1] - p_[v]).norm();
@@ -82,6 +83,7 @@ class RunFitter {
       uint32_t limit = a + 1;
       while (limit < n_ && !hard_[limit]) ++limit;
       stretch_start_ = a;
+      for (uint32_t v = a + 1; v < limit; ++v) heading_[v] = input_tangent(v, a, limit);
       size_t forced = 0;
       std::vector<Chosen> chain = o_.method == FitOptions::Method::Stream ? stream_chain(a, limit, forced)
                                                                          : greedy_chain(a, std::nullopt, limit, forced);
@@ -269,8 +271,8 @@ class RunFitter {
     Score sc;
     sc.end = c.prim.end_vertex;
     sc.reach = reach_after(sc.end, c.end_tangent, limit);
-    if (auto t = input_tangent(sc.end, stretch_start_, limit))
-      sc.on_course = std::atan2(std::abs(cross2(*t, c.end_tangent)), t->dot(c.end_tangent)) <= kOnCourseRad;
+    if (const auto& t = heading_[sc.end])
+      sc.on_course = within(*t, c.end_tangent, kOnCourseRad);
     return sc;
   }
 
@@ -305,11 +307,46 @@ class RunFitter {
     }
   }
 
+  /// Up to `count` candidates from `a` along `T`, spread over the longer half of what the
+  /// scan allows, longest first; not yet checked exactly.
+  void pick(uint32_t a, const Vec2& T, uint32_t limit, int count, std::vector<Candidate>& out) const {
+    scan(a, T, limit, scratch_);
+    out.clear();
+    const size_t n = scratch_.size(), want = static_cast<size_t>(count);
+    const size_t step = std::max<size_t>(1, n / (2 * want));
+    for (size_t i = n; i > 0 && out.size() < want; i = i > step ? i - step : 0) out.push_back(scratch_[i - 1]);
+  }
+
+  /// What candidate `c` from `a` along `T` would be, for scoring before the exact check: its
+  /// end vertex and end tangent (T reflected about the chord; a line's is the chord).
+  Chosen unchecked(uint32_t a, const Vec2& T, const Candidate& c) const {
+    Chosen lite;
+    lite.prim.end_vertex = c.e;
+    Vec2 chord = q(c.e) - q(a);
+    lite.end_tangent = c.line ? Vec2(chord.normalized()) : reflected_end(a, T, c.e);
+    return lite;
+  }
+
   /// Among the checked primitives from `a` along `T`, the one after which the chain reaches
   /// furthest in the next step (two-step look-ahead over a few long candidates); ties go
   /// to the longer primitive. A primitive after which the chain cannot go on tangentially
   /// is taken only when there is no other.
   std::optional<Chosen> best_from(uint32_t a, const Vec2& T, uint32_t limit) const {
+    // Scored first, checked exactly in the order of their scores: the first that passes
+    // wins, so most steps check one primitive. (A candidate's end tangent is T reflected
+    // about its chord, a line's the chord.)
+    std::vector<Candidate> cand;
+    pick(a, T, limit, kLookahead, cand);
+    struct Ranked {
+      size_t i;
+      Score sc;
+    };
+    std::vector<Ranked> ranked;
+    for (size_t i = 0; i < cand.size(); ++i) ranked.push_back({i, score(unchecked(a, T, cand[i]), limit)});
+    std::stable_sort(ranked.begin(), ranked.end(), [](const Ranked& x, const Ranked& y) { return x.sc > y.sc; });
+    for (const Ranked& r : ranked)
+      if (auto c = make(a, T, cand[r.i])) return c;
+    // None of those passes the exact check: the walk that steps back over the rest.
     std::vector<Chosen> made;
     checked_from(a, T, limit, kLookahead, made);
     std::optional<Chosen> best;
@@ -464,6 +501,11 @@ class RunFitter {
 
   /// Signed angle from a to b, radians.
   static double angle_to(const Vec2& a, const Vec2& b) { return std::atan2(cross2(a, b), a.dot(b)); }
+  /// Whether unit vectors a and b are at most `rad` (< π/2) apart, without trigonometry
+  /// on the vectors.
+  static bool within(const Vec2& a, const Vec2& b, double rad) {
+    return a.dot(b) > 0 && std::abs(cross2(a, b)) <= std::sin(rad);
+  }
 
   /// The end tangent of the arc leaving `from` along T through `to`: T reflected about the
   /// chord (a line's is the chord itself, within the line allowance of that).
@@ -490,9 +532,9 @@ class RunFitter {
     // to `out` as it can; nothing when even the largest turn misses it.
     auto aimed = [&](uint32_t from, const Vec2& in, uint32_t to, const std::optional<Vec2>& out) -> std::optional<Vec2> {
       if (!out) return in;
-      double d0 = angle_to(reflected_end(from, in, to), *out);
-      if (std::abs(d0) > 2 * turn + line_kink_) return std::nullopt;
-      return rotated(in, std::clamp(-d0, -turn, turn));
+      const Vec2 end = reflected_end(from, in, to);
+      if (!within(end, *out, 2 * turn + line_kink_)) return std::nullopt;
+      return rotated(in, std::clamp(-angle_to(end, *out), -turn, turn));
     };
     // After a merge at i, the joint before it may merge too: step back one.
     for (size_t i = 0; i + 1 < chain.size();) {
@@ -504,7 +546,7 @@ class RunFitter {
           const uint32_t to = chain[i + w - 1].prim.end_vertex;
           std::optional<Vec2> out;
           if (i + w < chain.size()) out = start_tangent(chain[i + w], to);
-          auto meets = [&](const Chosen& c) { return !out || std::abs(angle_to(c.end_tangent, *out)) <= turn; };
+          auto meets = [&](const Chosen& c) { return !out || within(c.end_tangent, *out, turn); };
           // Start tangents: the incoming one (turned below), or at the stretch's start the
           // input's own directions; with a fixed next joint, the one ending exactly on it.
           std::vector<Vec2> starts;
@@ -518,7 +560,7 @@ class RunFitter {
           for (const Vec2& T0 : starts) {
             if (w == 2) {
               std::optional<Vec2> T = i > 0 ? aimed(from, T0, to, out) : std::optional<Vec2>(T0);
-              if (!T) continue;
+              if (!T || (i == 0 && out && !within(reflected_end(from, T0, to), *out, turn + line_kink_))) continue;
               auto c = through(from, *T, to);
               if (c && meets(*c)) repl = {*c};
             } else {
@@ -585,13 +627,16 @@ class RunFitter {
     const double turn = 0.45 * deg_to_rad(o_.g1_angle_deg);
     const double bin_rad = deg_to_rad(o_.g1_angle_deg) / 8;
     const size_t width = o_.beam_width;
+    // Candidates are scored first and checked exactly only when the beam keeps them.
     struct Made {
       int from;
-      Chosen c;
+      Vec2 T;
+      Candidate cand;
+      Chosen c;  ///< unchecked(): end vertex and tangent only
       Score sc;
     };
     std::vector<Made> made;
-    std::vector<Chosen> out;
+    std::vector<Candidate> out;
     std::vector<std::pair<uint32_t, long>> seen;
     int furthest = -1;
     int guide = -1;  // the node the greedy chain would be at: the beam never does worse
@@ -618,18 +663,21 @@ class RunFitter {
       ++step;
       for (int i : layer) {
         const Node nd = nodes[i];
-        out.clear();
-        checked_from(nd.v, nd.T, limit, o_.beam_branch, out);
-        if (nd.parent >= 0) {
-          checked_from(nd.v, rotated(nd.T, turn), limit, o_.beam_branch, out);
-          checked_from(nd.v, rotated(nd.T, -turn), limit, o_.beam_branch, out);
-        }
-        for (const Chosen& c : out) {
-          if (c.prim.end_vertex >= limit) {
-            nodes.push_back({c, i, c.prim.end_vertex, c.end_tangent});
-            return chain_to(nodes, static_cast<int>(nodes.size()) - 1);
+        for (double f : {0.0, 1.0, -1.0}) {
+          if (f != 0 && nd.parent < 0) break;
+          const Vec2 T = f == 0 ? nd.T : rotated(nd.T, f * turn);
+          pick(nd.v, T, limit, o_.beam_branch, out);
+          for (const Candidate& cd : out) {
+            if (cd.e >= limit) {
+              if (auto c = make(nd.v, T, cd)) {
+                nodes.push_back({*c, i, c->prim.end_vertex, c->end_tangent});
+                return chain_to(nodes, static_cast<int>(nodes.size()) - 1);
+              }
+              continue;
+            }
+            Chosen lite = unchecked(nd.v, T, cd);
+            made.push_back({i, T, cd, lite, score(lite, limit)});
           }
-          made.push_back({i, c, score(c, limit)});
         }
       }
       // Half the beam goes to the chains whose next step reaches furthest, half to those
@@ -648,14 +696,19 @@ class RunFitter {
       }
       auto keep_best = [&](size_t count, auto better) {
         std::stable_sort(made.begin(), made.end(), better);
-        for (const Made& m : made) {
+        for (Made& m : made) {
           if (next.size() >= count) break;
+          if (m.from < 0) continue;  // failed its exact check, or kept already
           uint32_t e = m.c.prim.end_vertex;
           long bin = std::lround(std::atan2(m.c.end_tangent.y(), m.c.end_tangent.x()) / bin_rad);
           std::pair<uint32_t, long> key{e, bin};
           if (std::find(seen.begin(), seen.end(), key) != seen.end()) continue;
+          auto c = make(nodes[m.from].v, m.T, m.cand);
+          const int from = m.from;
+          m.from = -1;
+          if (!c) continue;
           seen.push_back(key);
-          nodes.push_back({m.c, m.from, e, m.c.end_tangent});
+          nodes.push_back({*c, from, e, c->end_tangent});
           int id = static_cast<int>(nodes.size()) - 1;
           if (furthest < 0 || nodes[furthest].v < e) furthest = id;
           next.push_back(id);
@@ -754,7 +807,9 @@ class RunFitter {
   std::vector<Vec3> p_;           // vertices in plane coordinates (first, second, normal)
   std::vector<uint8_t> hard_;     // corner: tangent may change, a primitive ends here
   std::vector<uint8_t> soft_;     // extrusion rate changes: a primitive ends here, tangent kept
+  std::vector<std::optional<Vec2>> heading_;  // input_tangent() of each vertex inside the stretch
   mutable std::vector<Candidate> next_;  // scratch for reach_after
+  mutable std::vector<Candidate> scratch_;  // scratch for pick
   uint32_t stretch_start_ = 0;    // first vertex of the current corner-free stretch
   double eps_ = 0;                // band the fitter works to, mm
   double line_kink_ = 0;          // largest tangent-chord angle written as a line, rad
