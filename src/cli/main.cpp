@@ -211,6 +211,8 @@ int main(int argc, char** argv) {
   app.add_option("--corner-angle", a.opt.fit.corner_angle_deg,
                  "Input turns sharper than this (degrees) are corners, kept sharp")
       ->check(CLI::Range(0.0, 180.0))->capture_default_str();
+  app.add_flag("--spikes", a.opt.fit.spikes,
+               "Treat a lone sharp jag within half the band of its neighbours' chord as noise, not a corner");
   app.add_option("--min-radius", a.opt.fit.min_radius_mm, "Arcs with a smaller radius (mm) become lines")
       ->check(CLI::NonNegativeNumber)->capture_default_str();
   app.add_option("--max-radius", a.opt.fit.max_radius_mm, "Arcs with a larger radius (mm) become lines")

@@ -277,6 +277,33 @@ TEST_CASE("merging after the search: two primitives become one, three become two
   CHECK(fewer >= 1);
 }
 
+TEST_CASE("with --spikes, a lone jag inside the band is noise, not a corner; without, it is a corner", "[fit][spikes]") {
+  // A digitised arc, r = 5 mm, a point every 0.01 mm, every 100th point pushed out 0.004 mm:
+  // each push turns the path by about 40°, sharper than the corner angle.
+  std::vector<Pt> pts = arc_points(0, 0, 5, 0, 90, rad_to_deg(0.01 / 5));
+  size_t pushed = 0;
+  for (size_t i = 50; i + 50 < pts.size(); i += 100, ++pushed) {
+    double r = std::hypot(pts[i].x, pts[i].y);
+    pts[i].x *= (r + 0.004) / r;
+    pts[i].y *= (r + 0.004) / r;
+  }
+  REQUIRE(pushed >= 5);
+  FitOptions plain, spikes;
+  spikes.spikes = true;
+  auto a = compress_text(program(pts), plain);
+  auto b = compress_text(program(pts), spikes);
+  INFO("corners kept: " << a.arcs + a.lines << " blocks; spikes skipped: " << b.arcs + b.lines);
+  CHECK(a.arcs + a.lines > pushed);  // every jag is a corner that ends a primitive
+  CHECK(b.arcs + b.lines <= 3);
+  CHECK(b.r.comparison.max_deviation_mm <= spikes.tolerance_mm);
+  CHECK(b.r.comparison.max_smooth_kink_deg <= spikes.g1_angle_deg);
+  CHECK(b.r.forced_kinks == 0);
+  // A real corner is never a spike: its vertex is far from its neighbours' chord.
+  std::vector<Pt> square = {{0, 0, 0}, {10, 0, 0}, {10, 10, 0}, {0, 10, 0}};
+  auto c = compress_text(program(square), spikes);
+  CHECK(c.lines == 3);
+}
+
 TEST_CASE("the streaming seed method: arcs through both end points, grown in a bounded window", "[fit][stream]") {
   FitOptions f;
   f.method = FitOptions::Method::Stream;

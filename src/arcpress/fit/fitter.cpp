@@ -63,10 +63,23 @@ class RunFitter {
     hard_.assign(n_ + 1, 0);
     heading_.assign(n_ + 1, std::nullopt);
     soft_.assign(n_ + 1, 0);
+    auto corner = [&](uint32_t a, uint32_t b, uint32_t c) {
+      return is_corner(p_[a], p_[b], p_[c], o.tolerance_mm, o.corner_angle_deg);
+    };
+    // Seed 004's spikes (option): a lone vertex where the path jags out and back, within half
+    // the band of its neighbours' chord, with the path smooth once it is skipped. Noise, not
+    // a corner; the fitted path still passes within the band of it.
+    std::vector<uint8_t> spike(n_ + 1, 0);
+    for (uint32_t v = 2; o.spikes && v + 2 <= n_; ++v)
+      spike[v] = !spike[v - 1] && corner(v - 1, v, v + 1) &&
+                 point_segment_distance(p_[v], p_[v - 1], p_[v + 1]) <= 0.5 * o.tolerance_mm &&
+                 !corner(v - 2, v - 1, v + 1) && !corner(v - 1, v + 1, v + 2);
     for (uint32_t v = 1; v < n_; ++v) {
       double l1 = (p_[v] - p_[v - 1]).norm(), l2 = (p_[v + 1] - p_[v]).norm();
-      // The same corner rule, with the same band, as the verifier uses to judge joints.
-      if (is_corner(p_[v - 1], p_[v], p_[v + 1], o.tolerance_mm, o.corner_angle_deg)) hard_[v] = 1;
+      // The same corner rule, with the same band, as the verifier uses to judge joints (with
+      // spikes skipped when asked).
+      uint32_t before = spike[v - 1] ? v - 2 : v - 1, after = spike[v + 1] ? v + 2 : v + 1;
+      if (!spike[v] && corner(before, v, after)) hard_[v] = 1;
       // Extrusion per mm must stay (nearly) constant inside one primitive.
       double e1 = run.vertex(in, v)[kE] - run.vertex(in, v - 1)[kE];
       double e2 = run.vertex(in, v + 1)[kE] - run.vertex(in, v)[kE];

@@ -37,6 +37,10 @@ struct FitOptions {
   double min_arc_length_mm = 0.0;  ///< shorter arcs become lines (firmware re-segmentation)
   uint32_t min_arc_moves = 0;      ///< an arc must replace at least this many input moves
   bool helical = true;             ///< arcs may move along the plane's normal axis
+  /// Seed 004: a lone sharp jag whose vertex lies within half the band of its neighbours'
+  /// chord (noise in digitised paths) is not a corner. Off by default: every turn sharper
+  /// than corner_angle_deg is a corner.
+  bool spikes = false;
   uint32_t beam_width = 8;  ///< Arcs method: chains kept per primitive count
   int beam_branch = 3;             ///< Arcs method: checked primitives per chain and start tangent
   bool merge = true;               ///< Arcs method: merge neighbouring primitives after the search
