@@ -304,6 +304,33 @@ TEST_CASE("with --spikes, a lone jag inside the band is noise, not a corner; wit
   CHECK(c.lines == 3);
 }
 
+TEST_CASE("Lowe's seed method: lines found by recursive splitting, arcs over runs of them", "[fit][lowe]") {
+  FitOptions f;
+  f.method = FitOptions::Method::Lowe;
+  // A slot: two straight sides sampled every 0.5 mm and two half circles every 2°. The sides
+  // are found as one line each, whatever their sampling; each half circle becomes arcs.
+  std::vector<Pt> slot;
+  for (int i = 0; i <= 40; ++i) slot.push_back({i * 0.5, 0, 0});
+  for (auto& p : arc_points(20, 5, 5, -90, 90, 2)) slot.push_back(p);
+  for (int i = 39; i >= 0; --i) slot.push_back({i * 0.5, 10, 0});
+  for (auto& p : arc_points(0, 5, 5, 90, 270, 2)) slot.push_back(p);
+  auto o = compress_text(program(slot), f);
+  INFO(o.r.output);
+  CHECK(o.lines <= 4);
+  CHECK(o.arcs >= 2);
+  CHECK(o.arcs + o.lines < slot.size() / 10);
+  CHECK(o.r.comparison.max_deviation_mm <= f.tolerance_mm);
+  // On changing curvature its joints kink (not made tangent), and are counted.
+  std::vector<Pt> c;
+  for (int i = 0; i < 2000; ++i) {
+    double x = -2 + 4 * i / 1999.0;
+    c.push_back({x, x * x * x, 0});
+  }
+  auto k = compress_text(program(c), f);
+  CHECK(k.r.forced_kinks > 0);
+  CHECK(k.r.comparison.max_deviation_mm <= f.tolerance_mm);
+}
+
 TEST_CASE("the streaming seed method: arcs through both end points, grown in a bounded window", "[fit][stream]") {
   FitOptions f;
   f.method = FitOptions::Method::Stream;
@@ -350,7 +377,8 @@ TEST_CASE("random polylines always stay inside the band", "[fit][property]") {
     FitOptions f;
     f.tolerance_mm = trial % 2 ? 0.01 : 0.002;
     INFO("trial " << trial);
-    for (auto m : {FitOptions::Method::Arcs, FitOptions::Method::Greedy, FitOptions::Method::Stream}) {
+    for (auto m : {FitOptions::Method::Arcs, FitOptions::Method::Greedy, FitOptions::Method::Stream,
+                   FitOptions::Method::Lowe}) {
       f.method = m;
       auto o = compress_text(program(p), f);
       CHECK(o.r.comparison.max_deviation_mm <= f.tolerance_mm);

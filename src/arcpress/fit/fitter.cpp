@@ -99,7 +99,8 @@ class RunFitter {
       for (uint32_t v = a + 1; v < limit; ++v) heading_[v] = input_tangent(v, a, limit);
       size_t forced = 0;
       std::vector<Chosen> chain = o_.method == FitOptions::Method::Stream ? stream_chain(a, limit, forced)
-                                                                         : greedy_chain(a, std::nullopt, limit, forced);
+                                  : o_.method == FitOptions::Method::Lowe ? lowe_chain(a, limit, forced)
+                                                                          : greedy_chain(a, std::nullopt, limit, forced);
       // The greedy chain is the answer for stretches it covers in one or two primitives;
       // longer ones are searched again and the shorter chain wins.
       if (o_.method == FitOptions::Method::Arcs && o_.beam_width > 1 && chain.size() > 2) {
@@ -431,7 +432,6 @@ class RunFitter {
   /// differ by more than the G1 angle counts as forced.
   std::vector<Chosen> stream_chain(uint32_t a, uint32_t limit, size_t& forced) const {
     std::vector<Chosen> chain;
-    const double g1 = deg_to_rad(o_.g1_angle_deg);
     while (a < limit) {
       Vec2 chord = q(a + 1) - q(a);
       Chosen best;
@@ -443,19 +443,80 @@ class RunFitter {
         if (!c) break;
         best = *c;
       }
-      if (!chain.empty() && !hard_[a]) {
-        // A line leaves along its end tangent; an arc along its radius at `a` turned a quarter.
-        Vec2 start_tangent = best.end_tangent;
-        if (best.prim.kind == Primitive::Kind::Arc)
-          start_tangent = left_normal((q(a) - best.prim.center).normalized()) * (best.prim.ccw ? 1.0 : -1.0);
-        const Vec2& before = chain.back().end_tangent;
-        if (std::atan2(std::abs(cross2(before, start_tangent)), before.dot(start_tangent)) > g1) {
-          ++forced;
-          best.kinked = true;
+      append_counting_kink(chain, best, a, forced);
+      a = best.prim.end_vertex;
+    }
+    return chain;
+  }
+
+  /// Appends `c` (starting at vertex a) to a chain whose joints are not made tangent: where
+  /// the input is smooth and the tangent changes by more than the G1 angle, `forced` counts it.
+  void append_counting_kink(std::vector<Chosen>& chain, Chosen c, uint32_t a, size_t& forced) const {
+    if (!chain.empty() && !hard_[a] &&
+        !within(chain.back().end_tangent, start_tangent(c, a), deg_to_rad(o_.g1_angle_deg))) {
+      ++forced;
+      c.kinked = true;
+    }
+    chain.push_back(c);
+  }
+
+  /// Seed 000: Lowe-style line detection, then arcs over runs of the lines. The stretch is
+  /// split recursively at the vertex farthest from the chord until every piece is a line
+  /// inside the band (so the breakpoints adapt to the scale of the shape); then, from each
+  /// breakpoint, a primitive grows over as many following breakpoints as a line or the arc
+  /// through both end points (centre on the chord's bisector, least squares) keeps inside the
+  /// band. Joints are not made tangent; kinks at smooth joints count as forced.
+  std::vector<Chosen> lowe_chain(uint32_t a, uint32_t limit, size_t& forced) const {
+    std::vector<uint32_t> breaks{a};
+    std::vector<std::pair<uint32_t, uint32_t>> todo{{a, limit}};
+    while (!todo.empty()) {
+      auto [i, j] = todo.back();
+      todo.pop_back();
+      double worst = 0;
+      uint32_t at = i;
+      for (uint32_t m = i + 1; m < j; ++m) {
+        double d = point_segment_distance(p_[m], p_[i], p_[j]);
+        if (d > worst) {
+          worst = d;
+          at = m;
         }
       }
-      chain.push_back(best);
-      a = best.prim.end_vertex;
+      bool soft_inside = false;
+      for (uint32_t m = i + 1; m < j && !soft_inside; ++m) soft_inside = soft_[m];
+      if (j - i > 1 && (worst > eps_ || soft_inside)) {
+        if (at == i) at = i + (j - i) / 2;  // a soft vertex alone: halve
+        for (uint32_t m = i + 1; m < j; ++m)
+          if (soft_[m]) at = m;
+        todo.push_back({at, j});
+        todo.push_back({i, at});
+      } else {
+        breaks.push_back(j);
+      }
+    }
+    std::vector<Chosen> chain;
+    for (size_t k = 0; k + 1 < breaks.size();) {
+      const uint32_t from = breaks[k];
+      std::optional<Chosen> best = make_line(from, breaks[k + 1], Vec2(1, 0));
+      if (!best) {  // a soft split that is not straight: the input's own moves
+        best.emplace();
+        best->prim = {from + 1, Primitive::Kind::Line};
+        Vec2 chord = q(from + 1) - q(from);
+        best->end_tangent = chord.norm() > kLengthEpsMm ? Vec2(chord.normalized()) : Vec2(1, 0);
+        breaks.insert(breaks.begin() + k + 1, from + 1);
+      }
+      size_t next = k + 1;
+      for (size_t j = k + 2; j < breaks.size(); ++j) {
+        bool soft_inside = false;
+        for (uint32_t m = from + 1; m < breaks[j] && !soft_inside; ++m) soft_inside = soft_[m];
+        if (soft_inside) break;
+        std::optional<Chosen> c = make_line(from, breaks[j], best->end_tangent);
+        if (!c) c = through_ends(from, breaks[j]);
+        if (!c) break;
+        best = c;
+        next = j;
+      }
+      append_counting_kink(chain, *best, from, forced);
+      k = next;
     }
     return chain;
   }
