@@ -86,6 +86,8 @@ class RunFitter {
       double r1 = e1 / l1, r2 = e2 / l2;
       if ((e1 == 0) != (e2 == 0) || std::abs(r1 - r2) > 0.05 * std::max(std::abs(r1), std::abs(r2))) soft_[v] = 1;
     }
+    soft_upto_.assign(n_ + 2, 0);
+    for (uint32_t v = 0; v <= n_; ++v) soft_upto_[v + 1] = soft_upto_[v] + soft_[v];
   }
 
   FitResult fit() {
@@ -96,7 +98,8 @@ class RunFitter {
       uint32_t limit = a + 1;
       while (limit < n_ && !hard_[limit]) ++limit;
       stretch_start_ = a;
-      for (uint32_t v = a + 1; v < limit; ++v) heading_[v] = input_tangent(v, a, limit);
+      if (o_.method == FitOptions::Method::Arcs || o_.method == FitOptions::Method::Greedy)
+        for (uint32_t v = a + 1; v < limit; ++v) heading_[v] = input_tangent(v, a, limit);
       size_t forced = 0;
       std::vector<Chosen> chain = o_.method == FitOptions::Method::Stream ? stream_chain(a, limit, forced)
                                   : o_.method == FitOptions::Method::Lowe ? lowe_chain(a, limit, forced)
@@ -127,6 +130,9 @@ class RunFitter {
   }
 
   Vec2 q(uint32_t v) const { return {p_[v].x(), p_[v].y()}; }
+  /// Whether a change of extrusion rate lies strictly between vertices a and e (it would end
+  /// a primitive there).
+  bool soft_between(uint32_t a, uint32_t e) const { return e > a + 1 && soft_upto_[e] > soft_upto_[a + 1]; }
 
   /// All ends e in (a, limit] for which the arc (or line) leaving `a` along `T` and passing
   /// exactly through vertex e keeps every vertex in between inside the band. For a fixed
@@ -481,12 +487,12 @@ class RunFitter {
           at = m;
         }
       }
-      bool soft_inside = false;
-      for (uint32_t m = i + 1; m < j && !soft_inside; ++m) soft_inside = soft_[m];
+      const bool soft_inside = soft_between(i, j);
       if (j - i > 1 && (worst > eps_ || soft_inside)) {
-        if (at == i) at = i + (j - i) / 2;  // a soft vertex alone: halve
-        for (uint32_t m = i + 1; m < j; ++m)
-          if (soft_[m]) at = m;
+        if (soft_inside) {  // split at the first change of extrusion rate
+          at = i + 1;
+          while (!soft_[at]) ++at;
+        }
         todo.push_back({at, j});
         todo.push_back({i, at});
       } else {
@@ -506,9 +512,7 @@ class RunFitter {
       }
       size_t next = k + 1;
       for (size_t j = k + 2; j < breaks.size(); ++j) {
-        bool soft_inside = false;
-        for (uint32_t m = from + 1; m < breaks[j] && !soft_inside; ++m) soft_inside = soft_[m];
-        if (soft_inside) break;
+        if (soft_between(from, breaks[j])) break;
         std::optional<Chosen> c = make_line(from, breaks[j], best->end_tangent);
         if (!c) c = through_ends(from, breaks[j]);
         if (!c) break;
@@ -566,8 +570,7 @@ class RunFitter {
     Vec2 u = q(e) - q(a);
     double uu = u.squaredNorm();
     if (uu <= kLengthEpsMm * kLengthEpsMm || u.dot(T) <= 0) return std::nullopt;
-    for (uint32_t m = a + 1; m < e; ++m)
-      if (soft_[m]) return std::nullopt;  // a change of extrusion rate ends a primitive
+    if (soft_between(a, e)) return std::nullopt;
     Vec2 N = left_normal(T);
     bool line = pseudo_angle(u.dot(T), std::abs(u.dot(N))) <= line_alpha_;
     return make(a, T, Candidate{e, 2 * u.dot(N) / uu, line});
@@ -881,6 +884,7 @@ class RunFitter {
   std::vector<Vec3> p_;           // vertices in plane coordinates (first, second, normal)
   std::vector<uint8_t> hard_;     // corner: tangent may change, a primitive ends here
   std::vector<uint8_t> soft_;     // extrusion rate changes: a primitive ends here, tangent kept
+  std::vector<uint32_t> soft_upto_;  // soft vertices before each vertex (prefix count)
   std::vector<std::optional<Vec2>> heading_;  // input_tangent() of each vertex inside the stretch
   mutable std::vector<Candidate> next_;  // scratch for reach_after
   mutable std::vector<Candidate> scratch_;  // scratch for pick
