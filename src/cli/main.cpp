@@ -119,13 +119,14 @@ int run_compress(const CompressArgs& a) {
                "  dialect        {}\n"
                "  written        {} G1 + {} G2/G3 ({} blocks for {} moves, {:.1f} %)\n"
                "  kept as input  {} arcs that would not print inside the dialect's rules, {} over-long lines\n"
+               "  planes         {} G17/G18/G19 blocks around runs fitted in another plane\n"
                "  time           {:.3f} s\n",
                name, out_path == "-" ? "<stdout>" : out_path, r.blocks_in, r.bytes_in, r.output.size(),
                r.bytes_in ? 100.0 * double(r.output.size()) / double(r.bytes_in) : 100.0, st.runs, st.moves_in,
                opt.dialect.source.empty() ? opt.dialect.name : opt.dialect.name + " (" + opt.dialect.source + ")",
                st.lines_out, st.arcs_out, st.lines_out + st.arcs_out, st.moves_in,
                st.moves_in ? 100.0 * double(st.lines_out + st.arcs_out) / double(st.moves_in) : 100.0,
-               st.arcs_unprintable, st.long_lines_kept, s);
+               st.arcs_unprintable, st.long_lines_kept, st.plane_words_added, s);
     if (r.verified) {
       const auto& c = r.comparison;
       DiffPlace w = r.check.worst.empty() ? DiffPlace{} : r.check.worst.front();

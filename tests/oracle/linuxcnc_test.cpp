@@ -146,3 +146,67 @@ TEST_CASE("LinuxCNC's rs274 accepts every compressed CNC corpus program and read
   CHECK(judged >= 5);
   CHECK(arcs > 1000);
 }
+
+TEST_CASE("LinuxCNC's rs274 reads the G18 and G19 arcs of a raster finishing program within the band",
+          "[oracle][linuxcnc][plane]") {
+  if (!rs274_available()) {
+    WARN("rs274 (Debian package linuxcnc-uspace) is not installed: skipped");
+    return;
+  }
+  // Parallel finishing over a dome (sphere of radius 15 mm, its top 5 mm above the floor),
+  // under G17: passes along X at fixed Y, then passes along Y at fixed X, 0.2 mm steps,
+  // coordinates printed to 4 decimals as CAM systems print them.
+  std::string g = "G21 G90 G17 G64\nG0 X-20 Y-6 Z5\nG1 Z0 F800\n";
+  auto height = [](double u, double v) { return std::max(0.0, std::sqrt(std::max(0.0, 225 - u * u - v * v)) - 10); };
+  for (int pass = 0; pass < 6; ++pass) {
+    double fixed = -5 + 2 * pass;
+    for (int k = 0; k <= 200; ++k) {
+      double u = (pass % 2 ? 20.0 : -20.0) + (pass % 2 ? -0.2 : 0.2) * k;
+      g += fmt::format("G1 X{:.4f} Y{:.4f} Z{:.4f}\n", u, fixed, height(u, fixed));
+    }
+  }
+  g += "G0 Z5\nG0 X-6 Y-20\nG1 Z0\n";
+  for (int pass = 0; pass < 6; ++pass) {
+    double fixed = -5 + 2 * pass;
+    for (int k = 0; k <= 200; ++k) {
+      double v = (pass % 2 ? 20.0 : -20.0) + (pass % 2 ? -0.2 : 0.2) * k;
+      g += fmt::format("G1 X{:.4f} Y{:.4f} Z{:.4f}\n", fixed, v, height(fixed, v));
+    }
+  }
+  g += "G0 Z5\nG2 X21 Y-20 I8 J0\nM2\n";
+
+  fs::path dir = test::temp_dir("rs274-planes");
+  test::write_file(dir / "strict.ini",
+                   "[RS274NGC]\nCENTER_ARC_RADIUS_TOLERANCE_MM = 0.001\nCENTER_ARC_RADIUS_TOLERANCE_INCH = 0.00004\n");
+  test::write_file(dir / "tools.tbl", "T1 P1 D3.0 ;\n");
+  test::write_file(dir / "raster.ngc", g);
+  Rs274 original = run_rs274(dir, dir / "raster.ngc");
+  REQUIRE(original.exit_code == 0);
+
+  DiagnosticSink sink("raster.ngc");
+  CompressOptions opt;
+  opt.dialect = load_dialect_file(ARCPRESS_SOURCE_DIR "/dialects/linuxcnc.toml");
+  auto r = compress("raster.ngc", g, opt, sink);
+  REQUIRE(r.ok);
+  REQUIRE(r.within_band());
+  CHECK(r.stats.plane_words_added == 24);  // G18 or G19 before, G17 after, each pass
+  CHECK(r.stats.arcs_out >= 12);
+  CHECK(r.stats.arcs_out + r.stats.lines_out < 2000 / 10);  // 2424 moves in
+  test::write_file(dir / "out.ngc", r.output);
+  Rs274 ours = run_rs274(dir, dir / "out.ngc");
+  INFO("compressed: " << ours.error);
+  REQUIRE(ours.exit_code == 0);
+  CHECK(ours.canon.find("SELECT_PLANE(CANON_PLANE_XZ)") != std::string::npos);
+  CHECK(ours.canon.find("SELECT_PLANE(CANON_PLANE_YZ)") != std::string::npos);
+
+  DiagnosticSink sa("rs274(original)"), sb("rs274(compressed)");
+  Program pa = lex("rs274(original)", canon_to_gcode(original.canon), sa);
+  Program pb = lex("rs274(compressed)", canon_to_gcode(ours.canon), sb);
+  Interpretation ia = interpret(pa, sa), ib = interpret(pb, sb);
+  CompareOptions co;
+  co.tolerance_mm = opt.fit.tolerance_mm;
+  PathComparison c = compare_paths(pa, ia, pb, ib, co);
+  INFO(c.mismatch);
+  CHECK(c.matched);
+  CHECK(c.max_deviation_mm <= opt.fit.tolerance_mm + 0.00015);
+}

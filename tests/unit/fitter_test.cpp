@@ -7,6 +7,7 @@
 #include <random>
 
 #include "arcpress/api/arcpress.hpp"
+#include "arcpress/core/deviation.hpp"
 
 using namespace arcpress;
 
@@ -91,6 +92,34 @@ TEST_CASE("a real corner stays a sharp vertex", "[fit]") {
   CHECK(o.r.output.find("X10.0000 Y0.0000") != std::string::npos);  // the corner itself
 }
 
+TEST_CASE("next to a corner, a turn that only the arc from the corner could take up is a corner too",
+          "[fit][corner]") {
+  // A dome (circle of radius 15 mm) rising from a flat floor, sampled every 0.25 mm: the
+  // floor's last vertex is a corner, and the first vertex on the dome turns 8.5° more. No arc
+  // from the corner can take that turn inside a 0.01 mm band over 0.31 mm, and any G1 chain
+  // through it swings around the dome with dozens of short arcs.
+  std::vector<Pt> pts;
+  for (int k = 0; k <= 160; ++k) {
+    double x = -20 + 0.25 * k;
+    pts.push_back({x, std::max(0.0, std::sqrt(std::max(0.0, 225 - x * x)) - 10), 0});
+  }
+  auto o = compress_text(program(pts));
+  CHECK(o.arcs == 1);
+  CHECK(o.arcs + o.lines <= 5);
+  CHECK(o.r.forced_kinks == 0);
+  CHECK(o.r.comparison.smooth_joints_over_g1 == 0);
+  CHECK(o.r.comparison.max_deviation_mm <= 0.01);
+
+  // The rule itself: b turns by θ after the segment a-b of 0.3 mm that leaves corner a.
+  const double band = 0.01, len = 0.3;
+  auto turned = [&](double theta) { return Vec3(len + std::cos(theta), std::sin(theta), 0); };
+  const Vec3 a(0, 0, 0), b(len, 0, 0);
+  const double limit = 4 * band / len;  // 7.6°
+  CHECK(is_corner(a, b, turned(limit * 1.05), true, false, band, 30));
+  CHECK_FALSE(is_corner(a, b, turned(limit * 0.95), true, false, band, 30));
+  CHECK_FALSE(is_corner(a, b, turned(limit * 1.05), false, false, band, 30));  // room on both sides
+}
+
 TEST_CASE("a smooth curve is fitted with tangent-continuous joints", "[fit]") {
   // An ellipse quadrant and a sine: curvature varies, so several arcs are needed.
   std::vector<Pt> p;
@@ -166,6 +195,44 @@ TEST_CASE("arcs in the XZ and YZ planes follow G18 and G19", "[fit]") {
   CHECK(b.arcs == 1);
   CHECK(b.r.output.find(" J") != std::string::npos);
   CHECK(b.r.comparison.max_deviation_mm <= 0.01);
+}
+
+TEST_CASE("under G17, a pass lying flat in XZ or YZ becomes G18 or G19 arcs and G17 comes back after it",
+          "[fit][plane]") {
+  // A raster pass over a dome in XZ (Y fixed), a step, a pass in YZ (X fixed), then the
+  // program's own XY arc and an XY circle of G1 moves, which must still be read in XY.
+  std::vector<Pt> pts;
+  for (auto& p : arc_points(0, -6, 10, 150, 30, 1)) pts.push_back({p.x, 3, p.y});
+  for (auto& p : arc_points(0, -6, 10, 150, 30, 1)) pts.push_back({8.66, p.x, p.y});
+  std::string text = program(pts);
+  text.insert(text.rfind("M2"), "G0 Z5\nG0 X20 Y0\nG1 Z0\nG2 X30 Y0 I5 J0\n");
+  std::string circle;
+  for (auto& p : arc_points(25, 0, 5, 0, -170, 2)) circle += fmt::format("G1 X{:.4f} Y{:.4f}\n", p.x, p.y);
+  text.insert(text.rfind("M2"), circle);
+  auto o = compress_text(text);
+  CHECK(o.r.comparison.max_deviation_mm <= 0.01);
+  CHECK(o.r.check.max_deviation_mm <= 0.01);
+  CHECK(o.r.check.findings.empty());
+  CHECK(o.arcs == 3);  // one per pass, one for the circle
+  CHECK(o.r.stats.plane_words_added == 4);
+  const std::string& out = o.r.output;
+  size_t g18 = out.find("G18\n"), g19 = out.find("G19\n");
+  REQUIRE(g18 != std::string::npos);
+  REQUIRE(g19 != std::string::npos);
+  CHECK(out.find("G17\n", g18) < g19);  // G17 again before the YZ pass selects G19
+  CHECK(out.find("G17\n", g19) < out.find("G2 X30"));
+
+  SECTION("a controller without G18 and G19 gets the passes as lines") {
+    DiagnosticSink sink;
+    CompressOptions opt;
+    opt.dialect.planes = 0b001;
+    auto r = compress("t.nc", text, opt, sink);
+    REQUIRE(r.ok);
+    CHECK(r.within_band());
+    CHECK(r.stats.arcs_out == 1);
+    CHECK(r.stats.plane_words_added == 0);
+    CHECK(r.output.find("G18") == std::string::npos);
+  }
 }
 
 TEST_CASE("arcs below the minimum radius or above the maximum become lines", "[fit]") {

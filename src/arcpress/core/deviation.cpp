@@ -31,6 +31,16 @@ bool is_corner(const Vec3& a, const Vec3& b, const Vec3& c, double band_mm, doub
   return turn * l1 * l2 / (4 * (l1 + l2)) > band_mm;
 }
 
+bool is_corner(const Vec3& a, const Vec3& b, const Vec3& c, bool a_is_corner, bool c_is_corner, double band_mm,
+               double corner_angle_deg) {
+  if (is_corner(a, b, c, band_mm, corner_angle_deg)) return true;
+  if (!a_is_corner && !c_is_corner) return false;
+  Vec3 d1 = b - a, d2 = c - b;
+  double l1 = d1.norm(), l2 = d2.norm();
+  double turn = std::acos(std::clamp(d1.dot(d2) / (l1 * l2), -1.0, 1.0));
+  return (a_is_corner && turn * l1 / 4 > band_mm) || (c_is_corner && turn * l2 / 4 > band_mm);
+}
+
 double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
   Vec3 d = b - a;
   double len2 = d.squaredNorm();

@@ -148,6 +148,10 @@ class Emitter {
     }
     const Frame& fr = in_.frames[run.frame];
     in_motion_ = 10;  // every input block of a run is a G1 move
+    // A run fitted in another plane than the program's selects its plane before its first
+    // arc and gives the program's back after its last block.
+    const Plane own = in_.moves[run.first_move].plane;
+    bool plane_selected = false;
     uint32_t a = 0;
     for (const Primitive& pr : fit.prims) {
       uint32_t e = pr.end_vertex;
@@ -165,6 +169,10 @@ class Emitter {
           out_.append(p_.eol(p_.blocks[in_.moves[run.first_move + a].block]));
           header_done_ = true;
         }
+        if (arc && run.plane != own && !plane_selected) {
+          write_plane(run, a, run.plane);
+          plane_selected = true;
+        }
         const Block& last = p_.blocks[in_.moves[run.first_move + e - 1].block];
         out_ += *text;
         out_.append(p_.eol(last));
@@ -179,6 +187,17 @@ class Emitter {
       }
       a = e;
     }
+    if (plane_selected) write_plane(run, run.move_count - 1, own);
+  }
+
+  /// A block of its own selecting `plane` (G17/G18/G19), styled and ended like the run's
+  /// block of move k.
+  void write_plane(const Run& run, uint32_t k, Plane plane) {
+    const Block& b = p_.blocks[in_.moves[run.first_move + k].block];
+    out_ += style_of(b).letter('G');
+    out_ += plane == Plane::XY ? "17" : plane == Plane::ZX ? "18" : "19";
+    out_.append(p_.eol(b));
+    if (stats_) ++stats_->plane_words_added;
   }
 
   const Dialect& d() const { return opt_.dialect; }

@@ -19,6 +19,8 @@ struct EmitStats {
   size_t lines_out = 0;   ///< G1 blocks written for runs (copied or new)
   size_t arcs_out = 0;    ///< G2/G3 blocks written
   size_t motion_words_added = 0;  ///< copied blocks that needed their motion word restated
+  /// G17/G18/G19 blocks written around runs fitted in another plane than the program's.
+  size_t plane_words_added = 0;
   /// Fitted arcs written as their input lines instead: after rounding to the printed digits
   /// they broke the band, the controller's radius rule, its sweep limits or its line length.
   size_t arcs_unprintable = 0;

@@ -74,12 +74,16 @@ class RunFitter {
       spike[v] = !spike[v - 1] && corner(v - 1, v, v + 1) &&
                  point_segment_distance(p_[v], p_[v - 1], p_[v + 1]) <= 0.5 * o.tolerance_mm &&
                  !corner(v - 2, v - 1, v + 1) && !corner(v - 1, v + 1, v + 2);
+    // The same corner rule, with the same band, as the verifier uses to judge joints (with
+    // spikes skipped when asked): first each vertex alone, then with its neighbours' corners.
+    auto before = [&](uint32_t v) { return spike[v - 1] ? v - 2 : v - 1; };
+    auto after = [&](uint32_t v) { return spike[v + 1] ? v + 2 : v + 1; };
+    std::vector<uint8_t> alone(n_ + 1, 0);
+    for (uint32_t v = 1; v < n_; ++v) alone[v] = !spike[v] && corner(before(v), v, after(v));
     for (uint32_t v = 1; v < n_; ++v) {
+      const uint32_t b = before(v), a = after(v);
+      hard_[v] = !spike[v] && is_corner(p_[b], p_[v], p_[a], alone[b], alone[a], o.tolerance_mm, o.corner_angle_deg);
       double l1 = (p_[v] - p_[v - 1]).norm(), l2 = (p_[v + 1] - p_[v]).norm();
-      // The same corner rule, with the same band, as the verifier uses to judge joints (with
-      // spikes skipped when asked).
-      uint32_t before = spike[v - 1] ? v - 2 : v - 1, after = spike[v + 1] ? v + 2 : v + 1;
-      if (!spike[v] && corner(before, v, after)) hard_[v] = 1;
       // Extrusion per mm must stay (nearly) constant inside one primitive.
       double e1 = run.vertex(in, v)[kE] - run.vertex(in, v - 1)[kE];
       double e2 = run.vertex(in, v + 1)[kE] - run.vertex(in, v)[kE];
