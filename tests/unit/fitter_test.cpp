@@ -110,14 +110,21 @@ TEST_CASE("next to a corner, a turn that only the arc from the corner could take
   CHECK(o.r.comparison.smooth_joints_over_g1 == 0);
   CHECK(o.r.comparison.max_deviation_mm <= 0.01);
 
-  // The rule itself: b turns by θ after the segment a-b of 0.3 mm that leaves corner a.
+  // The rule itself: b turns by θ after the segment a-b of 0.3 mm that leaves corner a; the
+  // path goes on straight after c, or keeps turning by θ there (a coarse circle: smooth).
   const double band = 0.01, len = 0.3;
-  auto turned = [&](double theta) { return Vec3(len + std::cos(theta), std::sin(theta), 0); };
-  const Vec3 a(0, 0, 0), b(len, 0, 0);
   const double limit = 4 * band / len;  // 7.6°
-  CHECK(is_corner(a, b, turned(limit * 1.05), true, false, band, 30));
-  CHECK_FALSE(is_corner(a, b, turned(limit * 0.95), true, false, band, 30));
-  CHECK_FALSE(is_corner(a, b, turned(limit * 1.05), false, false, band, 30));  // room on both sides
+  const Vec3 a(0, 0, 0), b(len, 0, 0);
+  auto c_of = [&](double theta) -> Vec3 { return Vec3(len + len * std::cos(theta), len * std::sin(theta), 0); };
+  auto straight_on = [&](double theta) -> Vec3 { return c_of(theta) + (c_of(theta) - b); };
+  auto turning_on = [&](double theta) -> Vec3 { return c_of(theta) + len * Vec3(std::cos(2 * theta), std::sin(2 * theta), 0); };
+  for (double f : {0.95, 1.05}) {
+    double theta = f * limit;
+    Vec3 c = c_of(theta), d1 = straight_on(theta), d2 = turning_on(theta);
+    CHECK(is_corner(nullptr, a, b, c, &d1, true, false, band, 30) == (f > 1));
+    CHECK_FALSE(is_corner(nullptr, a, b, c, &d2, true, false, band, 30));
+    CHECK_FALSE(is_corner(nullptr, a, b, c, &d1, false, false, band, 30));  // no corner near
+  }
 }
 
 TEST_CASE("a smooth curve is fitted with tangent-continuous joints", "[fit]") {

@@ -31,14 +31,28 @@ bool is_corner(const Vec3& a, const Vec3& b, const Vec3& c, double band_mm, doub
   return turn * l1 * l2 / (4 * (l1 + l2)) > band_mm;
 }
 
-bool is_corner(const Vec3& a, const Vec3& b, const Vec3& c, bool a_is_corner, bool c_is_corner, double band_mm,
-               double corner_angle_deg) {
+namespace {
+/// Signed turn at q of the path p -> q -> r in the first two coordinates, radians (> 0 left).
+double signed_turn(const Vec3& p, const Vec3& q, const Vec3& r) {
+  Vec2 u(q.x() - p.x(), q.y() - p.y()), v(r.x() - q.x(), r.y() - q.y());
+  return std::atan2(cross2(u, v), u.dot(v));
+}
+}  // namespace
+
+bool is_corner(const Vec3* z, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3* d, bool a_is_corner,
+               bool c_is_corner, double band_mm, double corner_angle_deg) {
   if (is_corner(a, b, c, band_mm, corner_angle_deg)) return true;
-  if (!a_is_corner && !c_is_corner) return false;
-  Vec3 d1 = b - a, d2 = c - b;
-  double l1 = d1.norm(), l2 = d2.norm();
-  double turn = std::acos(std::clamp(d1.dot(d2) / (l1 * l2), -1.0, 1.0));
-  return (a_is_corner && turn * l1 / 4 > band_mm) || (c_is_corner && turn * l2 / 4 > band_mm);
+  if (a_is_corner == c_is_corner) return false;  // no corner near, or both: free on both sides
+  const double turn = signed_turn(a, b, c);
+  if (a_is_corner) {
+    double excess = turn - (d ? signed_turn(b, c, *d) : 0.0);
+    if (std::abs(excess) * (b - a).norm() / 4 > band_mm) return true;
+  }
+  if (c_is_corner) {
+    double excess = turn - (z ? signed_turn(*z, a, b) : 0.0);
+    if (std::abs(excess) * (c - b).norm() / 4 > band_mm) return true;
+  }
+  return false;
 }
 
 double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {

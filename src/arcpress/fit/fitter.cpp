@@ -82,7 +82,8 @@ class RunFitter {
     for (uint32_t v = 1; v < n_; ++v) alone[v] = !spike[v] && corner(before(v), v, after(v));
     for (uint32_t v = 1; v < n_; ++v) {
       const uint32_t b = before(v), a = after(v);
-      hard_[v] = !spike[v] && is_corner(p_[b], p_[v], p_[a], alone[b], alone[a], o.tolerance_mm, o.corner_angle_deg);
+      hard_[v] = !spike[v] && is_corner(b > 0 ? &p_[b - 1] : nullptr, p_[b], p_[v], p_[a], a < n_ ? &p_[a + 1] : nullptr,
+                                        alone[b], alone[a], o.tolerance_mm, o.corner_angle_deg);
       double l1 = (p_[v] - p_[v - 1]).norm(), l2 = (p_[v + 1] - p_[v]).norm();
       // Extrusion per mm must stay (nearly) constant inside one primitive.
       double e1 = run.vertex(in, v)[kE] - run.vertex(in, v - 1)[kE];
