@@ -158,21 +158,20 @@ TEST_CASE("LinuxCNC's rs274 reads the G18 and G19 arcs of a raster finishing pro
   // coordinates printed to 4 decimals as CAM systems print them.
   std::string g = "G21 G90 G17 G64\nG0 X-20 Y-6 Z5\nG1 Z0 F800\n";
   auto height = [](double u, double v) { return std::max(0.0, std::sqrt(std::max(0.0, 225 - u * u - v * v)) - 10); };
-  for (int pass = 0; pass < 6; ++pass) {
-    double fixed = -5 + 2 * pass;
-    for (int k = 0; k <= 200; ++k) {
-      double u = (pass % 2 ? 20.0 : -20.0) + (pass % 2 ? -0.2 : 0.2) * k;
-      g += fmt::format("G1 X{:.4f} Y{:.4f} Z{:.4f}\n", u, fixed, height(u, fixed));
+  // Six passes to and fro along X (along_x) or Y, the other coordinate fixed per pass.
+  auto passes = [&](bool along_x) {
+    for (int pass = 0; pass < 6; ++pass) {
+      double fixed = -5 + 2 * pass;
+      for (int k = 0; k <= 200; ++k) {
+        double u = (pass % 2 ? 20.0 : -20.0) + (pass % 2 ? -0.2 : 0.2) * k;
+        double x = along_x ? u : fixed, y = along_x ? fixed : u;
+        g += fmt::format("G1 X{:.4f} Y{:.4f} Z{:.4f}\n", x, y, height(x, y));
+      }
     }
-  }
+  };
+  passes(true);
   g += "G0 Z5\nG0 X-6 Y-20\nG1 Z0\n";
-  for (int pass = 0; pass < 6; ++pass) {
-    double fixed = -5 + 2 * pass;
-    for (int k = 0; k <= 200; ++k) {
-      double v = (pass % 2 ? 20.0 : -20.0) + (pass % 2 ? -0.2 : 0.2) * k;
-      g += fmt::format("G1 X{:.4f} Y{:.4f} Z{:.4f}\n", fixed, v, height(fixed, v));
-    }
-  }
+  passes(false);
   g += "G0 Z5\nG2 X21 Y-20 I8 J0\nM2\n";
 
   fs::path dir = test::temp_dir("rs274-planes");

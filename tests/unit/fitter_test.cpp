@@ -121,9 +121,10 @@ TEST_CASE("next to a corner, a turn that only the arc from the corner could take
   for (double f : {0.95, 1.05}) {
     double theta = f * limit;
     Vec3 c = c_of(theta), d1 = straight_on(theta), d2 = turning_on(theta);
-    CHECK(is_corner(nullptr, a, b, c, &d1, true, false, band, 30) == (f > 1));
-    CHECK_FALSE(is_corner(nullptr, a, b, c, &d2, true, false, band, 30));
-    CHECK_FALSE(is_corner(nullptr, a, b, c, &d1, false, false, band, 30));  // no corner near
+    CHECK(is_corner_beside_corner(nullptr, a, b, c, &d1, true, false, band) == (f > 1));
+    CHECK_FALSE(is_corner_beside_corner(nullptr, a, b, c, &d2, true, false, band));
+    CHECK_FALSE(is_corner_beside_corner(nullptr, a, b, c, &d1, false, false, band));  // no corner near
+    CHECK_FALSE(is_corner(a, b, c, band, 30));  // the rule for b alone leaves it smooth
   }
 }
 

@@ -39,9 +39,8 @@ double signed_turn(const Vec3& p, const Vec3& q, const Vec3& r) {
 }
 }  // namespace
 
-bool is_corner(const Vec3* z, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3* d, bool a_is_corner,
-               bool c_is_corner, double band_mm, double corner_angle_deg) {
-  if (is_corner(a, b, c, band_mm, corner_angle_deg)) return true;
+bool is_corner_beside_corner(const Vec3* z, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3* d,
+                             bool a_is_corner, bool c_is_corner, double band_mm) {
   if (a_is_corner == c_is_corner) return false;  // no corner near, or both: free on both sides
   const double turn = signed_turn(a, b, c);
   if (a_is_corner) {

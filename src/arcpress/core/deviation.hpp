@@ -50,15 +50,16 @@ Deviation arc_deviation_by_angles(std::span<const Vec3> pts, const ArcGeom& arc,
 /// angles α1, α2 with the segments, the arcs through a and c bulge by about L·α/4; the best
 /// split of the turn θ gives θ·L1·L2 / (4·(L1 + L2)).) Zero-length segments are corners.
 bool is_corner(const Vec3& a, const Vec3& b, const Vec3& c, double band_mm, double corner_angle_deg);
-/// The same rule with the neighbours' corners: `a_is_corner`, `c_is_corner` say whether
-/// is_corner() holds at a and at c; `z` is the vertex before a and `d` the one after c
-/// (null where the path ends). Next to a corner, say a, the arc that rounds b must leave a
-/// and end following the path after b, which turns at c as it does (its turn there is what
-/// a circle through the samples would turn too). What b turns beyond that, δ, only the arc
-/// from a can take up, so b is a corner too when |δ|·L / 4 > band, L the segment from a.
-/// Turns are signed in the first two coordinates (the plane's).
-bool is_corner(const Vec3* z, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3* d, bool a_is_corner,
-               bool c_is_corner, double band_mm, double corner_angle_deg);
+/// The rule beside a corner, for a vertex b that is_corner() leaves smooth: `a_is_corner`,
+/// `c_is_corner` say whether is_corner() holds at its neighbours a and c; `z` is the vertex
+/// before a and `d` the one after c (null where the path ends). Next to a corner, say a, the
+/// arc that rounds b must leave a and end following the path after b, which turns at c as it
+/// does (its turn there is what a circle through the samples would turn too). What b turns
+/// beyond that, δ, only the arc from a can take up, so b is a corner too when
+/// |δ|·L / 4 > band, L the segment from a. Turns are signed in the first two coordinates
+/// (the plane's). With corners on both sides the tangent is free at both: no extra corner.
+bool is_corner_beside_corner(const Vec3* z, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3* d,
+                             bool a_is_corner, bool c_is_corner, double band_mm);
 
 /// Distance from point p to the segment a-b.
 double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b);

@@ -47,6 +47,8 @@ inline PlaneAxes axes_of(Plane p) {
   }
   return {0, 1, 2};
 }
+/// The G-code that selects the plane: 17, 18 or 19.
+inline int plane_gcode(Plane p) { return 17 + int(p); }
 inline Vec2 project(const Vec3& v, Plane p) {
   auto a = axes_of(p);
   return {v[a.first], v[a.second]};

@@ -195,7 +195,7 @@ class Emitter {
   void write_plane(const Run& run, uint32_t k, Plane plane) {
     const Block& b = p_.blocks[in_.moves[run.first_move + k].block];
     out_ += style_of(b).letter('G');
-    out_ += plane == Plane::XY ? "17" : plane == Plane::ZX ? "18" : "19";
+    out_ += std::to_string(plane_gcode(plane));
     out_.append(p_.eol(b));
     if (stats_) ++stats_->plane_words_added;
   }

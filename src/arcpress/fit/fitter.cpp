@@ -35,7 +35,7 @@ struct Candidate {
 
 struct Chosen {
   Primitive prim;
-  Vec2 end_tangent;
+  Vec2 end_tangent{1, 0};
   bool kinked = false;  ///< starts with a tangent change at a joint where the input is smooth
 };
 
@@ -82,8 +82,9 @@ class RunFitter {
     for (uint32_t v = 1; v < n_; ++v) alone[v] = !spike[v] && corner(before(v), v, after(v));
     for (uint32_t v = 1; v < n_; ++v) {
       const uint32_t b = before(v), a = after(v);
-      hard_[v] = !spike[v] && is_corner(b > 0 ? &p_[b - 1] : nullptr, p_[b], p_[v], p_[a], a < n_ ? &p_[a + 1] : nullptr,
-                                        alone[b], alone[a], o.tolerance_mm, o.corner_angle_deg);
+      hard_[v] = alone[v] || (!spike[v] && is_corner_beside_corner(b > 0 ? &p_[b - 1] : nullptr, p_[b], p_[v], p_[a],
+                                                                   a < n_ ? &p_[a + 1] : nullptr, alone[b], alone[a],
+                                                                   o.tolerance_mm));
       double l1 = (p_[v] - p_[v - 1]).norm(), l2 = (p_[v + 1] - p_[v]).norm();
       // Extrusion per mm must stay (nearly) constant inside one primitive.
       double e1 = run.vertex(in, v)[kE] - run.vertex(in, v - 1)[kE];
@@ -444,10 +445,7 @@ class RunFitter {
   std::vector<Chosen> stream_chain(uint32_t a, uint32_t limit, size_t& forced) const {
     std::vector<Chosen> chain;
     while (a < limit) {
-      Vec2 chord = q(a + 1) - q(a);
-      Chosen best;
-      best.prim = {a + 1, Primitive::Kind::Line};
-      best.end_tangent = chord.norm() > kLengthEpsMm ? Vec2(chord.normalized()) : Vec2(1, 0);
+      Chosen best = input_move(a);
       for (uint32_t e = a + 2; e <= limit && e - a <= o_.stream_window && !soft_[e - 1]; ++e) {
         std::optional<Chosen> c = make_line(a, e, best.end_tangent);
         if (!c) c = through_ends(a, e);
@@ -509,10 +507,7 @@ class RunFitter {
       const uint32_t from = breaks[k];
       std::optional<Chosen> best = make_line(from, breaks[k + 1], Vec2(1, 0));
       if (!best) {  // a soft split that is not straight: the input's own moves
-        best.emplace();
-        best->prim = {from + 1, Primitive::Kind::Line};
-        Vec2 chord = q(from + 1) - q(from);
-        best->end_tangent = chord.norm() > kLengthEpsMm ? Vec2(chord.normalized()) : Vec2(1, 0);
+        best = input_move(from);
         breaks.insert(breaks.begin() + k + 1, from + 1);
       }
       size_t next = k + 1;
@@ -864,8 +859,13 @@ class RunFitter {
     Score best_score;
     for (const Vec2& T : input_tangents(a, limit)) consider(a, T, limit, best, best_score);
     if (best) return *best;
+    return input_move(a);
+  }
+
+  /// The input's own move from vertex a to a + 1 as a line: always inside the band.
+  Chosen input_move(uint32_t a) const {
     Vec2 chord = q(a + 1) - q(a);
-    Chosen line;  // the input's own segment is always inside the band
+    Chosen line;
     line.prim = {a + 1, Primitive::Kind::Line};
     line.end_tangent = chord.norm() > kLengthEpsMm ? Vec2(chord.normalized()) : Vec2(1, 0);
     return line;

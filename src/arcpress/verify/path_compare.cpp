@@ -137,13 +137,14 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
         Vec3 at = in_plane(ia.from(i), mb.plane);
         Vec3 after = in_plane(ia.moves[i].to, mb.plane);
         // The input's vertices one further out, and whether the neighbours are corners.
-        std::optional<Vec3> z, d;
-        if (i >= 2 && is_feed(ia.moves[i - 2].kind)) z = in_plane(ia.from(i - 2), mb.plane);
-        if (i + 1 < ia.moves.size() && is_feed(ia.moves[i + 1].kind)) d = in_plane(ia.moves[i + 1].to, mb.plane);
-        bool before_corner = z && is_corner(*z, before, at, opt.tolerance_mm, opt.corner_angle_deg);
-        bool after_corner = d && is_corner(at, after, *d, opt.tolerance_mm, opt.corner_angle_deg);
-        if (!is_corner(z ? &*z : nullptr, before, at, after, d ? &*d : nullptr, before_corner, after_corner,
-                       opt.tolerance_mm, opt.corner_angle_deg)) {
+        std::optional<Vec3> before2, after2;
+        if (i >= 2 && is_feed(ia.moves[i - 2].kind)) before2 = in_plane(ia.from(i - 2), mb.plane);
+        if (i + 1 < ia.moves.size() && is_feed(ia.moves[i + 1].kind)) after2 = in_plane(ia.moves[i + 1].to, mb.plane);
+        bool before_corner = before2 && is_corner(*before2, before, at, opt.tolerance_mm, opt.corner_angle_deg);
+        bool after_corner = after2 && is_corner(at, after, *after2, opt.tolerance_mm, opt.corner_angle_deg);
+        if (!is_corner(before, at, after, opt.tolerance_mm, opt.corner_angle_deg) &&
+            !is_corner_beside_corner(before2 ? &*before2 : nullptr, before, at, after, after2 ? &*after2 : nullptr,
+                                     before_corner, after_corner, opt.tolerance_mm)) {
           ++r.smooth_joints;
           double kink = angle_deg(end_tangent(ib, size_t(prev_j)), start_tangent(ib, j));
           r.max_smooth_kink_deg = std::max(r.max_smooth_kink_deg, kink);

@@ -28,7 +28,8 @@ struct PathComparison {
   Vec3 worst_point{0, 0, 0};        ///< input vertex nearest the worst place, mm
   size_t moves_a = 0, moves_b = 0;  ///< feed moves compared
   /// Joints between two output feed moves of which at least one replaces several input
-  /// moves, where the input is smooth (no corner in the sense of is_corner()).
+  /// moves, where the input is smooth (no corner in the sense of is_corner() and
+  /// is_corner_beside_corner()).
   size_t smooth_joints = 0;
   size_t smooth_joints_over_g1 = 0;  ///< ... whose tangent changes by more than g1_angle_deg
   double max_smooth_kink_deg = 0;
