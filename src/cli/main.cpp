@@ -70,6 +70,7 @@ int run_compress(const CompressArgs& a) {
   }
   CompressOptions opt = a.opt;
   opt.fit.method = a.method == "keep"     ? FitOptions::Method::Keep
+                   : a.method == "global" ? FitOptions::Method::Global
                    : a.method == "greedy" ? FitOptions::Method::Greedy
                    : a.method == "stream" ? FitOptions::Method::Stream
                    : a.method == "lowe"   ? FitOptions::Method::Lowe
@@ -205,10 +206,11 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"ijk", "r"}));
   app.add_option("--method", a.method,
                  "keep: leave every G1 as it is; arcs: fit lines and arcs, fewest blocks; "
+                 "global: as arcs, plus a wider search that finds fewer blocks on long smooth curves, slower; "
                  "greedy: fit lines and arcs one at a time, faster; stream: arcs through both end points grown "
                  "move by move in a bounded window, joints not tangent (seed method); lowe: lines found by "
                  "recursive splitting, then arcs over runs of them, joints not tangent (seed method)")
-      ->check(CLI::IsMember({"keep", "arcs", "greedy", "stream", "lowe"}))->capture_default_str();
+      ->check(CLI::IsMember({"keep", "arcs", "global", "greedy", "stream", "lowe"}))->capture_default_str();
   app.add_option("--g1-angle", a.opt.fit.g1_angle_deg, "Max tangent change in degrees at smooth joints")
       ->check(CLI::PositiveNumber)->capture_default_str();
   app.add_option("--corner-angle", a.opt.fit.corner_angle_deg,

@@ -66,3 +66,29 @@ TEST_CASE("every corpus file compresses inside the band with its non-motion line
   CHECK(arcs > 10000);
   CHECK(double(blocks_out) < 0.8 * double(moves_in));
 }
+
+TEST_CASE("the global method keeps the band on every corpus file and is never worse than the default: "
+          "no more forced kinks, and with as many, no more blocks",
+          "[corpus][fit][global]") {
+  ARCPRESS_CORPUS_FILES_OR_SKIP(files)
+  size_t better = 0;
+  for (const auto& f : files) {
+    INFO(f.string());
+    std::string text = test::read_file(f);
+    DiagnosticSink sink(f.string());
+    CompressOptions search, global;
+    global.fit.method = FitOptions::Method::Global;
+    auto s = compress(f.string(), text, search, sink);
+    auto g = compress(f.string(), text, global, sink);
+    REQUIRE(g.ok);
+    REQUIRE(g.verified);
+    INFO(g.comparison.mismatch);
+    CHECK(g.comparison.matched);
+    CHECK(g.comparison.max_deviation_mm <= global.fit.tolerance_mm);
+    const size_t blocks_g = g.stats.lines_out + g.stats.arcs_out, blocks_s = s.stats.lines_out + s.stats.arcs_out;
+    CHECK(g.forced_kinks <= s.forced_kinks);
+    if (g.forced_kinks == s.forced_kinks) CHECK(blocks_g <= blocks_s);
+    better += g.forced_kinks < s.forced_kinks || blocks_g < blocks_s;
+  }
+  CHECK(better > 0);
+}

@@ -325,6 +325,40 @@ TEST_CASE("the chain search never needs more primitives than the greedy chain, a
   CHECK(fewer >= 2);
 }
 
+TEST_CASE("the global method never needs more primitives than the default search, and finds fewer where "
+          "one narrow place decides the chain", "[fit][search][global]") {
+  // Xu's plum r = 10 - 9 sin²(2.5t): between its inner tips the chain must meet each tip with
+  // nearly one tangent, which a beam ranking chains by reach can drop; y = x³ has long flat
+  // tails where many chains reach equally far.
+  std::vector<Pt> plum, cubic;
+  for (int i = 0; i < 4700; ++i) {
+    double t = 1.5 * kPi * i / 4699, r = 10 - 9 * std::pow(std::sin(2.5 * t), 2);
+    plum.push_back({r * std::cos(t), r * std::sin(t), 0});
+  }
+  for (int i = 0; i < 2000; ++i) {
+    double x = -2 + 4 * i / 1999.0;
+    cubic.push_back({x, x * x * x, 0});
+  }
+  size_t fewer = 0;
+  for (const auto* pts : {&plum, &cubic}) {
+    for (double tol : {0.01, 0.005}) {
+      FitOptions search, global;
+      global.method = FitOptions::Method::Global;
+      search.min_radius_mm = global.min_radius_mm = 0;
+      search.tolerance_mm = global.tolerance_mm = tol;
+      auto s = compress_text(program(*pts), search);
+      auto g = compress_text(program(*pts), global);
+      INFO("tolerance " << tol << ": search " << s.arcs + s.lines << ", global " << g.arcs + g.lines);
+      CHECK(g.arcs + g.lines <= s.arcs + s.lines);
+      fewer += g.arcs + g.lines < s.arcs + s.lines;
+      CHECK(g.r.comparison.max_deviation_mm <= tol);
+      CHECK(g.r.comparison.max_smooth_kink_deg <= 0.5);
+      CHECK(g.r.forced_kinks == 0);
+    }
+  }
+  CHECK(fewer >= 3);
+}
+
 TEST_CASE("merging after the search: two primitives become one, three become two, joints stay tangent",
           "[fit][search]") {
   // Xu's plum curve r = 10 - 9 sin²(2.5t): sharp inner tips and fast curvature changes, where
@@ -452,8 +486,8 @@ TEST_CASE("random polylines always stay inside the band", "[fit][property]") {
     FitOptions f;
     f.tolerance_mm = trial % 2 ? 0.01 : 0.002;
     INFO("trial " << trial);
-    for (auto m : {FitOptions::Method::Arcs, FitOptions::Method::Greedy, FitOptions::Method::Stream,
-                   FitOptions::Method::Lowe}) {
+    for (auto m : {FitOptions::Method::Arcs, FitOptions::Method::Global, FitOptions::Method::Greedy,
+                   FitOptions::Method::Stream, FitOptions::Method::Lowe}) {
       f.method = m;
       auto o = compress_text(program(p), f);
       CHECK(o.r.comparison.max_deviation_mm <= f.tolerance_mm);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <unordered_set>
 
 #include "arcpress/core/deviation.hpp"
 
@@ -25,6 +26,12 @@ constexpr int kLookahead = 6;
 constexpr size_t kSplitsTried = 12;
 /// A primitive whose end tangent is within this of the input's direction is "on course".
 constexpr double kOnCourseRad = 1.5 * kPi / 180;
+/// Layered search: a layer keeps one state per tangent bin (this share of the G1 angle wide)
+/// in each of about kLayerGroups groups of vertices over the stretch the last layer advanced.
+constexpr double kTangentBinShare = 0.5;
+constexpr uint32_t kLayerGroups = 4;
+/// Layered search: it gives up (and the beam's chain stands) past this many states per vertex.
+constexpr size_t kMaxStatesPerVertex = 64;
 
 /// One way to end the primitive that starts at `a`: at vertex e with curvature k.
 struct Candidate {
@@ -104,7 +111,8 @@ class RunFitter {
       uint32_t limit = a + 1;
       while (limit < n_ && !hard_[limit]) ++limit;
       stretch_start_ = a;
-      if (o_.method == FitOptions::Method::Arcs || o_.method == FitOptions::Method::Greedy)
+      const bool search = o_.method == FitOptions::Method::Arcs || o_.method == FitOptions::Method::Global;
+      if (search || o_.method == FitOptions::Method::Greedy)
         for (uint32_t v = a + 1; v < limit; ++v) heading_[v] = input_tangent(v, a, limit);
       size_t forced = 0;
       std::vector<Chosen> chain = o_.method == FitOptions::Method::Stream ? stream_chain(a, limit, forced)
@@ -112,7 +120,7 @@ class RunFitter {
                                                                           : greedy_chain(a, std::nullopt, limit, forced);
       // The greedy chain is the answer for stretches it covers in one or two primitives;
       // longer ones are searched again and the shorter chain wins.
-      if (o_.method == FitOptions::Method::Arcs && o_.beam_width > 1 && chain.size() > 2) {
+      if (search && o_.beam_width > 1 && chain.size() > 2) {
         size_t beam_forced = 0;
         auto b = beam_stretch(a, limit, chain, beam_forced);
         if (std::pair(beam_forced, b.size()) < std::pair(forced, chain.size())) {
@@ -120,7 +128,17 @@ class RunFitter {
           forced = beam_forced;
         }
       }
-      if (o_.method == FitOptions::Method::Arcs && o_.merge && forced == 0) tighten(a, chain);
+      if (search && o_.merge && forced == 0) tighten(a, chain);
+      // The global method also searches every (vertex, tangent) state layer by layer and
+      // keeps that chain when, merged too, it is shorter and as free of kinks.
+      if (o_.method == FitOptions::Method::Global && chain.size() > 2) {
+        auto g = layered_chain(a, limit);
+        if (!g.empty() && o_.merge) tighten(a, g);
+        if (!g.empty() && std::pair(size_t(0), g.size()) < std::pair(forced, chain.size())) {
+          chain.swap(g);
+          forced = 0;
+        }
+      }
       r.forced_kinks += forced;
       for (const auto& c : chain) r.prims.push_back(c.prim);
       a = limit;
@@ -812,6 +830,72 @@ class RunFitter {
       a = part.back().prim.end_vertex;
     }
     return chain;
+  }
+
+  /// The G1 chain from `a` to `limit` with the fewest primitives, found breadth first over
+  /// states (vertex, tangent leaving it): layer k holds the states k primitives reach, and
+  /// each is expanded by every end its curvature scan allows, each end checked exactly once.
+  /// To stay near-linear, a layer keeps one state per tangent bin (kTangentBinShare of the
+  /// G1 angle) in each vertex group (the last layer's advance over kLayerGroups), only ends
+  /// at or beyond the layer's furthest vertex are taken (the layer before reached the
+  /// others with fewer primitives), and the search gives up past kMaxStatesPerVertex states
+  /// per vertex. Unlike the beam, no state is dropped for scoring lower, so a chain that
+  /// must pass a narrow place with the one right tangent is not lost. Empty when no chain
+  /// reaches `limit` tangentially.
+  std::vector<Chosen> layered_chain(uint32_t a, uint32_t limit) const {
+    struct State {
+      Chosen last;  ///< the primitive that ended here (none at a root)
+      int parent;   ///< the state it left from; -1 at a root
+    };
+    std::vector<State> states;
+    std::vector<int> layer, next;
+    for (const Vec2& T : start_tangents(a, limit)) {
+      Chosen root;
+      root.prim.end_vertex = a;
+      root.end_tangent = T;
+      states.push_back({root, -1});
+      layer.push_back(static_cast<int>(states.size()) - 1);
+    }
+    const double bin_rad = kTangentBinShare * deg_to_rad(o_.g1_angle_deg);
+    const size_t max_states = kMaxStatesPerVertex * (limit - a) + states.size();
+    std::unordered_set<uint64_t> seen;
+    std::vector<Candidate> cand;
+    uint32_t front = a, advance = 0;  // the layer's furthest vertex, and how far it moved
+    while (!layer.empty()) {
+      next.clear();
+      uint32_t next_front = front;
+      for (int i : layer) {
+        const uint32_t v = states[i].last.prim.end_vertex;
+        const Vec2 T = states[i].last.end_tangent;
+        scan(v, T, limit, cand);
+        for (size_t k = cand.size(); k-- > 0 && cand[k].e >= front;) {  // furthest first
+          const Candidate& c = cand[k];
+          const uint32_t group = std::max<uint32_t>(1, std::max(advance, next_front - front) / kLayerGroups);
+          const Vec2 end = c.line ? Vec2((q(c.e) - q(v)).normalized()) : reflected_end(v, T, c.e);
+          const long bin = std::lround(std::atan2(end.y(), end.x()) / bin_rad);
+          const uint64_t key = (uint64_t(c.e / group) << 32) | uint32_t(bin);
+          if (c.e < limit && seen.count(key)) continue;
+          auto made = make(v, T, c);
+          if (!made) continue;
+          states.push_back({*made, i});
+          const int id = static_cast<int>(states.size()) - 1;
+          if (c.e >= limit) {
+            std::vector<Chosen> chain;
+            for (int s = id; states[s].parent >= 0; s = states[s].parent) chain.push_back(states[s].last);
+            std::reverse(chain.begin(), chain.end());
+            return chain;
+          }
+          seen.insert(key);
+          next.push_back(id);
+          next_front = std::max(next_front, c.e);
+        }
+        if (states.size() > max_states) return {};
+      }
+      advance = next_front - front;
+      front = next_front;
+      layer.swap(next);
+    }
+    return {};
   }
 
   static std::vector<Chosen> chain_to(const std::vector<Node>& nodes, int id) {

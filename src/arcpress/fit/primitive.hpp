@@ -22,6 +22,7 @@ struct FitOptions {
   enum class Method : uint8_t {
     Keep,  ///< every G1 stays as it is (the pipeline without fitting)
     Arcs,    ///< G1-continuous lines and arcs, fewest found by a beam search over chains (default)
+    Global,  ///< as Arcs, and a layered search over (vertex, tangent) states where it is shorter
     Greedy,  ///< G1-continuous lines and arcs, one primitive at a time with a short look-ahead
     Stream,  ///< seeds 001/003: arcs through both end points grown one vertex at a time, no G1
     Lowe,    ///< seed 000: recursive line detection, then arcs over runs of the lines, no G1
@@ -42,9 +43,9 @@ struct FitOptions {
   /// chord (noise in digitised paths) is not a corner. Off by default: every turn sharper
   /// than corner_angle_deg is a corner.
   bool spikes = false;
-  uint32_t beam_width = 8;  ///< Arcs method: chains kept per primitive count
-  int beam_branch = 3;             ///< Arcs method: checked primitives per chain and start tangent
-  bool merge = true;               ///< Arcs method: merge neighbouring primitives after the search
+  uint32_t beam_width = 8;         ///< Arcs and Global methods: chains kept per primitive count
+  int beam_branch = 3;             ///< Arcs and Global methods: checked primitives per chain and start tangent
+  bool merge = true;               ///< Arcs and Global methods: merge neighbouring primitives after the search
   uint32_t stream_window = 256;    ///< Stream method: most moves one primitive may replace
 };
 
