@@ -32,6 +32,21 @@ TEST_CASE("help and version succeed and help documents the exit codes", "[cli]")
   CHECK(v.out.find("arcpress ") == 0);
 }
 
+TEST_CASE("every fitting method named in --help is accepted and writes a verified arc for a sampled arc", "[cli]") {
+  std::string arc = "G21 G90 G17\nG0 X10 Y0 Z0\nG1 F600\n";
+  for (int i = 1; i <= 90; ++i)
+    arc += "G1 X" + std::to_string(10 * std::cos(i * M_PI / 180)) + " Y" + std::to_string(10 * std::sin(i * M_PI / 180)) + "\n";
+  arc += "M2\n";
+  for (const char* m : {"arcs", "global", "greedy", "stream", "lowe"}) {
+    INFO(m);
+    CHECK(run_arcpress("--help").out.find(std::string(m) + ":") != std::string::npos);
+    auto c = run_arcpress(std::string("--method ") + m, arc);
+    CHECK(c.exit_code == 0);
+    CHECK(c.out.find("G3") != std::string::npos);
+  }
+  CHECK(run_arcpress("--method nosuch", arc).exit_code == 2);
+}
+
 TEST_CASE("usage errors exit with 2", "[cli]") {
   CHECK(run_arcpress("--tolerance -1", kProgram).exit_code == 2);
   CHECK(run_arcpress("--no-such-option", kProgram).exit_code == 2);
