@@ -873,7 +873,7 @@ class RunFitter {
           const uint32_t group = std::max<uint32_t>(1, std::max(advance, next_front - front) / kLayerGroups);
           const Vec2 end = c.line ? Vec2((q(c.e) - q(v)).normalized()) : reflected_end(v, T, c.e);
           const long bin = std::lround(std::atan2(end.y(), end.x()) / bin_rad);
-          const uint64_t key = (uint64_t(c.e / group) << 32) | uint32_t(bin);
+          const uint64_t key = (uint64_t(c.e - c.e % group) << 32) | uint32_t(bin);  // group's first vertex
           if (c.e < limit && seen.count(key)) continue;
           auto made = make(v, T, c);
           if (!made) continue;
