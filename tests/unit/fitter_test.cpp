@@ -289,101 +289,88 @@ TEST_CASE("degenerate input gives valid output: reversals, tiny steps, noise", "
   CHECK(n.r.output.find("e-") == std::string::npos);
 }
 
-TEST_CASE("the chain search never needs more primitives than the greedy chain, and keeps every guarantee",
-          "[fit][search]") {
-  // Xu's quadratic Bézier 1 and y = x³: curvature changes everywhere, so which joint each
-  // primitive ends at decides how many follow.
-  auto bezier = [](double t) {
-    double u = 1 - t;
-    return Pt{u * u * 1 + 2 * t * u * 5 + t * t * 1, u * u * 1 + 2 * t * u * 1 + t * t * 2.75, 0};
-  };
-  std::vector<Pt> b, c;
-  for (int i = 0; i < 1000; ++i) b.push_back(bezier(i / 999.0));
+namespace {
+
+/// Xu's test curves as the paper samples them.
+std::vector<Pt> bezier1_points() {  // quadratic Bézier 1, 1000 samples
+  std::vector<Pt> p;
+  for (int i = 0; i < 1000; ++i) {
+    double t = i / 999.0, u = 1 - t;
+    p.push_back({u * u * 1 + 2 * t * u * 5 + t * t * 1, u * u * 1 + 2 * t * u * 1 + t * t * 2.75, 0});
+  }
+  return p;
+}
+std::vector<Pt> cubic_points() {  // y = x³ on [-2, 2], 2000 samples
+  std::vector<Pt> p;
   for (int i = 0; i < 2000; ++i) {
     double x = -2 + 4 * i / 1999.0;
-    c.push_back({x, x * x * x, 0});
+    p.push_back({x, x * x * x, 0});
   }
+  return p;
+}
+std::vector<Pt> plum_points() {  // r = 10 - 9 sin²(2.5t), t in [0, 1.5π], 4700 samples
+  std::vector<Pt> p;
+  for (int i = 0; i < 4700; ++i) {
+    double t = 1.5 * kPi * i / 4699, r = 10 - 9 * std::pow(std::sin(2.5 * t), 2);
+    p.push_back({r * std::cos(t), r * std::sin(t), 0});
+  }
+  return p;
+}
+
+/// Fits every curve at every tolerance with `base` and with `better` (no smallest radius:
+/// the curves have tighter tips) and checks that `better` never needs more primitives and
+/// that both keep the band, tangent joints and no forced kinks. Returns how many fits
+/// `better` needed fewer primitives for.
+size_t fewer_primitives(const std::vector<std::vector<Pt>>& curves, std::initializer_list<double> tolerances,
+                        FitOptions base, FitOptions better) {
   size_t fewer = 0;
-  for (const auto* pts : {&b, &c}) {
-    for (double tol : {0.01, 0.005, 0.001}) {
-      FitOptions greedy, search;
-      greedy.method = FitOptions::Method::Greedy;
-      greedy.min_radius_mm = search.min_radius_mm = 0;
-      greedy.tolerance_mm = search.tolerance_mm = tol;
-      auto g = compress_text(program(*pts), greedy);
-      auto s = compress_text(program(*pts), search);
-      INFO("tolerance " << tol << ": greedy " << g.arcs + g.lines << ", search " << s.arcs + s.lines);
-      CHECK(s.arcs + s.lines <= g.arcs + g.lines);
-      fewer += s.arcs + s.lines < g.arcs + g.lines;
-      for (const auto* o : {&g, &s}) {
-        CHECK(o->r.comparison.max_deviation_mm <= tol);
-        CHECK(o->r.comparison.max_smooth_kink_deg <= 0.5);
-        CHECK(o->r.forced_kinks == 0);
+  for (size_t c = 0; c < curves.size(); ++c) {
+    for (double tol : tolerances) {
+      base.min_radius_mm = better.min_radius_mm = 0;
+      base.tolerance_mm = better.tolerance_mm = tol;
+      auto b = compress_text(program(curves[c]), base);
+      auto o = compress_text(program(curves[c]), better);
+      INFO("curve " << c << ", tolerance " << tol << ": " << b.arcs + b.lines << " before, " << o.arcs + o.lines);
+      CHECK(o.arcs + o.lines <= b.arcs + b.lines);
+      fewer += o.arcs + o.lines < b.arcs + b.lines;
+      for (const auto* x : {&b, &o}) {
+        CHECK(x->r.comparison.max_deviation_mm <= tol);
+        CHECK(x->r.comparison.max_smooth_kink_deg <= 0.5);
+        CHECK(x->r.forced_kinks == 0);
       }
     }
   }
-  CHECK(fewer >= 2);
+  return fewer;
+}
+
+}  // namespace
+
+TEST_CASE("the chain search never needs more primitives than the greedy chain, and keeps every guarantee",
+          "[fit][search]") {
+  // Bézier 1 and y = x³: curvature changes everywhere, so which joint each primitive ends
+  // at decides how many follow.
+  FitOptions greedy, search;
+  greedy.method = FitOptions::Method::Greedy;
+  CHECK(fewer_primitives({bezier1_points(), cubic_points()}, {0.01, 0.005, 0.001}, greedy, search) >= 2);
 }
 
 TEST_CASE("the global method never needs more primitives than the default search, and finds fewer where "
           "one narrow place decides the chain", "[fit][search][global]") {
-  // Xu's plum r = 10 - 9 sin²(2.5t): between its inner tips the chain must meet each tip with
-  // nearly one tangent, which a beam ranking chains by reach can drop; y = x³ has long flat
-  // tails where many chains reach equally far.
-  std::vector<Pt> plum, cubic;
-  for (int i = 0; i < 4700; ++i) {
-    double t = 1.5 * kPi * i / 4699, r = 10 - 9 * std::pow(std::sin(2.5 * t), 2);
-    plum.push_back({r * std::cos(t), r * std::sin(t), 0});
-  }
-  for (int i = 0; i < 2000; ++i) {
-    double x = -2 + 4 * i / 1999.0;
-    cubic.push_back({x, x * x * x, 0});
-  }
-  size_t fewer = 0;
-  for (const auto* pts : {&plum, &cubic}) {
-    for (double tol : {0.01, 0.005}) {
-      FitOptions search, global;
-      global.method = FitOptions::Method::Global;
-      search.min_radius_mm = global.min_radius_mm = 0;
-      search.tolerance_mm = global.tolerance_mm = tol;
-      auto s = compress_text(program(*pts), search);
-      auto g = compress_text(program(*pts), global);
-      INFO("tolerance " << tol << ": search " << s.arcs + s.lines << ", global " << g.arcs + g.lines);
-      CHECK(g.arcs + g.lines <= s.arcs + s.lines);
-      fewer += g.arcs + g.lines < s.arcs + s.lines;
-      CHECK(g.r.comparison.max_deviation_mm <= tol);
-      CHECK(g.r.comparison.max_smooth_kink_deg <= 0.5);
-      CHECK(g.r.forced_kinks == 0);
-    }
-  }
-  CHECK(fewer >= 3);
+  // Plum: between its inner tips the chain must meet each tip with nearly one tangent, which
+  // a beam ranking chains by reach can drop; y = x³ has long flat tails where many chains
+  // reach equally far.
+  FitOptions search, global;
+  global.method = FitOptions::Method::Global;
+  CHECK(fewer_primitives({plum_points(), cubic_points()}, {0.01, 0.005}, search, global) >= 3);
 }
 
 TEST_CASE("merging after the search: two primitives become one, three become two, joints stay tangent",
           "[fit][search]") {
-  // Xu's plum curve r = 10 - 9 sin²(2.5t): sharp inner tips and fast curvature changes, where
-  // the chain search alone leaves neighbours that fewer primitives can replace.
-  std::vector<Pt> plum;
-  for (int i = 0; i < 4700; ++i) {
-    double t = 1.5 * kPi * i / 4699, r = 10 - 9 * std::pow(std::sin(2.5 * t), 2);
-    plum.push_back({r * std::cos(t), r * std::sin(t), 0});
-  }
-  size_t fewer = 0;
-  for (double tol : {0.01, 0.005}) {
-    FitOptions merged, searched;
-    merged.min_radius_mm = searched.min_radius_mm = 0;
-    merged.tolerance_mm = searched.tolerance_mm = tol;
-    searched.merge = false;
-    auto m = compress_text(program(plum), merged);
-    auto s = compress_text(program(plum), searched);
-    INFO("tolerance " << tol << ": search alone " << s.arcs + s.lines << ", merged " << m.arcs + m.lines);
-    CHECK(m.arcs + m.lines <= s.arcs + s.lines);
-    fewer += m.arcs + m.lines < s.arcs + s.lines;
-    CHECK(m.r.comparison.max_deviation_mm <= tol);
-    CHECK(m.r.comparison.max_smooth_kink_deg <= 0.5);
-    CHECK(m.r.forced_kinks == 0);
-  }
-  CHECK(fewer >= 1);
+  // Plum: sharp inner tips and fast curvature changes, where the chain search alone leaves
+  // neighbours that fewer primitives can replace.
+  FitOptions searched, merged;
+  searched.merge = false;
+  CHECK(fewer_primitives({plum_points()}, {0.01, 0.005}, searched, merged) >= 1);
 }
 
 TEST_CASE("with --spikes, a lone jag inside the band is noise, not a corner; without, it is a corner", "[fit][spikes]") {
@@ -430,12 +417,7 @@ TEST_CASE("Lowe's seed method: lines found by recursive splitting, arcs over run
   CHECK(o.arcs + o.lines < slot.size() / 10);
   CHECK(o.r.comparison.max_deviation_mm <= f.tolerance_mm);
   // On changing curvature its joints kink (not made tangent), and are counted.
-  std::vector<Pt> c;
-  for (int i = 0; i < 2000; ++i) {
-    double x = -2 + 4 * i / 1999.0;
-    c.push_back({x, x * x * x, 0});
-  }
-  auto k = compress_text(program(c), f);
+  auto k = compress_text(program(cubic_points()), f);
   CHECK(k.r.forced_kinks > 0);
   CHECK(k.r.comparison.max_deviation_mm <= f.tolerance_mm);
 }
@@ -460,13 +442,8 @@ TEST_CASE("the streaming seed method: arcs through both end points, grown in a b
   CHECK(w.r.comparison.max_deviation_mm <= f.tolerance_mm);
 
   // Joints are not made tangent: on a curve of changing curvature they kink, and are counted.
-  std::vector<Pt> c;
-  for (int i = 0; i < 2000; ++i) {
-    double x = -2 + 4 * i / 1999.0;
-    c.push_back({x, x * x * x, 0});
-  }
   f.stream_window = 256;
-  auto k = compress_text(program(c), f);
+  auto k = compress_text(program(cubic_points()), f);
   CHECK(k.r.comparison.max_deviation_mm <= f.tolerance_mm);
   CHECK(k.r.comparison.smooth_joints_over_g1 > 0);
   CHECK(k.r.forced_kinks > 0);
