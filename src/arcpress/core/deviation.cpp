@@ -121,6 +121,13 @@ Deviation planar_arc_deviation(std::span<const Vec3> pts, const ArcGeom& arc, do
     double len = v.norm();
     unit[m] = len > 0 ? Vec2(v / len) : s_hat;
     radial[m] = std::abs(len - r);
+    // No point of the arc is nearer a vertex than the full circle is: a vertex off the circle
+    // by more than the stop fails the candidate before anything else is measured.
+    if (radial[m] > stop_above_mm && m > 0 && m + 1 < n) {
+      dev.max_mm = radial[m];
+      dev.at_index = m;
+      return dev;
+    }
     double a = m == 0 ? 0.0 : m + 1 == n ? total : along(v);
     // A vertex just behind the start (within rounding) reads as almost a full turn.
     if (a > total && a > 4 - 1e-9) a = 0;

@@ -164,56 +164,66 @@ class RunFitter {
   /// circle), so the scan is linear and stops when the intervals no longer meet.
   void scan(uint32_t a, const Vec2& T, uint32_t limit, std::vector<Candidate>& out) const {
     out.clear();
-    Vec2 N = left_normal(T);
-    double lo = -kInf, hi = kInf;    // curvature interval, full band
-    double lo3 = -kInf, hi3 = kInf;  // ... in-plane share, for primitives that climb
+    scan_ends(a, T, limit, [&](const Candidate& c) { out.push_back(c); });
+  }
+
+  /// scan() handing each end to `sink` in order, nothing stored.
+  template <class Sink>
+  void scan_ends(uint32_t a, const Vec2& T, uint32_t limit, Sink&& sink) const {
+    const Vec2 N = left_normal(T);
+    const Vec2 qa = q(a);
     const double h0 = p_[a].z();
+    // The band a vertex must stay in: all of it while the primitive is flat, the in-plane
+    // share once it climbs (from then on, for every vertex from `a`).
+    double eps = eps_;
+    double lo = -kInf, hi = kInf;  // curvature interval the interior vertices allow
+    auto narrow = [&](uint32_t m) {
+      const Vec2 u = q(m) - qa;
+      const double w = u.squaredNorm() - eps * eps;
+      if (w > 0) {
+        const double b = u.dot(N), inv = 1 / w;
+        lo = std::max(lo, (2 * b - 2 * eps) * inv);
+        hi = std::min(hi, (2 * b + 2 * eps) * inv);
+      }
+    };
     bool flat = true;
     for (uint32_t e = a + 1; e <= limit; ++e) {
       if (e > a + 1) {
-        uint32_t m = e - 1;  // becomes an interior vertex
+        const uint32_t m = e - 1;  // becomes an interior vertex
         if (soft_[m]) break;
-        Vec2 u = q(m) - q(a);
-        double uu = u.squaredNorm(), b = u.dot(N);
-        double w = uu - eps_ * eps_;
-        if (w > 0) {
-          lo = std::max(lo, (2 * b - 2 * eps_) / w);
-          hi = std::min(hi, (2 * b + 2 * eps_) / w);
-        }
-        double e3 = eps_ * kPlaneShare;
-        double w3 = uu - e3 * e3;
-        if (w3 > 0) {
-          lo3 = std::max(lo3, (2 * b - 2 * e3) / w3);
-          hi3 = std::min(hi3, (2 * b + 2 * e3) / w3);
-        }
+        narrow(m);
       }
-      flat = flat && std::abs(p_[e].z() - h0) <= kLengthEpsMm;
-      double L = flat ? lo : lo3, H = flat ? hi : hi3;
-      if (L > H) break;
-      Vec2 u = q(e) - q(a);
-      double uu = u.squaredNorm();
+      if (flat && std::abs(p_[e].z() - h0) > kLengthEpsMm) {
+        flat = false;
+        eps = eps_ * kPlaneShare;
+        lo = -kInf;
+        hi = kInf;
+        for (uint32_t m = a + 1; m < e; ++m) narrow(m);
+      }
+      if (lo > hi) break;
+      const Vec2 u = q(e) - qa;
+      const double uu = u.squaredNorm();
       if (uu <= kLengthEpsMm * kLengthEpsMm) {
         if (!flat) continue;
         break;  // back at the start: a full circle is not a single primitive here
       }
       // The tangent-chord angle alpha (sweep = 2 alpha), as the pseudo-angle of |alpha|.
-      double abs_alpha = pseudo_angle(u.dot(T), std::abs(u.dot(N)));
+      const double ut = u.dot(T), un = u.dot(N);
+      const double abs_alpha = pseudo_angle(ut, std::abs(un));
       if (abs_alpha > max_alpha_) break;
-      double k = 2 * u.dot(N) / uu;
-      double slack = 1e-12 * (1 + std::abs(k));
-      if (k < L - slack || k > H + slack) continue;
-      bool line = abs_alpha <= line_alpha_;
+      const double k = 2 * un / uu;
+      const double slack = 1e-12 * (1 + std::abs(k));
+      if (k < lo - slack || k > hi + slack) continue;
+      const bool line = abs_alpha <= line_alpha_;
       if (!line) {
         if (!o_.arcs) continue;
-        double r = 1 / std::abs(k);
+        const double r = 1 / std::abs(k);
         if (r > o_.max_radius_mm || r < o_.min_radius_mm) continue;
         if (e - a < o_.min_arc_moves || abs_alpha < min_alpha_) continue;
         if (!flat && !o_.helical) continue;
-        if (o_.min_arc_length_mm > 0 &&
-            r * 2 * std::atan2(std::abs(u.dot(N)), u.dot(T)) < o_.min_arc_length_mm)
-          continue;
+        if (o_.min_arc_length_mm > 0 && r * 2 * std::atan2(std::abs(un), ut) < o_.min_arc_length_mm) continue;
       }
-      out.push_back({e, k, line});
+      sink(Candidate{e, k, line});
     }
   }
 
@@ -281,8 +291,9 @@ class RunFitter {
   /// A corner or the end of the stretch counts as reaching the end.
   uint32_t reach_after(uint32_t e, const Vec2& T, uint32_t limit) const {
     if (e >= limit) return limit + 1;
-    scan(e, T, limit, next_);
-    return next_.empty() ? e : next_.back().e;
+    uint32_t reach = e;
+    scan_ends(e, T, limit, [&](const Candidate& c) { reach = c.e; });
+    return reach;
   }
 
   /// The input's own direction at vertex e: tangent at e of the circle through e-w, e, e+w,
@@ -583,15 +594,44 @@ class RunFitter {
     return c.prim.ccw ? t : Vec2(-t);
   }
 
-  /// The line or arc leaving vertex a along T and ending exactly at vertex e, checked.
-  std::optional<Chosen> through(uint32_t a, const Vec2& T, uint32_t e) const {
+  /// The line or arc leaving vertex a along T and ending exactly at vertex e, if scan()
+  /// would offer it (not yet checked exactly).
+  std::optional<Candidate> through_candidate(uint32_t a, const Vec2& T, uint32_t e) const {
     Vec2 u = q(e) - q(a);
     double uu = u.squaredNorm();
     if (uu <= kLengthEpsMm * kLengthEpsMm || u.dot(T) <= 0) return std::nullopt;
     if (soft_between(a, e)) return std::nullopt;
     Vec2 N = left_normal(T);
-    bool line = pseudo_angle(u.dot(T), std::abs(u.dot(N))) <= line_alpha_;
-    return make(a, T, Candidate{e, 2 * u.dot(N) / uu, line});
+    const Candidate c{e, 2 * u.dot(N) / uu, pseudo_angle(u.dot(T), std::abs(u.dot(N))) <= line_alpha_};
+    if (!on_circle(a, T, c)) return std::nullopt;
+    return c;
+  }
+
+  /// The line or arc leaving vertex a along T and ending exactly at vertex e, checked.
+  std::optional<Chosen> through(uint32_t a, const Vec2& T, uint32_t e) const {
+    auto c = through_candidate(a, T, e);
+    if (!c) return std::nullopt;
+    return make(a, T, *c);
+  }
+
+  /// scan()'s test of one end: every vertex between `a` and c.e lies within the band of the
+  /// full circle (or line) leaving `a` along T with curvature c.k. A vertex u from `a` with
+  /// normal offset b = u·N is within ε of it when |k·(|u|² - ε²) - 2b| <= 2ε. Cheap (no
+  /// division), and necessary for the exact check, so most candidates that would fail it
+  /// are turned away here.
+  bool on_circle(uint32_t a, const Vec2& T, const Candidate& c) const {
+    const Vec2 N = left_normal(T);
+    const double h0 = p_[a].z();
+    bool flat = std::abs(p_[c.e].z() - h0) <= kLengthEpsMm;
+    for (uint32_t m = a + 1; m < c.e && flat; ++m) flat = std::abs(p_[m].z() - h0) <= kLengthEpsMm;
+    const double eps = flat ? eps_ : eps_ * kPlaneShare;
+    const double slack = 1e-12 * (1 + std::abs(c.k));
+    for (uint32_t m = a + 1; m < c.e; ++m) {
+      const Vec2 u = q(m) - q(a);
+      const double w = u.squaredNorm() - eps * eps;
+      if (w > 0 && std::abs(c.k * w - 2 * u.dot(N)) > 2 * eps + slack * w) return false;
+    }
+    return true;
   }
 
   /// Signed angle from a to b, radians.
@@ -675,6 +715,9 @@ class RunFitter {
                 const double stride = std::max(1.0, double(split.size()) / kSplitsTried);
                 for (double x = 0; x < double(split.size()) && repl.empty(); x += stride) {
                   const Candidate& c = cand[split[size_t(x)]];
+                  // The second primitive's own cheap test first: it fails far more often.
+                  auto T2_lite = aimed(c.e, unchecked(from, T, c).end_tangent, to, out);
+                  if (!T2_lite || !through_candidate(c.e, *T2_lite, to)) continue;
                   auto first = make(from, T, c);
                   if (!first) continue;
                   auto T2 = aimed(c.e, first->end_tangent, to, out);
@@ -975,7 +1018,6 @@ class RunFitter {
   std::vector<uint8_t> soft_;     // extrusion rate changes: a primitive ends here, tangent kept
   std::vector<uint32_t> soft_upto_;  // soft vertices before each vertex (prefix count)
   std::vector<std::optional<Vec2>> heading_;  // input_tangent() of each vertex inside the stretch
-  mutable std::vector<Candidate> next_;  // scratch for reach_after
   mutable std::vector<Candidate> scratch_;  // scratch for pick
   uint32_t stretch_start_ = 0;    // first vertex of the current corner-free stretch
   double eps_ = 0;                // band the fitter works to, mm
