@@ -230,6 +230,9 @@ int main(int argc, char** argv) {
   app.add_flag("--no-helical", no_helical, "Never move the plane's normal axis inside an arc");
   app.add_flag("--passthrough", a.opt.passthrough, "Read and write the program back unchanged");
   app.add_flag("--strict", a.opt.strict, "Refuse (exit 2) any block that cannot be read");
+  app.add_option("-j,--threads", a.opt.threads, "Threads fitting runs at once; 0: one per hardware thread "
+                                                "(the output is the same for any count)")
+      ->check(CLI::Range(0u, 1024u))->capture_default_str();
   app.add_flag("--stats", a.stats, "Print counts, sizes and the measured deviation to standard error");
   bool no_verify = false;
   app.add_flag("--no-verify", no_verify, "Skip reading the output back and measuring it against the input");

@@ -47,6 +47,26 @@ TEST_CASE("every fitting method named in --help is accepted and writes a verifie
   CHECK(run_arcpress("--method nosuch", arc).exit_code == 2);
 }
 
+TEST_CASE("any thread count (--threads) gives the same output, and a negative count is a usage error", "[cli]") {
+  std::string two_runs = "G21 G90 G17\nG0 X10 Y0 Z0\nG1 F600\n";
+  for (int run = 0; run < 2; ++run) {
+    for (int i = 1; i <= 90; ++i)
+      two_runs += "G1 X" + std::to_string(10 * std::cos(i * M_PI / 180)) + " Y" + std::to_string(10 * std::sin(i * M_PI / 180)) + "\n";
+    two_runs += "G0 X10 Y0\nG1 F600\n";  // the rapid ends the first run
+  }
+  two_runs += "M2\n";
+  auto one = run_arcpress("--threads 1", two_runs);
+  auto two = run_arcpress("-j 2", two_runs);
+  CHECK(one.exit_code == 0);
+  CHECK(two.exit_code == 0);
+  CHECK(two.out == one.out);
+  size_t arcs = 0;
+  for (size_t at = one.out.find("G3"); at != std::string::npos; at = one.out.find("G3", at + 1)) ++arcs;
+  CHECK(arcs >= 2);  // both runs fitted
+  CHECK(run_arcpress("--help").out.find("--threads") != std::string::npos);
+  CHECK(run_arcpress("--threads -1", two_runs).exit_code == 2);
+}
+
 TEST_CASE("usage errors exit with 2", "[cli]") {
   CHECK(run_arcpress("--tolerance -1", kProgram).exit_code == 2);
   CHECK(run_arcpress("--no-such-option", kProgram).exit_code == 2);

@@ -92,3 +92,25 @@ TEST_CASE("the global method keeps the band on every corpus file and is never wo
   }
   CHECK(better > 0);
 }
+
+TEST_CASE("runs fitted on several threads give the same program as on one thread", "[corpus][fit][threads]") {
+  ARCPRESS_CORPUS_FILES_OR_SKIP(files)
+  size_t runs = 0;
+  for (const auto& f : files) {
+    INFO(f.string());
+    std::string text = test::read_file(f);
+    DiagnosticSink sink(f.string());
+    CompressOptions one, many;
+    one.verify = many.verify = false;
+    one.threads = 1;
+    many.threads = 4;  // more than the runs of the smallest files, fewer than those of the largest
+    auto a = compress(f.string(), text, one, sink);
+    auto b = compress(f.string(), text, many, sink);
+    REQUIRE(a.ok);
+    REQUIRE(b.ok);
+    CHECK(b.output == a.output);
+    CHECK(b.forced_kinks == a.forced_kinks);
+    runs += a.stats.runs;
+  }
+  CHECK(runs > 1000);  // threads had runs to share
+}

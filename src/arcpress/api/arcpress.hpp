@@ -26,6 +26,9 @@ struct CompressOptions {
   /// Re-read the output and compare it with the input as `arcpress diff` does (path both
   /// ways, rapids, non-motion blocks, feed, extrusion) before it is used.
   bool verify = true;
+  /// Threads that fit runs at once; 0: one per hardware thread. Runs are independent, so
+  /// the output is the same for any count.
+  unsigned threads = 0;
 };
 
 struct CompressResult {

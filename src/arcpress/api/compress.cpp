@@ -1,6 +1,10 @@
 #include "arcpress/api/arcpress.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <thread>
 
 #include "arcpress/core/error.hpp"
 #include "arcpress/extract/run.hpp"
@@ -44,6 +48,45 @@ void verify_output(const Program& input, const Interpretation& in, const Compres
   r.verified = true;
 }
 
+namespace {
+
+/// Fits every run with `opt.threads` threads.
+std::vector<FitResult> fit_runs(const Interpretation& in, const std::vector<Run>& runs, const CompressOptions& opt) {
+  std::vector<FitResult> fits(runs.size());
+  auto fit_one = [&](size_t i) {
+    const Run& run = runs[i];
+    fits[i] = fit_run(in, run, fit_options_for(opt.fit, opt.dialect, in.frames[run.frame], run.plane));
+  };
+  // Each worker takes the next run not yet taken, so a few long runs do not hold the rest
+  // back; results land in their run's place, so the order never depends on the timing.
+  const size_t workers = std::min<size_t>(opt.threads > 0 ? opt.threads : std::max(1u, std::thread::hardware_concurrency()),
+                                          runs.size());
+  if (workers <= 1) {
+    for (size_t i = 0; i < runs.size(); ++i) fit_one(i);
+    return fits;
+  }
+  std::atomic<size_t> next{0};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  auto work = [&] {
+    try {
+      for (size_t i; (i = next.fetch_add(1)) < runs.size();) fit_one(i);
+    } catch (...) {  // the fitter does not throw; an allocation can
+      std::lock_guard lock(failure_mutex);
+      if (!failure) failure = std::current_exception();
+      next = runs.size();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (size_t w = 1; w < workers; ++w) pool.emplace_back(work);
+  work();
+  for (auto& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
+  return fits;
+}
+
+}  // namespace
+
 CompressResult compress(const std::string& name, std::string text, const CompressOptions& opt,
                         DiagnosticSink& sink) {
   sink.set_strict(opt.strict);
@@ -60,11 +103,8 @@ CompressResult compress(const std::string& name, std::string text, const Compres
   std::vector<FitResult> fits;
   if (!opt.passthrough) {
     runs = extract_runs(in);
-    fits.reserve(runs.size());
-    for (const Run& run : runs) {
-      fits.push_back(fit_run(in, run, fit_options_for(opt.fit, opt.dialect, in.frames[run.frame], run.plane)));
-      r.forced_kinks += fits.back().forced_kinks;
-    }
+    fits = fit_runs(in, runs, opt);
+    for (const FitResult& f : fits) r.forced_kinks += f.forced_kinks;
   }
   EmitOptions eo;
   eo.band_mm = opt.fit.tolerance_mm;
