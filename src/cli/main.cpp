@@ -137,7 +137,10 @@ int run_compress(const CompressArgs& a) {
                  r.check.max_deviation_mm, r.band_mm, w.line_a, w.line_b, c.smooth_joints, c.max_smooth_kink_deg,
                  c.smooth_joints_over_g1, a.opt.fit.g1_angle_deg, r.forced_kinks);
     } else {
-      fmt::print(stderr, "  deviation      not measured (--no-verify)\n");
+      fmt::print(stderr,
+                 "  deviation      not measured (--no-verify)\n"
+                 "  smooth joints  {} forced by the band to change tangent (others not measured)\n",
+                 r.forced_kinks);
     }
   }
   return kExitOk;

@@ -110,6 +110,11 @@ class RunFitter {
     for (uint32_t a = 0; a < n_;) {
       uint32_t limit = a + 1;
       while (limit < n_ && !hard_[limit]) ++limit;
+      if (limit == a + 1) {  // one move between corners: it is its own answer
+        r.prims.push_back(input_move(a).prim);
+        a = limit;
+        continue;
+      }
       stretch_start_ = a;
       const bool search = o_.method == FitOptions::Method::Arcs || o_.method == FitOptions::Method::Global;
       if (search || o_.method == FitOptions::Method::Greedy)
@@ -774,6 +779,7 @@ class RunFitter {
       Score sc;
     };
     std::vector<Made> made;
+    std::vector<uint32_t> order;
     std::vector<Candidate> out;
     std::vector<std::pair<uint32_t, long>> seen;
     int furthest = -1;
@@ -823,6 +829,8 @@ class RunFitter {
       // the other finds.
       next.clear();
       seen.clear();
+      order.resize(made.size());
+      for (uint32_t k = 0; k < order.size(); ++k) order[k] = k;
       if (g) {
         nodes.push_back({*g, guide, g->prim.end_vertex, g->end_tangent});
         guide = static_cast<int>(nodes.size()) - 1;
@@ -833,8 +841,10 @@ class RunFitter {
         guide = -2;
       }
       auto keep_best = [&](size_t count, auto better) {
-        std::stable_sort(made.begin(), made.end(), better);
-        for (Made& m : made) {
+        // Indices sorted, not the candidates; ties keep the order of the sort before.
+        std::stable_sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) { return better(made[x], made[y]); });
+        for (uint32_t k : order) {
+          Made& m = made[k];
           if (next.size() >= count) break;
           if (m.from < 0) continue;  // failed its exact check, or kept already
           uint32_t e = m.c.prim.end_vertex;
