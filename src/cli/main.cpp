@@ -155,6 +155,7 @@ struct DiffArgs {
   std::string plot;
   std::string plane = "xy";
   size_t top = 5;
+  unsigned threads = 0;
 };
 
 /// `arcpress diff A B`: any two programs, read the same way, compared by path, rapids,
@@ -171,6 +172,7 @@ int run_diff(const DiffArgs& d) {
   DiffOptions opt;
   opt.tolerance_mm = d.tolerance_mm;
   opt.top = d.top;
+  opt.threads = d.threads;
   ProgramDiff r = diff_programs(pa, ia, pb, ib, opt);
   DiffNames names{d.a, d.b};
   if (!d.plot.empty()) {
@@ -233,8 +235,8 @@ int main(int argc, char** argv) {
   app.add_flag("--no-helical", no_helical, "Never move the plane's normal axis inside an arc");
   app.add_flag("--passthrough", a.opt.passthrough, "Read and write the program back unchanged");
   app.add_flag("--strict", a.opt.strict, "Refuse (exit 2) any block that cannot be read");
-  app.add_option("-j,--threads", a.opt.threads, "Threads fitting runs at once; 0: one per hardware thread "
-                                                "(the output is the same for any count)")
+  app.add_option("-j,--threads", a.opt.threads, "Threads fitting runs and verifying at once; 0: one per "
+                                                "hardware thread (the output is the same for any count)")
       ->check(CLI::Range(0u, 1024u))->capture_default_str();
   app.add_flag("--stats", a.stats, "Print counts, sizes and the measured deviation to standard error");
   bool no_verify = false;
@@ -256,6 +258,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   diff_cmd->add_option("--top", diff.top, "How many worst places to list")->check(CLI::Range(1, 1000))
       ->capture_default_str();
+  diff_cmd->add_option("-j,--threads", diff.threads, "Threads measuring the two directions at once; 0: as the "
+                                                    "machine has (the result is the same for any count)")
+      ->check(CLI::Range(0u, 1024u))->capture_default_str();
   diff_cmd->footer(kExitCodesHelp);
 
   CLI::App* dialects_cmd = app.add_subcommand("dialects", "List the controller dialects, one line each");

@@ -77,6 +77,50 @@ TEST_CASE("a bulge between the samples of either path is not missed", "[diff]") 
   CHECK(diff_of(b, a).max_deviation_mm == Approx(0.05).margin(1e-9));
 }
 
+TEST_CASE("the maximum and the worst places are the same on any number of threads", "[diff][threads]") {
+  // A long line along X whose copy has six bumps of known heights spread along it, so that
+  // every share of the path holds some and the shares' lists must be merged.
+  const std::vector<std::pair<int, double>> bumps = {{20, 0.004}, {75, 0.009}, {110, 0.002},
+                                                     {160, 0.007}, {230, 0.005}, {290, 0.003}};
+  auto line = [&](bool bumped) {
+    std::string t = "G21 G90\nG0 X0 Y0 Z0\nG1 F300\n";
+    for (int k = 1; k <= 300; ++k) {
+      double y = 0;
+      for (auto [at, h] : bumps) y = bumped && k == at ? h : y;
+      t += fmt::format("G1 X{} Y{:.4f}\n", k, y);
+    }
+    return t + "M2\n";
+  };
+  DiagnosticSink sa("a.nc"), sb("b.nc");
+  Program pa = lex("a.nc", line(false), sa), pb = lex("b.nc", line(true), sb);
+  Interpretation ia = interpret(pa, sa), ib = interpret(pb, sb);
+  std::vector<DiffPlace> one_thread;
+  for (unsigned threads : {1u, 2u, 3u, 7u}) {
+    INFO(threads << " threads");
+    DiffOptions opt;
+    opt.top = 5;
+    opt.threads = threads;
+    ProgramDiff d = diff_programs(pa, ia, pb, ib, opt);
+    CHECK(d.max_deviation_mm == Approx(0.009).margin(1e-6));
+    REQUIRE(d.worst.size() == 5);
+    // Each bump shows on both moves that meet at it: the list is the 0.009 and 0.007 bumps'
+    // two moves each, then one of the 0.005 bump's.
+    CHECK(d.worst[1].deviation_mm == Approx(0.009).margin(1e-6));
+    CHECK(d.worst[2].deviation_mm == Approx(0.007).margin(1e-6));
+    CHECK(d.worst[4].deviation_mm == Approx(0.005).margin(1e-6));
+    CHECK((d.worst[0].line_b == 78 || d.worst[0].line_b == 79));  // "G1 X75 ..." is line 78
+    if (threads == 1) {
+      one_thread = d.worst;
+      continue;
+    }
+    for (size_t k = 0; k < 5; ++k) {
+      CHECK(d.worst[k].deviation_mm == one_thread[k].deviation_mm);
+      CHECK(d.worst[k].line_a == one_thread[k].line_a);
+      CHECK(d.worst[k].line_b == one_thread[k].line_b);
+    }
+  }
+}
+
 TEST_CASE("a swapped M-code is reported even where the paths agree", "[diff]") {
   ProgramDiff d = diff_of(zigzag(), zigzag(0, "M4 S1000"));
   CHECK(d.max_deviation_mm == 0.0);

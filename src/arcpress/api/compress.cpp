@@ -41,6 +41,7 @@ void verify_output(const Program& input, const Interpretation& in, const Compres
   DiffOptions dopt;
   dopt.tolerance_mm = opt.fit.tolerance_mm;
   dopt.top = 1;
+  dopt.threads = opt.threads;
   r.check = diff_programs(input, in, out_prog, out_in, dopt);
   if (out_sink.error_count() > 0)
     r.check.findings.insert(r.check.findings.begin(), "the output does not read back: " + out_sink.format_all());

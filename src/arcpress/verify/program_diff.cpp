@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <exception>
+#include <thread>
 #include <tuple>
 
 #include "arcpress/core/deviation.hpp"
@@ -181,12 +183,13 @@ class Directed {
 
   /// `visit(from_segment, nearest, point)` for every evaluated point; `nearest` is exact
   /// when its distance exceeds the floor at the time of the visit.
+  /// ... for `from`'s segments [begin, end).
   template <class Visit>
-  void run(Visit&& visit) {
+  void run(size_t begin, size_t end, Visit&& visit) {
     if (index_.empty()) return;
     SegmentIndex::Nearest n0{};
     Vec3 last(NAN, NAN, NAN);
-    for (size_t s = 0; s < from_.size(); ++s) {
+    for (size_t s = begin; s < end; ++s) {
       Vec3 p0 = from_.a(s), p1 = from_.b(s);
       if (!(p0 == last)) {
         n0 = locate(p0, n0.segment);
@@ -358,20 +361,74 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
   d.deviation_of_b.assign(ib.moves.size(), 0.0);
 
   // Feed paths, both ways: the maximum, the worst places, and each B move's deviation.
+  // Each of `workers` threads measures its share of both directions (the same contiguous
+  // share of each path for a given count) with its own worst places and per-move
+  // deviations, merged after. The merged worst places are exact: a place among the worst
+  // overall is among the worst of the share where it is largest. (Below the worst places'
+  // floor a share may keep an upper bound instead of the exact distance, so per-move
+  // deviations for plots can differ slightly with the count; the maximum and the places
+  // cannot.)
   SegmentIndex index_a(pa.ends), index_b(pb.ends);
-  TopPlaces top(opt.top);
-  auto note = [&](uint32_t move_a, uint32_t move_b, double dist, const Vec3& at) {
-    d.deviation_of_b[move_b] = std::max(d.deviation_of_b[move_b], dist);
-    if (dist > top.floor())
-      top.offer({dist, at, a.blocks[ia.moves[move_a].block].line, b.blocks[ib.moves[move_b].block].line});
-  };
   if (!pa.ends.empty() && !pb.ends.empty()) {
-    Directed(pa, pb, index_b, precision_mm, top).run([&](size_t s, const SegmentIndex::Nearest& n, const Vec3& p) {
-      note(pa.move_of[s], pb.move_of[n.segment], n.distance_mm, p);
-    });
-    Directed(pb, pa, index_a, precision_mm, top).run([&](size_t s, const SegmentIndex::Nearest& n, const Vec3& p) {
-      note(pa.move_of[n.segment], pb.move_of[s], n.distance_mm, p);
-    });
+    struct Share {
+      TopPlaces top;
+      std::vector<double> deviation_of_b;
+    };
+    const size_t workers = std::clamp<size_t>(opt.threads > 0 ? opt.threads : std::thread::hardware_concurrency(), 1,
+                                              std::max<size_t>(1, std::min(pa.size(), pb.size())));
+    std::vector<Share> shares(workers, Share{TopPlaces(opt.top), std::vector<double>(ib.moves.size(), 0.0)});
+    if (workers > 1) {  // every share asks both trees: build them at once first
+      std::exception_ptr failure;
+      std::thread build_a([&] {
+        try {
+          index_a.build();
+        } catch (...) {
+          failure = std::current_exception();
+        }
+      });
+      index_b.build();
+      build_a.join();
+      if (failure) std::rethrow_exception(failure);
+    }
+    auto measure = [&](size_t w) {
+      Share& sh = shares[w];
+      auto note = [&](uint32_t move_a, uint32_t move_b, double dist, const Vec3& at) {
+        sh.deviation_of_b[move_b] = std::max(sh.deviation_of_b[move_b], dist);
+        if (dist > sh.top.floor())
+          sh.top.offer({dist, at, a.blocks[ia.moves[move_a].block].line, b.blocks[ib.moves[move_b].block].line});
+      };
+      Directed(pa, pb, index_b, precision_mm, sh.top)
+          .run(pa.size() * w / workers, pa.size() * (w + 1) / workers,
+               [&](size_t s, const SegmentIndex::Nearest& n, const Vec3& p) {
+                 note(pa.move_of[s], pb.move_of[n.segment], n.distance_mm, p);
+               });
+      Directed(pb, pa, index_a, precision_mm, sh.top)
+          .run(pb.size() * w / workers, pb.size() * (w + 1) / workers,
+               [&](size_t s, const SegmentIndex::Nearest& n, const Vec3& p) {
+                 note(pa.move_of[n.segment], pb.move_of[s], n.distance_mm, p);
+               });
+    };
+    std::vector<std::exception_ptr> failures(workers);
+    std::vector<std::thread> pool;
+    for (size_t w = 1; w < workers; ++w)
+      pool.emplace_back([&, w] {
+        try {
+          measure(w);
+        } catch (...) {
+          failures[w] = std::current_exception();
+        }
+      });
+    measure(0);
+    for (auto& t : pool) t.join();
+    for (const auto& f : failures)
+      if (f) std::rethrow_exception(f);
+    for (size_t w = 1; w < workers; ++w)
+      for (const DiffPlace& p : shares[w].top.take()) shares[0].top.offer(p);
+    for (const Share& sh : shares)
+      for (size_t m = 0; m < d.deviation_of_b.size(); ++m)
+        d.deviation_of_b[m] = std::max(d.deviation_of_b[m], sh.deviation_of_b[m]);
+    d.max_deviation_mm = shares[0].top.max();
+    d.worst = shares[0].top.take();
     compare_feed(pa, ia, pb, ib, index_a, opt.tolerance_mm, [&](const Move& ma, const Move& mb, const Vec3& at) {
       double pct = 100.0 * std::abs(mb.feed_mm_min - ma.feed_mm_min) / ma.feed_mm_min;
       if (pct > d.max_feed_difference_pct) {
@@ -382,8 +439,6 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
   } else if (pa.ends.empty() != pb.ends.empty()) {
     d.findings.push_back(fmt::format("only {} has feed moves", pa.ends.empty() ? "B" : "A"));
   }
-  d.max_deviation_mm = top.max();
-  d.worst = top.take();
   if (d.worst.size() > opt.top) d.worst.resize(opt.top);
 
   if (d.a.sections != d.b.sections)

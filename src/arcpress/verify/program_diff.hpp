@@ -16,7 +16,8 @@
 // Speed: the two paths usually run side by side in the same order, so each point is first
 // measured against the stretch of the other path around the previous answer; the AABB tree
 // is asked (and built) only for points where that could change the maximum or the worst
-// places. The maximum and the listed places are exact either way.
+// places. The maximum and the listed places are exact either way. With several threads,
+// each measures a share of both paths and the shares' worst places are merged.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -30,6 +31,9 @@ namespace arcpress {
 struct DiffOptions {
   double tolerance_mm = 0.01;  ///< the band B's path must stay in around A's
   size_t top = 5;              ///< how many worst places to report
+  /// Threads for the two directions of the path measure (1 or more; 0: as the machine
+  /// has). The result is the same for any count.
+  unsigned threads = 0;
 };
 
 /// One place where the paths are apart.

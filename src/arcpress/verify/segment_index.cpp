@@ -28,7 +28,7 @@ Point point(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
 struct SegmentIndex::Impl {
   std::vector<Segment> segments;
-  Tree tree;  ///< built by CGAL at the first query: a caller that never needs it pays nothing
+  Tree tree;  ///< built by build() or at the first query: a caller that never needs it pays nothing
 };
 
 SegmentIndex::SegmentIndex(const std::vector<Vec3>& ends) : impl_(std::make_unique<Impl>()) {
@@ -44,6 +44,10 @@ SegmentIndex::SegmentIndex(const std::vector<Vec3>& ends) : impl_(std::make_uniq
 SegmentIndex::~SegmentIndex() = default;
 
 bool SegmentIndex::empty() const { return impl_->segments.empty(); }
+
+void SegmentIndex::build() const {
+  if (!empty()) impl_->tree.build();
+}
 
 SegmentIndex::Nearest SegmentIndex::nearest(const Vec3& p, uint32_t hint) const {
   Nearest n;

@@ -25,6 +25,8 @@ class SegmentIndex {
   SegmentIndex& operator=(const SegmentIndex&) = delete;
 
   bool empty() const;
+  /// Builds the tree now rather than at the first query (for building two at once).
+  void build() const;
   /// The nearest segment to p. The search starts from segment `hint`'s distance, so it is
   /// fast when the hint is near p (e.g. the answer of the previous query along a path).
   Nearest nearest(const Vec3& p, uint32_t hint) const;
