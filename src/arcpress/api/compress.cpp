@@ -2,11 +2,9 @@
 
 #include <algorithm>
 #include <atomic>
-#include <exception>
-#include <mutex>
-#include <thread>
 
 #include "arcpress/core/error.hpp"
+#include "arcpress/core/workers.hpp"
 #include "arcpress/extract/run.hpp"
 #include "arcpress/fit/fitter.hpp"
 #include "arcpress/lex/lexer.hpp"
@@ -60,29 +58,15 @@ std::vector<FitResult> fit_runs(const Interpretation& in, const std::vector<Run>
   };
   // Each worker takes the next run not yet taken, so a few long runs do not hold the rest
   // back; results land in their run's place, so the order never depends on the timing.
-  const size_t workers = std::min<size_t>(opt.threads > 0 ? opt.threads : std::max(1u, std::thread::hardware_concurrency()),
-                                          runs.size());
-  if (workers <= 1) {
-    for (size_t i = 0; i < runs.size(); ++i) fit_one(i);
-    return fits;
-  }
   std::atomic<size_t> next{0};
-  std::exception_ptr failure;
-  std::mutex failure_mutex;
-  auto work = [&] {
+  run_workers(worker_count(opt.threads, runs.size()), [&](size_t) {
     try {
       for (size_t i; (i = next.fetch_add(1)) < runs.size();) fit_one(i);
-    } catch (...) {  // the fitter does not throw; an allocation can
-      std::lock_guard lock(failure_mutex);
-      if (!failure) failure = std::current_exception();
+    } catch (...) {  // the fitter does not throw; an allocation can: the others stop too
       next = runs.size();
+      throw;
     }
-  };
-  std::vector<std::thread> pool;
-  for (size_t w = 1; w < workers; ++w) pool.emplace_back(work);
-  work();
-  for (auto& t : pool) t.join();
-  if (failure) std::rethrow_exception(failure);
+  });
   return fits;
 }
 

@@ -5,11 +5,10 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <exception>
-#include <thread>
 #include <tuple>
 
 #include "arcpress/core/deviation.hpp"
+#include "arcpress/core/workers.hpp"
 #include "arcpress/verify/segment_index.hpp"
 
 namespace arcpress {
@@ -374,22 +373,10 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
       TopPlaces top;
       std::vector<double> deviation_of_b;
     };
-    const size_t workers = std::clamp<size_t>(opt.threads > 0 ? opt.threads : std::thread::hardware_concurrency(), 1,
-                                              std::max<size_t>(1, std::min(pa.size(), pb.size())));
+    const size_t workers = worker_count(opt.threads, std::min(pa.size(), pb.size()));
     std::vector<Share> shares(workers, Share{TopPlaces(opt.top), std::vector<double>(ib.moves.size(), 0.0)});
-    if (workers > 1) {  // every share asks both trees: build them at once first
-      std::exception_ptr failure;
-      std::thread build_a([&] {
-        try {
-          index_a.build();
-        } catch (...) {
-          failure = std::current_exception();
-        }
-      });
-      index_b.build();
-      build_a.join();
-      if (failure) std::rethrow_exception(failure);
-    }
+    if (workers > 1)  // every share asks both trees: build them at once first
+      run_workers(2, [&](size_t w) { (w == 0 ? index_b : index_a).build(); });
     auto measure = [&](size_t w) {
       Share& sh = shares[w];
       auto note = [&](uint32_t move_a, uint32_t move_b, double dist, const Vec3& at) {
@@ -408,20 +395,7 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
                  note(pa.move_of[n.segment], pb.move_of[s], n.distance_mm, p);
                });
     };
-    std::vector<std::exception_ptr> failures(workers);
-    std::vector<std::thread> pool;
-    for (size_t w = 1; w < workers; ++w)
-      pool.emplace_back([&, w] {
-        try {
-          measure(w);
-        } catch (...) {
-          failures[w] = std::current_exception();
-        }
-      });
-    measure(0);
-    for (auto& t : pool) t.join();
-    for (const auto& f : failures)
-      if (f) std::rethrow_exception(f);
+    run_workers(workers, measure);
     for (size_t w = 1; w < workers; ++w)
       for (const DiffPlace& p : shares[w].top.take()) shares[0].top.offer(p);
     for (const Share& sh : shares)
