@@ -364,6 +364,54 @@ TEST_CASE("the global method never needs more primitives than the default search
   CHECK(fewer_primitives({plum_points(), cubic_points()}, {0.01, 0.005}, search, global) >= 3);
 }
 
+namespace {
+/// Outlines like a slicer's perimeters: `count` of them, each three edges of 3 to 6 moves
+/// of 0.6-0.95 mm that turn 0-6° per vertex (the turn drifting along the edge, with a
+/// little jitter), joined by 90° corners, printed to 3 decimals. Each turn is close to the
+/// sharpest the 0.01 mm band can still smooth at these lengths, so a joint's tangent is
+/// nearly fixed by its neighbours. Seeded, so the same every run.
+std::string perimeters_program(int count) {
+  std::mt19937 gen(5);
+  auto uniform = [&](double lo, double hi) { return lo + (hi - lo) * (double(gen()) / 4294967296.0); };
+  std::string s = "G21 G90 G17\nG1 F1200\n";
+  for (int outline = 0; outline < count; ++outline) {
+    double x = uniform(0, 100), y = uniform(0, 100), heading = uniform(0, 2 * kPi);
+    s += fmt::format("G0 X{:.3f} Y{:.3f} Z0\n", x, y);
+    for (int edge = 0; edge < 3; ++edge) {
+      const int moves = 3 + int(gen() % 4);
+      double turn = uniform(-0.11, 0.11);
+      const double drift = uniform(-0.03, 0.03);
+      for (int m = 0; m < moves; ++m) {
+        const double len_mm = uniform(0.6, 0.95);
+        x += len_mm * std::cos(heading);
+        y += len_mm * std::sin(heading);
+        heading += turn + uniform(-0.02, 0.02);
+        turn += drift;
+        s += fmt::format("G1 X{:.3f} Y{:.3f}\n", x, y);
+      }
+      heading += kPi / 2;
+    }
+  }
+  return s + "M2\n";
+}
+}  // namespace
+
+TEST_CASE("short smooth edges between corners are searched too: the search keeps their joints tangent where "
+          "the greedy chain breaks them", "[fit][search]") {
+  // Where the greedy chain covers an edge in two primitives but only with a tangent break
+  // between them, a search over start tangents finds a tangent-continuous chain.
+  const std::string text = perimeters_program(200);
+  FitOptions greedy, search;
+  greedy.method = FitOptions::Method::Greedy;
+  auto g = compress_text(text, greedy);
+  auto o = compress_text(text, search);
+  INFO("forced kinks: greedy " << g.r.forced_kinks << ", search " << o.r.forced_kinks);
+  REQUIRE(g.r.forced_kinks >= 50);  // the edges are hard enough to tell the two apart
+  CHECK(o.r.forced_kinks * 10 <= g.r.forced_kinks);
+  CHECK(o.r.comparison.max_deviation_mm <= 0.01);
+  CHECK(o.arcs + o.lines <= g.arcs + g.lines);
+}
+
 TEST_CASE("merging after the search: two primitives become one, three become two, joints stay tangent",
           "[fit][search]") {
   // Plum: sharp inner tips and fast curvature changes, where the chain search alone leaves

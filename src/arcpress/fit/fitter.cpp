@@ -123,9 +123,10 @@ class RunFitter {
       std::vector<Chosen> chain = o_.method == FitOptions::Method::Stream ? stream_chain(a, limit, forced)
                                   : o_.method == FitOptions::Method::Lowe ? lowe_chain(a, limit, forced)
                                                                           : greedy_chain(a, std::nullopt, limit, forced);
-      // The greedy chain is the answer for stretches it covers in one or two primitives;
-      // longer ones are searched again and the shorter chain wins.
-      if (search && o_.beam_width > 1 && chain.size() > 2) {
+      // The greedy chain is the answer for stretches it covers in one or two primitives
+      // joined tangentially; longer ones, and those it could only cover with a forced kink,
+      // are searched again, and the chain with fewer kinks, then fewer primitives, wins.
+      if (search && o_.beam_width > 1 && (chain.size() > 2 || forced > 0)) {
         size_t beam_forced = 0;
         auto b = beam_stretch(a, limit, chain, beam_forced);
         if (std::pair(beam_forced, b.size()) < std::pair(forced, chain.size())) {
@@ -134,9 +135,10 @@ class RunFitter {
         }
       }
       if (search && o_.merge && forced == 0) tighten(a, chain);
-      // The global method also searches every (vertex, tangent) state layer by layer and
-      // keeps that chain when, merged too, it is shorter and as free of kinks.
-      if (o_.method == FitOptions::Method::Global && chain.size() > 2) {
+      // The global method also searches every (vertex, tangent) state layer by layer, for
+      // every stretch the greedy chain does not cover with one primitive, and keeps that
+      // chain when, merged too, it has fewer kinks, or as few and fewer primitives.
+      if (o_.method == FitOptions::Method::Global && chain.size() > 1) {
         auto g = layered_chain(a, limit);
         if (!g.empty() && o_.merge) tighten(a, g);
         if (!g.empty() && std::pair(size_t(0), g.size()) < std::pair(forced, chain.size())) {
