@@ -367,17 +367,18 @@ TEST_CASE("the global method never needs more primitives than the default search
 namespace {
 /// Outlines like a slicer's perimeters: `count` of them, each three edges of 3 to 6 moves
 /// of 0.6-0.95 mm that turn 0-6° per vertex (the turn drifting along the edge, with a
-/// little jitter), joined by 90° corners, printed to 3 decimals. Each turn is close to the
-/// sharpest the 0.01 mm band can still smooth at these lengths, so a joint's tangent is
-/// nearly fixed by its neighbours. Seeded, so the same every run.
-std::string perimeters_program(int count) {
+/// little jitter), joined by 90° corners. Each turn is close to the sharpest the 0.01 mm
+/// band can still smooth at these lengths, so a joint's tangent is nearly fixed by its
+/// neighbours. Seeded, so the same every run. Each edge holds its corner points at both ends.
+std::vector<std::vector<std::vector<Pt>>> perimeter_outlines(int count) {
   std::mt19937 gen(5);
   auto uniform = [&](double lo, double hi) { return lo + (hi - lo) * (double(gen()) / 4294967296.0); };
-  std::string s = "G21 G90 G17\nG1 F1200\n";
+  std::vector<std::vector<std::vector<Pt>>> outlines;
   for (int outline = 0; outline < count; ++outline) {
     double x = uniform(0, 100), y = uniform(0, 100), heading = uniform(0, 2 * kPi);
-    s += fmt::format("G0 X{:.3f} Y{:.3f} Z0\n", x, y);
+    std::vector<std::vector<Pt>> edges;
     for (int edge = 0; edge < 3; ++edge) {
+      std::vector<Pt> e{{x, y, 0}};
       const int moves = 3 + int(gen() % 4);
       double turn = uniform(-0.11, 0.11);
       const double drift = uniform(-0.03, 0.03);
@@ -387,10 +388,23 @@ std::string perimeters_program(int count) {
         y += len_mm * std::sin(heading);
         heading += turn + uniform(-0.02, 0.02);
         turn += drift;
-        s += fmt::format("G1 X{:.3f} Y{:.3f}\n", x, y);
+        e.push_back({x, y, 0});
       }
       heading += kPi / 2;
+      edges.push_back(e);
     }
+    outlines.push_back(edges);
+  }
+  return outlines;
+}
+
+/// The outlines as one program, printed to 3 decimals.
+std::string perimeters_program(int count) {
+  std::string s = "G21 G90 G17\nG1 F1200\n";
+  for (const auto& outline : perimeter_outlines(count)) {
+    s += fmt::format("G0 X{:.3f} Y{:.3f} Z0\n", outline.front().front().x, outline.front().front().y);
+    for (const auto& edge : outline)
+      for (size_t i = 1; i < edge.size(); ++i) s += fmt::format("G1 X{:.3f} Y{:.3f}\n", edge[i].x, edge[i].y);
   }
   return s + "M2\n";
 }
@@ -410,6 +424,34 @@ TEST_CASE("short smooth edges between corners are searched too: the search keeps
   CHECK(o.r.forced_kinks * 10 <= g.r.forced_kinks);
   CHECK(o.r.comparison.max_deviation_mm <= 0.01);
   CHECK(o.arcs + o.lines <= g.arcs + g.lines);
+}
+
+TEST_CASE("merging works between forced kinks too: a kink frees the tangent on both sides, as a corner does",
+          "[fit][search]") {
+  // Without the search (a beam of one) the greedy chain keeps its forced kinks on some of
+  // these edges; on those edges, each fitted alone, the parts between the kinks are still
+  // merged, and no kink is added or removed.
+  FitOptions kept, merged;
+  kept.beam_width = merged.beam_width = 1;
+  kept.merge = false;
+  size_t edges = 0, kinks = 0, blocks_kept = 0, blocks_merged = 0;
+  for (const auto& outline : perimeter_outlines(200)) {
+    for (const auto& edge : outline) {
+      const std::string text = program(edge, "G17", 3);
+      auto k = compress_text(text, kept);
+      if (k.r.forced_kinks == 0) continue;
+      auto m = compress_text(text, merged);
+      ++edges;
+      kinks += k.r.forced_kinks;
+      CHECK(m.r.forced_kinks == k.r.forced_kinks);
+      CHECK(m.r.comparison.max_deviation_mm <= 0.01);
+      blocks_kept += k.arcs + k.lines;
+      blocks_merged += m.arcs + m.lines;
+    }
+  }
+  INFO(edges << " edges with " << kinks << " forced kinks: " << blocks_kept << " blocks, merged " << blocks_merged);
+  REQUIRE(edges >= 10);
+  CHECK(blocks_merged < blocks_kept);
 }
 
 TEST_CASE("merging after the search: two primitives become one, three become two, joints stay tangent",

@@ -134,7 +134,7 @@ class RunFitter {
           forced = beam_forced;
         }
       }
-      if (search && o_.merge && forced == 0) tighten(a, chain);
+      if (search && o_.merge) tighten_between_kinks(a, chain);
       // The global method also searches every (vertex, tangent) state layer by layer, for
       // every stretch the greedy chain does not cover with one primitive, and keeps that
       // chain when, merged too, it has fewer kinks, or as few and fewer primitives.
@@ -659,6 +659,23 @@ class RunFitter {
     return 2 * c.dot(T) * c - T;
   }
 
+  /// tighten() on each tangent-continuous part of a chain that starts at `a`: a forced kink
+  /// frees the tangent on both sides of it, as a corner does.
+  void tighten_between_kinks(uint32_t a, std::vector<Chosen>& chain) const {
+    std::vector<Chosen> out, part;
+    for (size_t i = 0; i < chain.size(); ++i) {
+      part.push_back(chain[i]);
+      if (i + 1 < chain.size() && !chain[i + 1].kinked) continue;
+      const bool kinked = part.front().kinked;
+      tighten(a, part);
+      part.front().kinked = kinked;
+      a = part.back().prim.end_vertex;
+      out.insert(out.end(), part.begin(), part.end());
+      part.clear();
+    }
+    chain.swap(out);
+  }
+
   /// Local merging after the search: wherever two consecutive primitives can become one, or
   /// three can become two, that leave the joint before them and meet the joint after them
   /// within the turn allowed at a joint, they are replaced, and the joint before is tried again.
@@ -881,6 +898,7 @@ class RunFitter {
       if (!chain.empty()) ++forced;
       auto part = beam_chain(a, limit, chain.empty() ? &greedy : nullptr);
       if (part.empty()) part.push_back(best_free(a, limit));
+      part.front().kinked = !chain.empty();
       chain.insert(chain.end(), part.begin(), part.end());
       a = part.back().prim.end_vertex;
     }
