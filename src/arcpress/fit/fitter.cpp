@@ -765,7 +765,7 @@ class RunFitter {
     }
   }
 
-  /// One node of the beam search: the chain reached vertex `v` and leaves it along `T`.
+  /// One node of the beam and layered searches: the chain reached vertex `v` and leaves it along `T`.
   struct Node {
     Chosen last;  ///< the primitive that ended here (none at a root)
     int parent;   ///< index of the node it left from; -1 at a root
@@ -916,17 +916,10 @@ class RunFitter {
   /// must pass a narrow place with the one right tangent is not lost. Empty when no chain
   /// reaches `limit` tangentially.
   std::vector<Chosen> layered_chain(uint32_t a, uint32_t limit) const {
-    struct State {
-      Chosen last;  ///< the primitive that ended here (none at a root)
-      int parent;   ///< the state it left from; -1 at a root
-    };
-    std::vector<State> states;
+    std::vector<Node> states;
     std::vector<int> layer, next;
     for (const Vec2& T : start_tangents(a, limit)) {
-      Chosen root;
-      root.prim.end_vertex = a;
-      root.end_tangent = T;
-      states.push_back({root, -1});
+      states.push_back({{}, -1, a, T});
       layer.push_back(static_cast<int>(states.size()) - 1);
     }
     const double bin_rad = kTangentBinShare * deg_to_rad(o_.g1_angle_deg);
@@ -938,26 +931,21 @@ class RunFitter {
       next.clear();
       uint32_t next_front = front;
       for (int i : layer) {
-        const uint32_t v = states[i].last.prim.end_vertex;
-        const Vec2 T = states[i].last.end_tangent;
+        const uint32_t v = states[i].v;
+        const Vec2 T = states[i].T;
         scan(v, T, limit, cand);
         for (size_t k = cand.size(); k-- > 0 && cand[k].e >= front;) {  // furthest first
           const Candidate& c = cand[k];
           const uint32_t group = std::max<uint32_t>(1, std::max(advance, next_front - front) / kLayerGroups);
-          const Vec2 end = c.line ? Vec2((q(c.e) - q(v)).normalized()) : reflected_end(v, T, c.e);
+          const Vec2 end = unchecked(v, T, c).end_tangent;
           const long bin = std::lround(std::atan2(end.y(), end.x()) / bin_rad);
           const uint64_t key = (uint64_t(c.e - c.e % group) << 32) | uint32_t(bin);  // group's first vertex
           if (c.e < limit && seen.count(key)) continue;
           auto made = make(v, T, c);
           if (!made) continue;
-          states.push_back({*made, i});
+          states.push_back({*made, i, c.e, made->end_tangent});
           const int id = static_cast<int>(states.size()) - 1;
-          if (c.e >= limit) {
-            std::vector<Chosen> chain;
-            for (int s = id; states[s].parent >= 0; s = states[s].parent) chain.push_back(states[s].last);
-            std::reverse(chain.begin(), chain.end());
-            return chain;
-          }
+          if (c.e >= limit) return chain_to(states, id);
           seen.insert(key);
           next.push_back(id);
           next_front = std::max(next_front, c.e);
