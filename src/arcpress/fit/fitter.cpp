@@ -20,6 +20,9 @@ constexpr double kRoundingReserve = 0.03;
 /// 0.8² + 0.6² = 1, so the 3D distance stays inside the band.
 constexpr double kPlaneShare = 0.8;
 constexpr double kHeightShare = 0.6;
+/// Share of the G1 angle by which the fitter may turn the tangent at a smooth joint; printing
+/// the arc centres may turn each side by a little more (the emitter re-checks that).
+constexpr double kJointShare = 0.9;
 /// Candidates per primitive whose next step is looked at before choosing.
 constexpr int kLookahead = 6;
 /// Splits of a stretch into two primitives checked exactly per start tangent when merging.
@@ -434,14 +437,19 @@ class RunFitter {
       if (best_score.on_course && (best->prim.end_vertex - a >= 4 || best->prim.end_vertex == limit)) return best;
     }
     double g1 = deg_to_rad(o_.g1_angle_deg);
-    for (double f : {0.45, -0.45, 0.9, -0.9}) consider(a, rotated(T, f * g1), limit, best, best_score);
+    for (double f : {0.45, -0.45, 0.9, -0.9}) consider(a, rotated(T, f * g1), limit, best, best_score, &T);
     return best;
   }
 
-  /// Keeps in `best` whichever of it and the best primitive along `T` scores higher.
-  void consider(uint32_t a, const Vec2& T, uint32_t limit, std::optional<Chosen>& best, Score& best_score) const {
+  /// Keeps in `best` whichever of it and the best primitive along `T` scores higher. With
+  /// `incoming` (the tangent the chain arrives with, T being turned from it), a primitive
+  /// that leaves by more than kJointShare of the G1 angle from it is not taken: a line's chord
+  /// may lie off T by the line allowance, on top of the turn.
+  void consider(uint32_t a, const Vec2& T, uint32_t limit, std::optional<Chosen>& best, Score& best_score,
+                const Vec2* incoming = nullptr) const {
     auto c = best_from(a, T, limit);
     if (!c) return;
+    if (incoming && !within(*incoming, start_tangent(*c, a), kJointShare * deg_to_rad(o_.g1_angle_deg))) return;
     Score sc = score(*c, limit);
     if (!best || sc > best_score) {
       best = c;
