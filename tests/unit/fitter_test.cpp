@@ -602,3 +602,56 @@ TEST_CASE("the trigonometry-free arc measure equals the measure by angles on fla
   }
   CHECK(unordered > 0);  // both kinds of polyline were met
 }
+
+namespace {
+
+/// Half an ellipse (20 mm by 12 mm, so its curvature changes all along) in 120 G1 moves, cut
+/// into pieces the fitter cannot fit as one run: a comment after every fifth move, every
+/// 13th move a lone move at its own feed, and every 29th move the input's own G3 through
+/// the ellipse there. `lone` receives the text of the lone moves.
+std::string cut_ellipse(std::vector<std::string>& lone) {
+  auto at = [](double i) { return Vec2(20 * std::cos(kPi * i / 120), 12 * std::sin(kPi * i / 120)); };
+  std::string s = "G21 G90 G17\nG0 X20.0000 Y0.0000 Z0.0000\nG1 F600\n";
+  for (int i = 1; i <= 120; ++i) {
+    const Vec2 p = at(i);
+    if (i % 29 == 0) {  // centre of the circle through the move's ends and the ellipse between
+      const Vec2 a = at(i - 1), b = at(i - 0.5), c = p;
+      const double d = 2 * (a.x() * (b.y() - c.y()) + b.x() * (c.y() - a.y()) + c.x() * (a.y() - b.y()));
+      const Vec2 ctr((a.squaredNorm() * (b.y() - c.y()) + b.squaredNorm() * (c.y() - a.y()) + c.squaredNorm() * (a.y() - b.y())) / d,
+                     (a.squaredNorm() * (c.x() - b.x()) + b.squaredNorm() * (a.x() - c.x()) + c.squaredNorm() * (b.x() - a.x())) / d);
+      s += fmt::format("G3 X{:.4f} Y{:.4f} I{:.4f} J{:.4f}\n", p.x(), p.y(), ctr.x() - a.x(), ctr.y() - a.y());
+      continue;
+    }
+    std::string move = fmt::format("G1 X{:.4f} Y{:.4f}", p.x(), p.y());
+    if (i % 13 == 0) {
+      move += fmt::format(" F{}", 700 + i);
+      lone.push_back(move);
+    } else if (i % 13 == 1 && i > 1) {
+      move += " F600";
+    }
+    s += move + "\n";
+    if (i % 5 == 0) s += fmt::format("(after move {})\n", i);
+  }
+  return s + "M2\n";
+}
+
+}  // namespace
+
+TEST_CASE("runs cut apart by comments, feed changes, lone moves and input arcs meet each other tangentially where "
+          "the path is smooth, and the lone moves and arcs are written back as they were",
+          "[fit][chain]") {
+  std::vector<std::string> lone;
+  const std::string text = cut_ellipse(lone);
+  auto o = compress_text(text);
+  REQUIRE(o.r.within_band());
+  CHECK(o.arcs > 0);
+  // Every joint is measured as the output reads back, those between pieces included.
+  CHECK(o.r.comparison.smooth_joints >= 30);
+  CHECK(o.r.comparison.smooth_joints_over_g1 == 0);
+  CHECK(o.r.comparison.max_smooth_kink_deg <= 0.5);
+  CHECK(o.r.forced_kinks == 0);
+  REQUIRE(lone.size() == 9);
+  for (const std::string& m : lone) CHECK(o.r.output.find(m + "\n") != std::string::npos);
+  for (const char* arc : {"G3 X14.5075 Y8.2603 I-9.7949 J-14.7014", "G3 X-19.8904 Y1.2543 I7.2938 J-1.6008"})
+    CHECK(o.r.output.find(arc) != std::string::npos);
+}

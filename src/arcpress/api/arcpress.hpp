@@ -3,6 +3,7 @@
 // lex -> interpret -> extract runs -> fit -> emit (-> verify).
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "arcpress/core/diagnostic.hpp"
 #include "arcpress/dialect/dialect.hpp"
@@ -38,6 +39,8 @@ struct CompressResult {
   size_t bytes_in = 0;
   EmitStats stats;
   size_t forced_kinks = 0;   ///< smooth joints where the band forced a tangent change
+  /// Where they are: the input line of the move that starts at each, in order.
+  std::vector<uint32_t> forced_kink_lines;
   bool verified = false;     ///< `check` and `comparison` hold measurements of the output
   /// The output against the input by diff_programs(), the code of `arcpress diff`: the
   /// verdict on the output and its measured deviation.

@@ -49,21 +49,25 @@ void verify_output(const Program& input, const Interpretation& in, const Compres
 
 namespace {
 
-/// Fits every run with `opt.threads` threads.
+/// Fits every run, chain by chain (see chain_runs()), with `opt.threads` threads.
 std::vector<FitResult> fit_runs(const Interpretation& in, const std::vector<Run>& runs, const CompressOptions& opt) {
+  const std::vector<RunChain> chains = chain_runs(in, runs, opt.fit.tolerance_mm, opt.fit.corner_angle_deg);
   std::vector<FitResult> fits(runs.size());
   auto fit_one = [&](size_t i) {
-    const Run& run = runs[i];
-    fits[i] = fit_run(in, run, fit_options_for(opt.fit, opt.dialect, in.frames[run.frame], run.plane));
+    const RunChain& c = chains[i];
+    auto got = fit_chain(in, c, runs, [&](const Run& r) {
+      return fit_options_for(opt.fit, opt.dialect, in.frames[r.frame], r.plane);
+    });
+    std::move(got.begin(), got.end(), fits.begin() + c.first_run);
   };
-  // Each worker takes the next run not yet taken, so a few long runs do not hold the rest
-  // back; results land in their run's place, so the order never depends on the timing.
+  // Each worker takes the next chain not yet taken, so a few long ones do not hold the rest
+  // back; results land in their runs' places, so the order never depends on the timing.
   std::atomic<size_t> next{0};
-  run_workers(worker_count(opt.threads, runs.size()), [&](size_t) {
+  run_workers(worker_count(opt.threads, chains.size()), [&](size_t) {
     try {
-      for (size_t i; (i = next.fetch_add(1)) < runs.size();) fit_one(i);
+      for (size_t i; (i = next.fetch_add(1)) < chains.size();) fit_one(i);
     } catch (...) {  // the fitter does not throw; an allocation can: the others stop too
-      next = runs.size();
+      next = chains.size();
       throw;
     }
   });
@@ -89,7 +93,10 @@ CompressResult compress(const std::string& name, std::string text, const Compres
   if (!opt.passthrough) {
     runs = extract_runs(in);
     fits = fit_runs(in, runs, opt);
-    for (const FitResult& f : fits) r.forced_kinks += f.forced_kinks;
+    for (size_t k = 0; k < runs.size(); ++k)
+      for (uint32_t v : fits[k].forced_at)
+        r.forced_kink_lines.push_back(prog.blocks[in.moves[runs[k].first_move + v].block].line);
+    r.forced_kinks = r.forced_kink_lines.size();
   }
   EmitOptions eo;
   eo.band_mm = opt.fit.tolerance_mm;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "arcpress/core/deviation.hpp"
+
 namespace arcpress {
 namespace {
 
@@ -107,6 +109,52 @@ std::vector<Run> extract_runs(const Interpretation& in, uint32_t min_moves) {
     i = j;
   }
   return runs;
+}
+
+std::vector<RunChain> chain_runs(const Interpretation& in, const std::vector<Run>& runs, double band_mm,
+                                 double corner_angle_deg) {
+  const auto& mv = in.moves;
+  std::vector<int32_t> run_of(mv.size(), -1);
+  for (size_t r = 0; r < runs.size(); ++r)
+    for (uint32_t k = 0; k < runs[r].move_count; ++k) run_of[runs[r].first_move + k] = int32_t(r);
+  auto point = [&](size_t i, Plane pl) {  // start of move i in the plane's coordinates
+    const auto& v = in.from(i);
+    const auto ax = axes_of(pl);
+    return Vec3(v[ax.first], v[ax.second], v[ax.normal]);
+  };
+  std::vector<RunChain> chains;
+  RunChain cur;
+  bool open = false;
+  auto close = [&] {
+    if (open && cur.run_count > 0) chains.push_back(cur);
+    open = false;
+  };
+  for (size_t k = 0; k < mv.size(); ++k) {
+    const int32_t r = run_of[k];
+    if (!mv[k].fittable && !(is_arc(mv[k].kind) && mv[k].known)) {
+      close();
+      continue;
+    }
+    if (open) {
+      const Move& prev = mv[k - 1];
+      const bool same_piece = r >= 0 && run_of[k - 1] == r;
+      if (prev.frame != mv[k].frame || prev.plane != mv[k].plane ||
+          (!same_piece && is_corner(point(k - 1, mv[k].plane), point(k, mv[k].plane), point(k + 1, mv[k].plane), band_mm,
+                                    corner_angle_deg)))
+        close();
+    }
+    if (!open) {
+      cur = {uint32_t(k), 0, r >= 0 ? uint32_t(r) : uint32_t(0), 0};
+      open = true;
+    }
+    ++cur.move_count;
+    if (r >= 0 && runs[size_t(r)].first_move == k) {
+      if (cur.run_count == 0) cur.first_run = uint32_t(r);
+      ++cur.run_count;
+    }
+  }
+  close();
+  return chains;
 }
 
 }  // namespace arcpress

@@ -31,4 +31,24 @@ struct Run {
 /// Finds all runs of at least `min_moves` fittable moves.
 std::vector<Run> extract_runs(const Interpretation& in, uint32_t min_moves = 2);
 
+/// Runs that follow one another along the path and are fitted together, so that the joints
+/// between them are tangent where the path is smooth: moves first_move .. first_move +
+/// move_count - 1, holding runs first_run .. first_run + run_count - 1 and, between or around
+/// them, lone G1 moves (fittable moves that are no run) and the input's own arcs, both
+/// written back as they are. Only blocks that do not move (comments, feed words, M-codes)
+/// separate its moves, and all lie in one frame and program plane (its runs may be fitted
+/// in another plane, see extract_runs()).
+struct RunChain {
+  uint32_t first_move = 0;
+  uint32_t move_count = 0;
+  uint32_t first_run = 0;
+  uint32_t run_count = 0;
+};
+
+/// Groups `runs` (as extract_runs() found them) into chains. Where the path has a corner
+/// between two pieces (is_corner() with `band_mm` and `corner_angle_deg`), nothing ties their
+/// tangents, and a new chain starts, so chains stay short enough to fit on separate threads.
+std::vector<RunChain> chain_runs(const Interpretation& in, const std::vector<Run>& runs, double band_mm,
+                                 double corner_angle_deg);
+
 }  // namespace arcpress

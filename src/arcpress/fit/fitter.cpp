@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <functional>
 #include <optional>
+#include <span>
 #include <unordered_set>
 
 #include "arcpress/core/deviation.hpp"
@@ -43,6 +45,14 @@ struct Candidate {
   bool line;
 };
 
+/// A move of a chain that its fit leaves as it is (a lone move, an input arc, or a move of a
+/// run fitted in another plane), with the path's direction in the chain's plane where it
+/// leaves the move before and where it enters the move after (none where unknown).
+struct FixedMove {
+  bool fixed = false;
+  std::optional<Vec2> start, end;
+};
+
 struct Chosen {
   Primitive prim;
   Vec2 end_tangent{1, 0};
@@ -51,7 +61,13 @@ struct Chosen {
 
 class RunFitter {
  public:
-  RunFitter(const Interpretation& in, const Run& run, const FitOptions& o) : o_(o), n_(run.move_count) {
+  /// `run` spans the moves to fit; `fixed` (per move, empty: none) says which stay as they
+  /// are, and `pinned` (per vertex, empty: none) where a primitive must end (where one run
+  /// meets the next or a fixed move), the tangent going on there.
+  RunFitter(const Interpretation& in, const Run& run, const FitOptions& o, std::vector<FixedMove> fixed = {},
+            const std::vector<uint8_t>& pinned = {})
+      : o_(o), n_(run.move_count), fixed_(std::move(fixed)) {
+    fixed_.resize(n_);
     auto ax = axes_of(run.plane);
     p_.resize(n_ + 1);
     for (uint32_t v = 0; v <= n_; ++v) {
@@ -101,31 +117,52 @@ class RunFitter {
       double e2 = run.vertex(in, v + 1)[kE] - run.vertex(in, v)[kE];
       double r1 = e1 / l1, r2 = e2 / l2;
       if ((e1 == 0) != (e2 == 0) || std::abs(r1 - r2) > 0.05 * std::max(std::abs(r1), std::abs(r2))) soft_[v] = 1;
+      if (!pinned.empty() && pinned[v]) soft_[v] = 1;
     }
     soft_upto_.assign(n_ + 2, 0);
     for (uint32_t v = 0; v <= n_; ++v) soft_upto_[v + 1] = soft_upto_[v] + soft_[v];
   }
 
-  FitResult fit() {
-    FitResult r;
+  /// The primitives over all moves (fixed moves as themselves), each marked `kinked` where
+  /// the tangent breaks at a smooth joint because the band allows nothing tangent there.
+  std::vector<Chosen> fit() {
+    std::vector<Chosen> out;
     if (o_.method == FitOptions::Method::Keep || extra_axes_move_ || n_ < 2) return keep();
-    // Stretches run from corner to corner; the tangent is free at both ends.
+    // Stretches run from corner to corner, or to a fixed move; the tangent is free at a
+    // corner and follows the fixed move's direction where the path is smooth.
+    bool after_fitted = false;  // the last primitive in `out` was fitted, not fixed
     for (uint32_t a = 0; a < n_;) {
+      if (fixed_[a].fixed) {
+        Chosen m = input_move(a);
+        if (fixed_[a].end) m.end_tangent = *fixed_[a].end;
+        const auto& dir = fixed_[a].start;
+        m.kinked = after_fitted && !hard_[a] && dir && !within(out.back().end_tangent, *dir, g1_rad());
+        out.push_back(m);
+        after_fitted = false;
+        ++a;
+        continue;
+      }
       uint32_t limit = a + 1;
-      while (limit < n_ && !hard_[limit]) ++limit;
+      while (limit < n_ && !hard_[limit] && !fixed_[limit].fixed) ++limit;
+      in_tangent_ = a > 0 && fixed_[a - 1].fixed && !hard_[a] ? fixed_[a - 1].end : std::nullopt;
+      out_tangent_ = limit < n_ && fixed_[limit].fixed && !hard_[limit] ? fixed_[limit].start : std::nullopt;
+      stretch_start_ = a;
+      stretch_end_ = limit;
+      after_fitted = true;
       if (limit == a + 1) {  // one move between corners: it is its own answer
-        r.prims.push_back(input_move(a).prim);
+        Chosen m = input_move(a);
+        m.kinked = in_tangent_ && !within(*in_tangent_, m.end_tangent, g1_rad());
+        out.push_back(m);
         a = limit;
         continue;
       }
-      stretch_start_ = a;
       const bool search = o_.method == FitOptions::Method::Arcs || o_.method == FitOptions::Method::Global;
       if (search || o_.method == FitOptions::Method::Greedy)
         for (uint32_t v = a + 1; v < limit; ++v) heading_[v] = input_tangent(v, a, limit);
       size_t forced = 0;
       std::vector<Chosen> chain = o_.method == FitOptions::Method::Stream ? stream_chain(a, limit, forced)
                                   : o_.method == FitOptions::Method::Lowe ? lowe_chain(a, limit, forced)
-                                                                          : greedy_chain(a, std::nullopt, limit, forced);
+                                                                          : greedy_chain(a, in_tangent_, limit, forced);
       // The greedy chain is the answer for stretches it covers in one or two primitives
       // joined tangentially; longer ones, and those it could only cover with a forced kink,
       // are searched again, and the chain with fewer kinks, then fewer primitives, wins.
@@ -143,25 +180,26 @@ class RunFitter {
       // chain when, merged too, it has fewer kinks, or as few and fewer primitives.
       if (o_.method == FitOptions::Method::Global && chain.size() > 1) {
         auto g = layered_chain(a, limit);
-        if (!g.empty() && o_.merge) tighten(a, g);
+        if (!g.empty() && o_.merge) tighten(a, g, in_tangent_);
         if (!g.empty() && std::pair(size_t(0), g.size()) < std::pair(forced, chain.size())) {
           chain.swap(g);
           forced = 0;
         }
       }
-      r.forced_kinks += forced;
-      for (const auto& c : chain) r.prims.push_back(c.prim);
+      out.insert(out.end(), chain.begin(), chain.end());
       a = limit;
     }
-    return r;
+    return out;
   }
 
  private:
-  FitResult keep() const {
-    FitResult r;
-    for (uint32_t v = 1; v <= n_; ++v) r.prims.push_back({v, Primitive::Kind::Line});
-    return r;
+  std::vector<Chosen> keep() const {
+    std::vector<Chosen> out;
+    for (uint32_t v = 0; v < n_; ++v) out.push_back(input_move(v));
+    return out;
   }
+
+  double g1_rad() const { return deg_to_rad(o_.g1_angle_deg); }
 
   Vec2 q(uint32_t v) const { return {p_[v].x(), p_[v].y()}; }
   /// Whether a change of extrusion rate lies strictly between vertices a and e (it would end
@@ -232,6 +270,12 @@ class RunFitter {
         if (e - a < o_.min_arc_moves || abs_alpha < min_alpha_) continue;
         if (!flat && !o_.helical) continue;
         if (o_.min_arc_length_mm > 0 && r * 2 * std::atan2(std::abs(un), ut) < o_.min_arc_length_mm) continue;
+      }
+      // Before a fixed move, the stretch must end heading along it.
+      if (e == stretch_end_ && out_tangent_) {
+        const Vec2 c = u / std::sqrt(uu);
+        const Vec2 end = line ? c : Vec2(2 * c.dot(T) * c - T);
+        if (!within(end, *out_tangent_, kJointShare * g1_rad())) continue;
       }
       sink(Candidate{e, k, line});
     }
@@ -505,8 +549,8 @@ class RunFitter {
   /// Appends `c` (starting at vertex a) to a chain whose joints are not made tangent: where
   /// the input is smooth and the tangent changes by more than the G1 angle, `forced` counts it.
   void append_counting_kink(std::vector<Chosen>& chain, Chosen c, uint32_t a, size_t& forced) const {
-    if (!chain.empty() && !hard_[a] &&
-        !within(chain.back().end_tangent, start_tangent(c, a), deg_to_rad(o_.g1_angle_deg))) {
+    const std::optional<Vec2> before = chain.empty() ? in_tangent_ : std::optional<Vec2>(chain.back().end_tangent);
+    if (before && !hard_[a] && !within(*before, start_tangent(c, a), g1_rad())) {
       ++forced;
       c.kinked = true;
     }
@@ -675,7 +719,7 @@ class RunFitter {
       part.push_back(chain[i]);
       if (i + 1 < chain.size() && !chain[i + 1].kinked) continue;
       const bool kinked = part.front().kinked;
-      tighten(a, part);
+      tighten(a, part, out.empty() && !kinked ? in_tangent_ : std::nullopt);
       part.front().kinked = kinked;
       a = part.back().prim.end_vertex;
       out.insert(out.end(), part.begin(), part.end());
@@ -687,11 +731,12 @@ class RunFitter {
   /// Local merging after the search: wherever two consecutive primitives can become one, or
   /// three can become two, that leave the joint before them and meet the joint after them
   /// within the turn allowed at a joint, they are replaced, and the joint before is tried again.
-  /// The tangent is free at the stretch's ends (a corner or the run's end). Turning an arc's
+  /// The tangent at the start is `incoming` (free when none) and at the end free, or a fixed
+  /// move's direction where the chain ends at one. Turning an arc's
   /// start tangent by φ turns its end tangent by -φ (the end tangent is the start tangent
   /// reflected about the chord), so the turn that meets the next joint is solved for, and
   /// only primitives that can meet it are checked exactly.
-  void tighten(uint32_t a, std::vector<Chosen>& chain) const {
+  void tighten(uint32_t a, std::vector<Chosen>& chain, const std::optional<Vec2>& incoming) const {
     const double turn = 0.45 * deg_to_rad(o_.g1_angle_deg);
     std::vector<Candidate> cand;
     std::vector<size_t> split;
@@ -712,13 +757,19 @@ class RunFitter {
           if (i + w > chain.size()) break;
           const uint32_t to = chain[i + w - 1].prim.end_vertex;
           std::optional<Vec2> out;
-          if (i + w < chain.size()) out = start_tangent(chain[i + w], to);
+          if (i + w < chain.size()) {
+            out = start_tangent(chain[i + w], to);
+          } else if (to == stretch_end_) {
+            out = out_tangent_;
+          }
+          // The tangent arriving at `from`: the previous primitive's, or at the start `incoming`.
+          const std::optional<Vec2> in = i > 0 ? std::optional<Vec2>(chain[i - 1].end_tangent) : incoming;
           auto meets = [&](const Chosen& c) { return !out || within(c.end_tangent, *out, turn); };
           // Start tangents: the incoming one (turned below), or at the stretch's start the
           // input's own directions; with a fixed next joint, the one ending exactly on it.
           std::vector<Vec2> starts;
-          if (i > 0) {
-            starts.push_back(chain[i - 1].end_tangent);
+          if (in) {
+            starts.push_back(*in);
           } else {
             if (w == 2 && out) starts.push_back(reflected_end(from, *out, to));
             for (const Vec2& T : start_tangents(a, to)) starts.push_back(T);
@@ -726,13 +777,13 @@ class RunFitter {
           std::vector<Chosen> repl;
           for (const Vec2& T0 : starts) {
             if (w == 2) {
-              std::optional<Vec2> T = i > 0 ? aimed(from, T0, to, out) : std::optional<Vec2>(T0);
-              if (!T || (i == 0 && out && !within(reflected_end(from, T0, to), *out, turn + line_kink_))) continue;
+              std::optional<Vec2> T = in ? aimed(from, T0, to, out) : std::optional<Vec2>(T0);
+              if (!T || (!in && out && !within(reflected_end(from, T0, to), *out, turn + line_kink_))) continue;
               auto c = through(from, *T, to);
               if (c && meets(*c)) repl = {*c};
             } else {
               std::vector<Vec2> firsts;
-              if (i > 0) {
+              if (in) {
                 for (double f : {0.0, 1.0, -1.0}) firsts.push_back(rotated(T0, f * turn));
               } else {
                 firsts.push_back(T0);
@@ -792,7 +843,7 @@ class RunFitter {
   std::vector<Chosen> beam_chain(uint32_t a, uint32_t limit, const std::vector<Chosen>* greedy) const {
     std::vector<Node> nodes;
     std::vector<int> layer, next;
-    for (const Vec2& T : start_tangents(a, limit)) nodes.push_back({{}, -1, a, T});
+    for (const Vec2& T : roots(a, limit)) nodes.push_back({{}, -1, a, T});
     for (int i = 0; i < static_cast<int>(nodes.size()); ++i) layer.push_back(i);
     const double turn = 0.45 * deg_to_rad(o_.g1_angle_deg);
     const double bin_rad = deg_to_rad(o_.g1_angle_deg) / 8;
@@ -820,9 +871,9 @@ class RunFitter {
       if (guide == -1) {
         guide = layer.front();
         if (greedy) {
-          g = greedy->front();
+          if (!greedy->front().kinked) g = greedy->front();
         } else {
-          g = best_free(a, limit);
+          g = arrives_along(a) ? best_near(a, *in_tangent_, limit) : std::optional<Chosen>(best_free(a, limit));
         }
       } else if (guide >= 0) {
         if (greedy) {
@@ -903,10 +954,16 @@ class RunFitter {
   std::vector<Chosen> beam_stretch(uint32_t a, uint32_t limit, const std::vector<Chosen>& greedy, size_t& forced) const {
     std::vector<Chosen> chain;
     while (a < limit) {
-      if (!chain.empty()) ++forced;
+      // After the first part, the tangent breaks where the chain before could not go on; the
+      // first part breaks it only when nothing leaves along the incoming tangent.
+      bool breaks = !chain.empty();
       auto part = beam_chain(a, limit, chain.empty() ? &greedy : nullptr);
-      if (part.empty()) part.push_back(best_free(a, limit));
-      part.front().kinked = !chain.empty();
+      if (part.empty()) {
+        part.push_back(best_free(a, limit));
+        breaks = breaks || arrives_along(a);
+      }
+      part.front().kinked = breaks;
+      if (breaks) ++forced;
       chain.insert(chain.end(), part.begin(), part.end());
       a = part.back().prim.end_vertex;
     }
@@ -926,7 +983,7 @@ class RunFitter {
   std::vector<Chosen> layered_chain(uint32_t a, uint32_t limit) const {
     std::vector<Node> states;
     std::vector<int> layer, next;
-    for (const Vec2& T : start_tangents(a, limit)) {
+    for (const Vec2& T : roots(a, limit)) {
       states.push_back({{}, -1, a, T});
       layer.push_back(static_cast<int>(states.size()) - 1);
     }
@@ -992,6 +1049,20 @@ class RunFitter {
     return out;
   }
 
+  /// Whether the chain arrives at `a` with a tangent it must follow: the start of a stretch
+  /// after a fixed move where the path is smooth.
+  bool arrives_along(uint32_t a) const { return a == stretch_start_ && in_tangent_.has_value(); }
+
+  /// Where the searches start at `a`: the tangents a smooth joint allows after the incoming
+  /// one (turned by no more than a line's chord may add to stay within kJointShare of the
+  /// G1 angle), else start_tangents().
+  std::vector<Vec2> roots(uint32_t a, uint32_t limit) const {
+    if (!arrives_along(a)) return start_tangents(a, limit);
+    std::vector<Vec2> out;
+    for (double f : {0.0, 0.3, -0.3, 0.6, -0.6}) out.push_back(rotated(*in_tangent_, f * g1_rad()));
+    return out;
+  }
+
   /// The beam's roots at `a`: the input's directions, each fanned out by a few degrees.
   std::vector<Vec2> start_tangents(uint32_t a, uint32_t limit) const {
     std::vector<Vec2> out;
@@ -1045,7 +1116,10 @@ class RunFitter {
   std::vector<uint32_t> soft_upto_;  // soft vertices before each vertex (prefix count)
   std::vector<std::optional<Vec2>> heading_;  // input_tangent() of each vertex inside the stretch
   mutable std::vector<Candidate> scratch_;  // scratch for pick
-  uint32_t stretch_start_ = 0;    // first vertex of the current corner-free stretch
+  std::vector<FixedMove> fixed_;  // per move
+  uint32_t stretch_start_ = 0;    // first vertex of the current stretch (after a corner or fixed move)
+  uint32_t stretch_end_ = 0;      // its last vertex (a corner, a fixed move's start, or the end)
+  std::optional<Vec2> in_tangent_, out_tangent_;  // directions of the fixed moves around it, where smooth
   double eps_ = 0;                // band the fitter works to, mm
   double line_kink_ = 0;          // largest tangent-chord angle written as a line, rad
   double max_alpha_ = 0, min_alpha_ = 0, line_alpha_ = 0;  // pseudo-angles, see the constructor
@@ -1054,8 +1128,92 @@ class RunFitter {
 
 }  // namespace
 
-FitResult fit_run(const Interpretation& in, const Run& run, const FitOptions& opt) {
-  return RunFitter(in, run, opt).fit();
+std::vector<FitResult> fit_chain(const Interpretation& in, const RunChain& chain, std::span<const Run> runs,
+                                 const std::function<FitOptions(const Run&)>& options_for) {
+  std::span<const Run> own(&runs[chain.first_run], chain.run_count);
+  const Move& lead = in.moves[chain.first_move];
+  Run all;
+  all.first_move = chain.first_move;
+  all.move_count = chain.move_count;
+  all.frame = lead.frame;
+  all.plane = lead.plane;
+  all.feed_mm_min = lead.feed_mm_min;
+  const auto ax = axes_of(all.plane);
+  auto at = [&](uint32_t v) {  // vertex v of the chain in its plane
+    const auto& p = all.vertex(in, v);
+    return Vec2(p[ax.first], p[ax.second]);
+  };
+  auto direction = [](const Vec2& d) -> std::optional<Vec2> {
+    if (d.norm() <= kLengthEpsMm) return std::nullopt;
+    return Vec2(d.normalized());
+  };
+  std::vector<FitResult> out(own.size());
+  // Everything but the runs in the chain's plane stays as it is in the chain's fit: lone moves
+  // and input arcs with their own directions; a run in another plane is fitted on its own
+  // first, and its first and last primitives give the directions at its ends (a line's
+  // chord; an arc in another plane leaves the joint unmeasured, as the verifier does).
+  std::vector<FixedMove> fixed(chain.move_count);
+  std::vector<uint8_t> pinned(chain.move_count + 1, 0);
+  for (uint32_t m = 0; m < chain.move_count; ++m) {
+    const Move& mv = in.moves[chain.first_move + m];
+    fixed[m].fixed = true;
+    if (is_arc(mv.kind)) {  // the radius at each end turned a quarter in the arc's direction
+      const Vec2 c(mv.center[ax.first], mv.center[ax.second]);
+      auto along = [&](const Vec2& radius) -> std::optional<Vec2> {
+        auto r = direction(radius);
+        if (!r) return std::nullopt;
+        return mv.kind == MoveKind::ArcCCW ? left_normal(*r) : Vec2(-left_normal(*r));
+      };
+      fixed[m].start = along(at(m) - c);
+      fixed[m].end = along(at(m + 1) - c);
+    } else {
+      fixed[m].start = fixed[m].end = direction(at(m + 1) - at(m));
+    }
+  }
+  for (size_t r = 0; r < own.size(); ++r) {
+    const uint32_t base = own[r].first_move - chain.first_move;
+    pinned[base] = pinned[base + own[r].move_count] = 1;
+    if (own[r].plane == all.plane) {
+      for (uint32_t m = base; m < base + own[r].move_count; ++m) fixed[m].fixed = false;
+      continue;
+    }
+    std::vector<Chosen> got = RunFitter(in, own[r], options_for(own[r])).fit();
+    uint32_t from = 0;
+    for (const Chosen& c : got) {
+      out[r].prims.push_back(c.prim);
+      if (c.kinked) out[r].forced_at.push_back(from);
+      from = c.prim.end_vertex;
+    }
+    auto chord = [&](uint32_t a, const Chosen& c) -> std::optional<Vec2> {
+      if (c.prim.kind != Primitive::Kind::Line) return std::nullopt;
+      return direction(at(base + c.prim.end_vertex) - at(base + a));
+    };
+    fixed[base].start = chord(0, got.front());
+    fixed[base + own[r].move_count - 1].end =
+        chord(got.size() > 1 ? got[got.size() - 2].prim.end_vertex : 0, got.back());
+    for (uint32_t m = base; m + 1 < base + own[r].move_count; ++m) fixed[m].end = fixed[m + 1].start = std::nullopt;
+  }
+  for (uint32_t m = 0; m < chain.move_count; ++m)
+    if (fixed[m].fixed) pinned[m] = pinned[m + 1] = 1;
+  std::vector<Chosen> fitted = RunFitter(in, all, options_for(all), fixed, pinned).fit();
+  // Back to each run's own vertices. A tangent break at the start of a fixed move is the
+  // joint at the end of the run before it.
+  auto base = [&](size_t r) { return own[r].first_move - chain.first_move; };
+  size_t r = 0;  // the first run that does not end at or before `from`
+  uint32_t from = 0;
+  for (const Chosen& c : fitted) {
+    while (r < own.size() && base(r) + own[r].move_count <= from) ++r;
+    if (!fixed[from].fixed) {
+      Primitive p = c.prim;
+      p.end_vertex -= base(r);
+      out[r].prims.push_back(p);
+      if (c.kinked) out[r].forced_at.push_back(from - base(r));
+    } else if (c.kinked && r > 0 && base(r - 1) + own[r - 1].move_count == from) {
+      out[r - 1].forced_at.push_back(own[r - 1].move_count);
+    }
+    from = c.prim.end_vertex;
+  }
+  return out;
 }
 
 }  // namespace arcpress

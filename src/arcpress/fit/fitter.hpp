@@ -1,11 +1,21 @@
 #pragma once
 // Fitting stage: a run of G1 moves becomes the fewest lines and arcs inside the band.
 // Never fails and never throws: where no arc fits, the input's own lines are the answer.
+#include <functional>
+#include <span>
+#include <vector>
+
 #include "arcpress/extract/run.hpp"
 #include "arcpress/fit/primitive.hpp"
 
 namespace arcpress {
 
-FitResult fit_run(const Interpretation& in, const Run& run, const FitOptions& opt);
+/// Fits the runs of `chain` (out of `runs`, as chain_runs() grouped them) together: one result
+/// per run of the chain, in order. Lone moves and input arcs of the chain stay as they are,
+/// and the joints with them and between runs are tangent where the path is smooth. A run
+/// in another plane than the chain's is fitted first, on its own. `options_for` gives the
+/// options for fitting in a run's frame and plane.
+std::vector<FitResult> fit_chain(const Interpretation& in, const RunChain& chain, std::span<const Run> runs,
+                                 const std::function<FitOptions(const Run&)>& options_for);
 
 }  // namespace arcpress

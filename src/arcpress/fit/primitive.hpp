@@ -51,9 +51,10 @@ struct FitOptions {
 
 struct FitResult {
   std::vector<Primitive> prims;
-  /// Joints where the input is smooth but no tangent-continuous primitive fitted the band,
-  /// so the tangent direction changes there (the band wins over tangency).
-  size_t forced_kinks = 0;
+  /// Vertices of the run (0 .. move_count) at smooth joints where no tangent-continuous
+  /// primitive fitted the band, so the tangent direction changes there (the band wins over
+  /// tangency). The run's last vertex stands for its joint with a lone move after it.
+  std::vector<uint32_t> forced_at;
 };
 
 }  // namespace arcpress

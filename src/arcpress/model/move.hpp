@@ -50,6 +50,11 @@ enum class MoveKind : uint8_t {
   Other,   ///< canned cycle, spline, probe, homing: a position change we do not model as a path
 };
 
+/// G2 or G3.
+inline bool is_arc(MoveKind k) { return k == MoveKind::ArcCW || k == MoveKind::ArcCCW; }
+/// A move along the programmed path at feed: G1, G2 or G3.
+inline bool is_feed(MoveKind k) { return k == MoveKind::Line || is_arc(k); }
+
 struct Move {
   AxisValues to{};            ///< absolute end position (mm for linear axes, degrees for A/B/C)
   Vec3 center{0, 0, 0};       ///< arcs: absolute centre, mm (in-plane components meaningful)

@@ -12,7 +12,6 @@ constexpr double kWidthPx = 1200, kMarginPx = 40, kLegendPx = 90;
 /// Colour buckets from 0 to the band; one more for beyond it.
 constexpr int kBuckets = 10;
 
-bool is_feed(MoveKind k) { return k == MoveKind::Line || k == MoveKind::ArcCW || k == MoveKind::ArcCCW; }
 
 std::string bucket_colour(int b) {
   if (b >= kBuckets) return "#c000c0";  // outside the band

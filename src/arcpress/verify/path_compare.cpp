@@ -18,9 +18,6 @@ namespace {
 /// different order of operations in unit conversion.
 constexpr double kSamePointMm = 1e-7;
 
-bool is_feed(MoveKind k) { return k == MoveKind::Line || k == MoveKind::ArcCW || k == MoveKind::ArcCCW; }
-bool is_arc(MoveKind k) { return k == MoveKind::ArcCW || k == MoveKind::ArcCCW; }
-
 bool same_point(const AxisValues& p, const AxisValues& q) {
   for (int ax = 0; ax < kE; ++ax)
     if (std::abs(p[ax] - q[ax]) > kSamePointMm) return false;
@@ -148,7 +145,10 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
           ++r.smooth_joints;
           double kink = angle_deg(end_tangent(ib, size_t(prev_j)), start_tangent(ib, j));
           r.max_smooth_kink_deg = std::max(r.max_smooth_kink_deg, kink);
-          if (kink > opt.g1_angle_deg) ++r.smooth_joints_over_g1;
+          if (kink > opt.g1_angle_deg) {
+            ++r.smooth_joints_over_g1;
+            r.kink_lines.push_back(a.blocks[ia.moves[i].block].line);
+          }
         }
       }
       prev_j = long(j);

@@ -7,6 +7,7 @@
 // a mismatch and fails the check.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "arcpress/lex/block.hpp"
 #include "arcpress/model/move.hpp"
@@ -32,6 +33,7 @@ struct PathComparison {
   /// is_corner_beside_corner()).
   size_t smooth_joints = 0;
   size_t smooth_joints_over_g1 = 0;  ///< ... whose tangent changes by more than g1_angle_deg
+  std::vector<uint32_t> kink_lines;  ///< ... where: the input line of the move starting at each
   double max_smooth_kink_deg = 0;
 
   bool within(double tolerance_mm) const { return matched && max_deviation_mm <= tolerance_mm; }

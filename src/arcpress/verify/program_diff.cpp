@@ -14,7 +14,6 @@
 namespace arcpress {
 namespace {
 
-bool is_feed(MoveKind k) { return k == MoveKind::Line || k == MoveKind::ArcCW || k == MoveKind::ArcCCW; }
 
 Vec3 xyz(const AxisValues& v) { return {v[kX], v[kY], v[kZ]}; }
 
