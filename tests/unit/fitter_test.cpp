@@ -354,6 +354,22 @@ TEST_CASE("the chain search never needs more primitives than the greedy chain, a
   CHECK(fewer_primitives({bezier1_points(), cubic_points()}, {0.01, 0.005, 0.001}, greedy, search) >= 2);
 }
 
+TEST_CASE("the greedy step turns the tangent at a joint by up to 0.9 of the G1 angle where that reaches further, "
+          "and its joints stay within the G1 angle",
+          "[fit][greedy]") {
+  // Plum at 0.01 mm: its tips are so tight that most steps need the largest turn; refused,
+  // the chain creeps on in primitives of a move or two.
+  FitOptions greedy, search;
+  greedy.method = FitOptions::Method::Greedy;
+  greedy.min_radius_mm = search.min_radius_mm = 0;
+  auto g = compress_text(program(plum_points()), greedy);
+  auto d = compress_text(program(plum_points()), search);
+  INFO(g.arcs + g.lines << " greedy, " << d.arcs + d.lines << " searched");
+  CHECK(g.arcs + g.lines <= 2 * (d.arcs + d.lines));
+  CHECK(g.r.comparison.max_smooth_kink_deg <= 0.5);
+  CHECK(g.r.forced_kinks == 0);
+}
+
 TEST_CASE("the global method never needs more primitives than the default search, and finds fewer where "
           "one narrow place decides the chain", "[fit][search][global]") {
   // Plum: between its inner tips the chain must meet each tip with nearly one tangent, which

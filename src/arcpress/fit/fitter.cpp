@@ -275,7 +275,7 @@ class RunFitter {
       if (e == stretch_end_ && out_tangent_) {
         const Vec2 c = u / std::sqrt(uu);
         const Vec2 end = line ? c : Vec2(2 * c.dot(T) * c - T);
-        if (!within(end, *out_tangent_, kJointShare * g1_rad())) continue;
+        if (!within(end, *out_tangent_, kJointShare * g1_rad() + 1e-9)) continue;
       }
       sink(Candidate{e, k, line});
     }
@@ -493,7 +493,8 @@ class RunFitter {
                 const Vec2* incoming = nullptr) const {
     auto c = best_from(a, T, limit);
     if (!c) return;
-    if (incoming && !within(*incoming, start_tangent(*c, a), kJointShare * deg_to_rad(o_.g1_angle_deg))) return;
+    // (An arc leaves along T itself; the margin keeps the largest turn from failing by rounding.)
+    if (incoming && !within(*incoming, start_tangent(*c, a), kJointShare * g1_rad() + 1e-9)) return;
     Score sc = score(*c, limit);
     if (!best || sc > best_score) {
       best = c;
