@@ -20,6 +20,12 @@ inline double rad_to_deg(double rad) { return rad * 180.0 / kPi; }
 /// z-component of the 2D cross product: > 0 when b turns left of a.
 inline double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 inline Vec2 left_normal(const Vec2& t) { return {-t.y(), t.x()}; }
+/// Direction of travel at a point of an arc, from the radius there (centre to point): the
+/// radius turned a quarter in the arc's direction. Zero for a zero radius.
+inline Vec2 arc_tangent(const Vec2& radius, bool ccw) {
+  const Vec2 t = left_normal(radius.normalized());
+  return ccw ? t : Vec2(-t);
+}
 /// A stand-in for the angle of (x, y) in [0, 2π): in [0, 4), growing with the angle, with
 /// no trigonometry (0 at +x, 1 at +y, 2 at -x, 3 at -y). Comparing two of them compares
 /// the angles exactly, which is all that ordering and span tests need.

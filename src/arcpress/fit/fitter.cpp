@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <span>
 #include <unordered_set>
@@ -334,9 +334,7 @@ class RunFitter {
     ch.prim.ccw = ccw;
     ch.prim.center = center;
     ch.prim.radius_mm = g.radius_mm;
-    // The tangent at the end: the radius there turned a quarter in the arc's direction.
-    Vec2 out = left_normal((q(e) - center).normalized());
-    ch.end_tangent = ccw ? out : Vec2(-out);
+    ch.end_tangent = arc_tangent(q(e) - center, ccw);
     return ch;
   }
 
@@ -650,8 +648,7 @@ class RunFitter {
       Vec2 chord = q(c.prim.end_vertex) - q(from);
       return chord.norm() > kLengthEpsMm ? Vec2(chord.normalized()) : c.end_tangent;
     }
-    Vec2 t = left_normal((q(from) - c.prim.center).normalized());
-    return c.prim.ccw ? t : Vec2(-t);
+    return arc_tangent(q(from) - c.prim.center, c.prim.ccw);
   }
 
   /// The line or arc leaving vertex a along T and ending exactly at vertex e, if scan()
@@ -1158,12 +1155,11 @@ std::vector<FitResult> fit_chain(const Interpretation& in, const RunChain& chain
   for (uint32_t m = 0; m < chain.move_count; ++m) {
     const Move& mv = in.moves[chain.first_move + m];
     fixed[m].fixed = true;
-    if (is_arc(mv.kind)) {  // the radius at each end turned a quarter in the arc's direction
+    if (is_arc(mv.kind)) {
       const Vec2 c(mv.center[ax.first], mv.center[ax.second]);
       auto along = [&](const Vec2& radius) -> std::optional<Vec2> {
-        auto r = direction(radius);
-        if (!r) return std::nullopt;
-        return mv.kind == MoveKind::ArcCCW ? left_normal(*r) : Vec2(-left_normal(*r));
+        if (radius.norm() <= kLengthEpsMm) return std::nullopt;
+        return arc_tangent(radius, mv.kind == MoveKind::ArcCCW);
       };
       fixed[m].start = along(at(m) - c);
       fixed[m].end = along(at(m + 1) - c);

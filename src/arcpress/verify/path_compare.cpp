@@ -53,9 +53,7 @@ Vec2 start_tangent(const Interpretation& in, size_t i) {
   Vec3 s = in_plane(in.from(i), m.plane), e = in_plane(m.to, m.plane);
   if (is_arc(m.kind)) {
     Vec3 c = in_plane(m.center, m.plane);
-    Vec2 rad(s.x() - c.x(), s.y() - c.y());
-    Vec2 t = left_normal(rad).normalized();
-    return m.kind == MoveKind::ArcCCW ? t : Vec2(-t);
+    return arc_tangent(Vec2(s.x() - c.x(), s.y() - c.y()), m.kind == MoveKind::ArcCCW);
   }
   Vec2 d(e.x() - s.x(), e.y() - s.y());
   return d.norm() > 0 ? Vec2(d.normalized()) : Vec2(0, 0);
@@ -65,9 +63,7 @@ Vec2 end_tangent(const Interpretation& in, size_t i) {
   const Move& m = in.moves[i];
   if (!is_arc(m.kind)) return start_tangent(in, i);
   Vec3 e = in_plane(m.to, m.plane), c = in_plane(m.center, m.plane);
-  Vec2 rad(e.x() - c.x(), e.y() - c.y());
-  Vec2 t = left_normal(rad).normalized();
-  return m.kind == MoveKind::ArcCCW ? t : Vec2(-t);
+  return arc_tangent(Vec2(e.x() - c.x(), e.y() - c.y()), m.kind == MoveKind::ArcCCW);
 }
 
 double angle_deg(const Vec2& a, const Vec2& b) {
