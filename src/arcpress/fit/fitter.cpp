@@ -224,7 +224,9 @@ class RunFitter {
     // The band a vertex must stay in: all of it while the primitive is flat, the in-plane
     // share once it climbs (from then on, for every vertex from `a`).
     double eps = eps_;
-    double lo = -kInf, hi = kInf;  // curvature interval the interior vertices allow
+    double lo = -kInf, hi = kInf;  // curvature interval (1/mm) the interior vertices allow
+    // A point u from `a`, off T by b = u·N, is within ε of the circle of curvature k when
+    // |k·(|u|² - ε²) - 2b| <= 2ε (exact for the full circle).
     auto narrow = [&](uint32_t m) {
       const Vec2 u = q(m) - qa;
       const double w = u.squaredNorm() - eps * eps;
@@ -234,6 +236,19 @@ class RunFitter {
         hi = std::min(hi, (2 * b + 2 * eps) * inv);
       }
     };
+    double arc_lo = -kInf, arc_hi = kInf;
+    // No input move may cut inside an arc by more than the band. A move whose middle lies
+    // more than ε off T is more than ε inside every circle that turns towards it less than
+    // the middle's own lower bound above (a circle turning the other way leaves it more than
+    // ε outside, which the bounds of the move's end points already rule out), and the move's
+    // point nearest the centre is nearer still, so the exact check would fail. Lines are the
+    // chord, not this circle, and are not held to it.
+    auto narrow_move = [&](uint32_t m) {  // the move from vertex m to m + 1
+      const Vec2 u = 0.5 * (q(m) + q(m + 1)) - qa;
+      const double b = u.dot(N);
+      if (b > eps) arc_lo = std::max(arc_lo, (2 * b - 2 * eps) / (u.squaredNorm() - eps * eps));
+      if (b < -eps) arc_hi = std::min(arc_hi, (2 * b + 2 * eps) / (u.squaredNorm() - eps * eps));
+    };
     bool flat = true;
     for (uint32_t e = a + 1; e <= limit; ++e) {
       if (e > a + 1) {
@@ -241,12 +256,14 @@ class RunFitter {
         if (soft_[m]) break;
         narrow(m);
       }
+      narrow_move(e - 1);
       if (flat && std::abs(p_[e].z() - h0) > kLengthEpsMm) {
         flat = false;
         eps = eps_ * kPlaneShare;
-        lo = -kInf;
-        hi = kInf;
+        lo = arc_lo = -kInf;
+        hi = arc_hi = kInf;
         for (uint32_t m = a + 1; m < e; ++m) narrow(m);
+        for (uint32_t m = a; m < e; ++m) narrow_move(m);
       }
       if (lo > hi) break;
       const Vec2 u = q(e) - qa;
@@ -264,7 +281,7 @@ class RunFitter {
       if (k < lo - slack || k > hi + slack) continue;
       const bool line = abs_alpha <= line_alpha_;
       if (!line) {
-        if (!o_.arcs) continue;
+        if (!o_.arcs || k < arc_lo - slack || k > arc_hi + slack) continue;
         const double r = 1 / std::abs(k);
         if (r > o_.max_radius_mm || r < o_.min_radius_mm) continue;
         if (e - a < o_.min_arc_moves || abs_alpha < min_alpha_) continue;
@@ -672,10 +689,9 @@ class RunFitter {
   }
 
   /// scan()'s test of one end: every vertex between `a` and c.e lies within the band of the
-  /// full circle (or line) leaving `a` along T with curvature c.k. A vertex u from `a` with
-  /// normal offset b = u·N is within ε of it when |k·(|u|² - ε²) - 2b| <= 2ε. Cheap (no
-  /// division), and necessary for the exact check, so most candidates that would fail it
-  /// are turned away here.
+  /// full circle (or line) leaving `a` along T with curvature c.k: scan()'s vertex test
+  /// without a division. Cheap, and necessary for the exact check, so most candidates that
+  /// would fail it are turned away here.
   bool on_circle(uint32_t a, const Vec2& T, const Candidate& c) const {
     const Vec2 N = left_normal(T);
     const double h0 = p_[a].z();
