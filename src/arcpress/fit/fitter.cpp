@@ -59,6 +59,13 @@ struct Chosen {
   bool kinked = false;  ///< starts with a tangent change at a joint where the input is smooth
 };
 
+/// A rotation by a fixed angle, its cosine and sine worked out once.
+struct Turn {
+  double c = 1, s = 0;
+  explicit Turn(double rad = 0) : c(std::cos(rad)), s(std::sin(rad)) {}
+  Vec2 operator()(const Vec2& T) const { return {T.x() * c - T.y() * s, T.x() * s + T.y() * c}; }
+};
+
 class RunFitter {
  public:
   /// `run` spans the moves to fit; `fixed` (per move, empty: none) says which stay as they
@@ -80,6 +87,16 @@ class RunFitter {
     }
     eps_ = o.tolerance_mm * (1.0 - kRoundingReserve);
     line_kink_ = deg_to_rad(o.g1_angle_deg) / 4;
+    const double g1 = deg_to_rad(o.g1_angle_deg);
+    half_left_ = Turn(0.45 * g1);
+    half_right_ = Turn(-0.45 * g1);
+    full_left_ = Turn(0.9 * g1);
+    full_right_ = Turn(-0.9 * g1);
+    for (double f : {0.3, -0.3, 0.6, -0.6}) root_turns_.emplace_back(f * g1);
+    for (double deg : {0.5, 1.0, 2.0, 4.0}) {
+      start_turns_.emplace_back(deg_to_rad(deg));
+      start_turns_.emplace_back(-deg_to_rad(deg));
+    }
     // Limits on the tangent-chord angle alpha (the sweep is 2 alpha) as pseudo-angles of
     // |alpha| in [0, π], so scan() tests each vertex without trigonometry.
     const double half_max_sweep = deg_to_rad(o.max_sweep_deg) / 2;
@@ -391,6 +408,10 @@ class RunFitter {
       return end > o.end;
     }
   };
+  struct Ranked {
+    size_t i;
+    Score sc;
+  };
   Score score(const Chosen& c, uint32_t limit) const {
     Score sc;
     sc.end = c.prim.end_vertex;
@@ -404,7 +425,7 @@ class RunFitter {
   /// longer half of the scan's candidates, longest first. After a failure the walk steps
   /// back by growing strides to bound the work, and still tries the shortest candidate.
   void checked_from(uint32_t a, const Vec2& T, uint32_t limit, int count, std::vector<Chosen>& out) const {
-    std::vector<Candidate> cand;
+    std::vector<Candidate>& cand = s_.checked_cand;
     scan(a, T, limit, cand);
     int checked = 0;
     size_t stride = 1;
@@ -434,11 +455,12 @@ class RunFitter {
   /// Up to `count` candidates from `a` along `T`, spread over the longer half of what the
   /// scan allows, longest first; not yet checked exactly.
   void pick(uint32_t a, const Vec2& T, uint32_t limit, int count, std::vector<Candidate>& out) const {
-    scan(a, T, limit, scratch_);
+    std::vector<Candidate>& all = s_.scanned;
+    scan(a, T, limit, all);
     out.clear();
-    const size_t n = scratch_.size(), want = static_cast<size_t>(count);
+    const size_t n = all.size(), want = static_cast<size_t>(count);
     const size_t step = std::max<size_t>(1, n / (2 * want));
-    for (size_t i = n; i > 0 && out.size() < want; i = i > step ? i - step : 0) out.push_back(scratch_[i - 1]);
+    for (size_t i = n; i > 0 && out.size() < want; i = i > step ? i - step : 0) out.push_back(all[i - 1]);
   }
 
   /// What candidate `c` from `a` along `T` would be, for scoring before the exact check: its
@@ -459,19 +481,17 @@ class RunFitter {
     // Scored first, checked exactly in the order of their scores: the first that passes
     // wins, so most steps check one primitive. (A candidate's end tangent is T reflected
     // about its chord, a line's the chord.)
-    std::vector<Candidate> cand;
+    std::vector<Candidate>& cand = s_.best_cand;
     pick(a, T, limit, kLookahead, cand);
-    struct Ranked {
-      size_t i;
-      Score sc;
-    };
-    std::vector<Ranked> ranked;
+    std::vector<Ranked>& ranked = s_.ranked;
+    ranked.clear();
     for (size_t i = 0; i < cand.size(); ++i) ranked.push_back({i, score(unchecked(a, T, cand[i]), limit)});
     std::stable_sort(ranked.begin(), ranked.end(), [](const Ranked& x, const Ranked& y) { return x.sc > y.sc; });
     for (const Ranked& r : ranked)
       if (auto c = make(a, T, cand[r.i])) return c;
     // None of those passes the exact check: the walk that steps back over the rest.
-    std::vector<Chosen> made;
+    std::vector<Chosen>& made = s_.best_made;
+    made.clear();
     checked_from(a, T, limit, kLookahead, made);
     std::optional<Chosen> best;
     Score best_score;
@@ -495,8 +515,8 @@ class RunFitter {
       best_score = score(*best, limit);
       if (best_score.on_course && (best->prim.end_vertex - a >= 4 || best->prim.end_vertex == limit)) return best;
     }
-    double g1 = deg_to_rad(o_.g1_angle_deg);
-    for (double f : {0.45, -0.45, 0.9, -0.9}) consider(a, rotated(T, f * g1), limit, best, best_score, &T);
+    for (const Turn* turn : {&half_left_, &half_right_, &full_left_, &full_right_})
+      consider(a, (*turn)(T), limit, best, best_score, &T);
     return best;
   }
 
@@ -752,8 +772,11 @@ class RunFitter {
   /// only primitives that can meet it are checked exactly.
   void tighten(uint32_t a, std::vector<Chosen>& chain, const std::optional<Vec2>& incoming) const {
     const double turn = 0.45 * deg_to_rad(o_.g1_angle_deg);
-    std::vector<Candidate> cand;
-    std::vector<size_t> split;
+    std::vector<Candidate>& cand = s_.tighten_cand;
+    std::vector<size_t>& split = s_.split;
+    std::vector<Vec2>& starts = s_.starts;
+    std::vector<Vec2>& firsts = s_.firsts;
+    std::vector<Chosen> repl;
     // The start along `in` turned within the allowance so that the arc to `to` ends as close
     // to `out` as it can; nothing when even the largest turn misses it.
     auto aimed = [&](uint32_t from, const Vec2& in, uint32_t to, const std::optional<Vec2>& out) -> std::optional<Vec2> {
@@ -781,14 +804,14 @@ class RunFitter {
           auto meets = [&](const Chosen& c) { return !out || within(c.end_tangent, *out, turn); };
           // Start tangents: the incoming one (turned below), or at the stretch's start the
           // input's own directions; with a fixed next joint, the one ending exactly on it.
-          std::vector<Vec2> starts;
+          starts.clear();
           if (in) {
             starts.push_back(*in);
           } else {
             if (w == 2 && out) starts.push_back(reflected_end(from, *out, to));
-            for (const Vec2& T : start_tangents(a, to)) starts.push_back(T);
+            start_tangents(a, to, starts);
           }
-          std::vector<Chosen> repl;
+          repl.clear();
           for (const Vec2& T0 : starts) {
             if (w == 2) {
               std::optional<Vec2> T = in ? aimed(from, T0, to, out) : std::optional<Vec2>(T0);
@@ -796,9 +819,11 @@ class RunFitter {
               auto c = through(from, *T, to);
               if (c && meets(*c)) repl = {*c};
             } else {
-              std::vector<Vec2> firsts;
+              firsts.clear();
               if (in) {
-                for (double f : {0.0, 1.0, -1.0}) firsts.push_back(rotated(T0, f * turn));
+                firsts.push_back(T0);
+                firsts.push_back(half_left_(T0));
+                firsts.push_back(half_right_(T0));
               } else {
                 firsts.push_back(T0);
               }
@@ -845,6 +870,41 @@ class RunFitter {
     uint32_t v;
     Vec2 T;
   };
+  /// A beam candidate: scored first, checked exactly only when the beam keeps it.
+  struct Made {
+    int from;  ///< the node it leaves from; -1 once checked
+    Vec2 T;
+    Candidate cand;
+    Chosen c;  ///< unchecked(): end vertex and tangent only
+    Score sc;
+  };
+
+  /// Buffers the searches reuse from call to call, and from run to run on one thread, so
+  /// that once warm they allocate nothing. Each belongs to one function; none of those
+  /// calls itself, and none calls another that uses the same buffer.
+  struct Scratch {
+    std::vector<Candidate> scanned;       // pick()
+    std::vector<Candidate> checked_cand;  // checked_from()
+    std::vector<Candidate> best_cand;     // best_from()
+    std::vector<Ranked> ranked;           // best_from()
+    std::vector<Chosen> best_made;        // best_from()
+    std::vector<Vec2> free_starts;        // best_free()
+    std::vector<Vec2> inputs;             // start_tangents()
+    std::vector<Candidate> tighten_cand;  // tighten()
+    std::vector<size_t> split;            // tighten()
+    std::vector<Vec2> starts, firsts;     // tighten()
+    std::vector<Vec2> roots;              // beam_chain()
+    std::vector<Node> nodes;              // beam_chain()
+    std::vector<int> layer, next;         // beam_chain()
+    std::vector<Made> made;               // beam_chain()
+    std::vector<uint32_t> order;          // beam_chain()
+    std::vector<Candidate> beam_out;      // beam_chain()
+    std::vector<std::pair<uint32_t, long>> seen;  // beam_chain()
+  };
+  static Scratch& thread_scratch() {
+    thread_local Scratch s;
+    return s;
+  }
 
   /// The G1 chain from `a` to `limit` with the fewest primitives a beam search finds. Layer k
   /// holds the chains of k primitives, at most `beam_width` of them, those reaching furthest
@@ -855,25 +915,20 @@ class RunFitter {
   /// null) is always kept. When no chain goes on tangentially, the one reaching furthest is
   /// returned (empty when none leaves `a`), and the caller takes a kink there.
   std::vector<Chosen> beam_chain(uint32_t a, uint32_t limit, const std::vector<Chosen>* greedy) const {
-    std::vector<Node> nodes;
-    std::vector<int> layer, next;
-    for (const Vec2& T : roots(a, limit)) nodes.push_back({{}, -1, a, T});
+    std::vector<Node>& nodes = s_.nodes;
+    std::vector<int>&layer = s_.layer, &next = s_.next;
+    nodes.clear();
+    layer.clear();
+    roots(a, limit, s_.roots);
+    for (const Vec2& T : s_.roots) nodes.push_back({{}, -1, a, T});
     for (int i = 0; i < static_cast<int>(nodes.size()); ++i) layer.push_back(i);
-    const double turn = 0.45 * deg_to_rad(o_.g1_angle_deg);
     const double bin_rad = deg_to_rad(o_.g1_angle_deg) / 8;
     const size_t width = o_.beam_width;
     // Candidates are scored first and checked exactly only when the beam keeps them.
-    struct Made {
-      int from;
-      Vec2 T;
-      Candidate cand;
-      Chosen c;  ///< unchecked(): end vertex and tangent only
-      Score sc;
-    };
-    std::vector<Made> made;
-    std::vector<uint32_t> order;
-    std::vector<Candidate> out;
-    std::vector<std::pair<uint32_t, long>> seen;
+    std::vector<Made>& made = s_.made;
+    std::vector<uint32_t>& order = s_.order;
+    std::vector<Candidate>& out = s_.beam_out;
+    std::vector<std::pair<uint32_t, long>>& seen = s_.seen;
     int furthest = -1;
     int guide = -1;  // the node the greedy chain would be at: the beam never does worse
     size_t step = 0;
@@ -899,9 +954,9 @@ class RunFitter {
       ++step;
       for (int i : layer) {
         const Node nd = nodes[i];
-        for (double f : {0.0, 1.0, -1.0}) {
-          if (f != 0 && nd.parent < 0) break;
-          const Vec2 T = f == 0 ? nd.T : rotated(nd.T, f * turn);
+        for (const Turn* turn : {(const Turn*)nullptr, &half_left_, &half_right_}) {
+          if (turn && nd.parent < 0) break;
+          const Vec2 T = turn ? (*turn)(nd.T) : nd.T;
           pick(nd.v, T, limit, o_.beam_branch, out);
           for (const Candidate& cd : out) {
             if (cd.e >= limit) {
@@ -997,7 +1052,9 @@ class RunFitter {
   std::vector<Chosen> layered_chain(uint32_t a, uint32_t limit) const {
     std::vector<Node> states;
     std::vector<int> layer, next;
-    for (const Vec2& T : roots(a, limit)) {
+    std::vector<Vec2> starts;
+    roots(a, limit, starts);
+    for (const Vec2& T : starts) {
       states.push_back({{}, -1, a, T});
       layer.push_back(static_cast<int>(states.size()) - 1);
     }
@@ -1051,8 +1108,8 @@ class RunFitter {
 
   /// The input's own directions at `a`, where the tangent is free: those of circles through
   /// the next vertices, of the first chord, and of the input around `a` inside the stretch.
-  std::vector<Vec2> input_tangents(uint32_t a, uint32_t limit) const {
-    std::vector<Vec2> out;
+  void input_tangents(uint32_t a, uint32_t limit, std::vector<Vec2>& out) const {
+    out.clear();
     for (uint32_t w : {2u, 4u, 8u, 16u}) {
       if (a + w > limit) break;
       if (auto t = circle_tangent(q(a), q(a + w / 2), q(a + w))) out.push_back(*t);
@@ -1060,7 +1117,6 @@ class RunFitter {
     Vec2 chord = q(a + 1) - q(a);
     if (chord.norm() > kLengthEpsMm) out.push_back(chord.normalized());
     if (auto t = input_tangent(a, stretch_start_, limit)) out.push_back(*t);
-    return out;
   }
 
   /// Whether the chain arrives at `a` with a tangent it must follow: the start of a stretch
@@ -1070,24 +1126,21 @@ class RunFitter {
   /// Where the searches start at `a`: the tangents a smooth joint allows after the incoming
   /// one (turned by no more than a line's chord may add to stay within kJointShare of the
   /// G1 angle), else start_tangents().
-  std::vector<Vec2> roots(uint32_t a, uint32_t limit) const {
-    if (!arrives_along(a)) return start_tangents(a, limit);
-    std::vector<Vec2> out;
-    for (double f : {0.0, 0.3, -0.3, 0.6, -0.6}) out.push_back(rotated(*in_tangent_, f * g1_rad()));
-    return out;
+  void roots(uint32_t a, uint32_t limit, std::vector<Vec2>& out) const {
+    out.clear();
+    if (!arrives_along(a)) return start_tangents(a, limit, out);
+    out.push_back(*in_tangent_);
+    for (const Turn& turn : root_turns_) out.push_back(turn(*in_tangent_));
   }
 
-  /// The beam's roots at `a`: the input's directions, each fanned out by a few degrees.
-  std::vector<Vec2> start_tangents(uint32_t a, uint32_t limit) const {
-    std::vector<Vec2> out;
-    for (const Vec2& T : input_tangents(a, limit)) {
+  /// The beam's roots at `a`: the input's directions, each fanned out by a few degrees;
+  /// appended to `out`.
+  void start_tangents(uint32_t a, uint32_t limit, std::vector<Vec2>& out) const {
+    input_tangents(a, limit, s_.inputs);
+    for (const Vec2& T : s_.inputs) {
       out.push_back(T);
-      for (double deg : {0.5, 1.0, 2.0, 4.0}) {
-        out.push_back(rotated(T, deg_to_rad(deg)));
-        out.push_back(rotated(T, -deg_to_rad(deg)));
-      }
+      for (const Turn& turn : start_turns_) out.push_back(turn(T));
     }
-    return out;
   }
 
   /// Start of a smooth stretch (or after a forced kink): try a few start tangents read off
@@ -1095,7 +1148,8 @@ class RunFitter {
   Chosen best_free(uint32_t a, uint32_t limit) const {
     std::optional<Chosen> best;
     Score best_score;
-    for (const Vec2& T : input_tangents(a, limit)) consider(a, T, limit, best, best_score);
+    input_tangents(a, limit, s_.free_starts);
+    for (const Vec2& T : s_.free_starts) consider(a, T, limit, best, best_score);
     if (best) return *best;
     return input_move(a);
   }
@@ -1129,7 +1183,11 @@ class RunFitter {
   std::vector<uint8_t> soft_;     // extrusion rate changes: a primitive ends here, tangent kept
   std::vector<uint32_t> soft_upto_;  // soft vertices before each vertex (prefix count)
   std::vector<std::optional<Vec2>> heading_;  // input_tangent() of each vertex inside the stretch
-  mutable std::vector<Candidate> scratch_;  // scratch for pick
+  Scratch& s_ = thread_scratch();
+  Turn half_left_, half_right_;   // 0.45 of the G1 angle each way: a joint's turn in the searches
+  Turn full_left_, full_right_;   // 0.9 of it: the greedy step's largest turn
+  std::vector<Turn> root_turns_;  // roots(): 0.3 and 0.6 of it each way
+  std::vector<Turn> start_turns_; // start_tangents(): 0.5, 1, 2 and 4 degrees each way
   std::vector<FixedMove> fixed_;  // per move
   uint32_t stretch_start_ = 0;    // first vertex of the current stretch (after a corner or fixed move)
   uint32_t stretch_end_ = 0;      // its last vertex (a corner, a fixed move's start, or the end)
