@@ -77,9 +77,11 @@ class RunFitter {
     fixed_.resize(n_);
     auto ax = axes_of(run.plane);
     p_.resize(n_ + 1);
+    q_.resize(n_ + 1);
     for (uint32_t v = 0; v <= n_; ++v) {
       const auto& a = run.vertex(in, v);
       p_[v] = Vec3(a[ax.first], a[ax.second], a[ax.normal]);
+      q_[v] = Vec2(a[ax.first], a[ax.second]);
       if (v > 0) {
         for (int x = kA; x < kE; ++x)
           if (a[x] != run.vertex(in, v - 1)[x]) extra_axes_move_ = true;
@@ -218,7 +220,8 @@ class RunFitter {
 
   double g1_rad() const { return deg_to_rad(o_.g1_angle_deg); }
 
-  Vec2 q(uint32_t v) const { return {p_[v].x(), p_[v].y()}; }
+  /// Vertex v in the plane (its first two coordinates).
+  const Vec2& q(uint32_t v) const { return q_[v]; }
   /// Whether a change of extrusion rate lies strictly between vertices a and e (it would end
   /// a primitive there).
   bool soft_between(uint32_t a, uint32_t e) const { return e > a + 1 && soft_upto_[e] > soft_upto_[a + 1]; }
@@ -1179,6 +1182,9 @@ class RunFitter {
   const FitOptions& o_;
   uint32_t n_;
   std::vector<Vec3> p_;           // vertices in plane coordinates (first, second, normal)
+  // The same in the plane, stored as such: the scans read them as whole vectors, where
+  // building each from p_ would stall on the store that assembles it.
+  std::vector<Vec2> q_;
   std::vector<uint8_t> hard_;     // corner: tangent may change, a primitive ends here
   std::vector<uint8_t> soft_;     // extrusion rate changes: a primitive ends here, tangent kept
   std::vector<uint32_t> soft_upto_;  // soft vertices before each vertex (prefix count)
