@@ -480,7 +480,7 @@ class RunFitter {
   /// furthest in the next step (two-step look-ahead over a few long candidates); ties go
   /// to the longer primitive. A primitive after which the chain cannot go on tangentially
   /// is taken only when there is no other.
-  std::optional<Chosen> best_from(uint32_t a, const Vec2& T, uint32_t limit) const {
+  std::optional<Chosen> best_from(uint32_t a, const Vec2& T, uint32_t limit, Score* scored = nullptr) const {
     // Scored first, checked exactly in the order of their scores: the first that passes
     // wins, so most steps check one primitive. (A candidate's end tangent is T reflected
     // about its chord, a line's the chord.)
@@ -491,7 +491,10 @@ class RunFitter {
     for (size_t i = 0; i < cand.size(); ++i) ranked.push_back({i, score(unchecked(a, T, cand[i]), limit)});
     std::stable_sort(ranked.begin(), ranked.end(), [](const Ranked& x, const Ranked& y) { return x.sc > y.sc; });
     for (const Ranked& r : ranked)
-      if (auto c = make(a, T, cand[r.i])) return c;
+      if (auto c = make(a, T, cand[r.i])) {
+        if (scored) *scored = r.sc;
+        return c;
+      }
     // None of those passes the exact check: the walk that steps back over the rest.
     std::vector<Chosen>& made = s_.best_made;
     made.clear();
@@ -505,6 +508,7 @@ class RunFitter {
         best_score = sc;
       }
     }
+    if (scored) *scored = best_score;
     return best;
   }
 
@@ -512,10 +516,9 @@ class RunFitter {
   /// allows a short primitive (the incoming tangent is slightly off the input's), tangents
   /// turned by up to 0.9 of that angle are tried too, and the one reaching furthest wins.
   std::optional<Chosen> best_near(uint32_t a, const Vec2& T, uint32_t limit) const {
-    auto best = best_from(a, T, limit);
     Score best_score;
+    auto best = best_from(a, T, limit, &best_score);
     if (best) {
-      best_score = score(*best, limit);
       if (best_score.on_course && (best->prim.end_vertex - a >= 4 || best->prim.end_vertex == limit)) return best;
     }
     for (const Turn* turn : {&half_left_, &half_right_, &full_left_, &full_right_})
@@ -529,11 +532,11 @@ class RunFitter {
   /// may lie off T by the line allowance, on top of the turn.
   void consider(uint32_t a, const Vec2& T, uint32_t limit, std::optional<Chosen>& best, Score& best_score,
                 const Vec2* incoming = nullptr) const {
-    auto c = best_from(a, T, limit);
+    Score sc;
+    auto c = best_from(a, T, limit, &sc);
     if (!c) return;
     // (An arc leaves along T itself; the margin keeps the largest turn from failing by rounding.)
     if (incoming && !within(*incoming, start_tangent(*c, a), kJointShare * g1_rad() + 1e-9)) return;
-    Score sc = score(*c, limit);
     if (!best || sc > best_score) {
       best = c;
       best_score = sc;
