@@ -98,6 +98,7 @@ TEST_CASE("rs274.toml spells out exactly the built-in default dialect", "[dialec
   CHECK(file.format == builtin.format);
   CHECK(file.planes == builtin.planes);
   CHECK(file.helical == builtin.helical);
+  CHECK(file.extra_axes == builtin.extra_axes);
   CHECK(file.relative_arcs == builtin.relative_arcs);
   CHECK(file.max_sweep_deg == builtin.max_sweep_deg);
   CHECK(file.min_sweep_deg == builtin.min_sweep_deg);

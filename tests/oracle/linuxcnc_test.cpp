@@ -209,3 +209,51 @@ TEST_CASE("LinuxCNC's rs274 reads the G18 and G19 arcs of a raster finishing pro
   CHECK(c.matched);
   CHECK(c.max_deviation_mm <= opt.fit.tolerance_mm + 0.00015);
 }
+
+TEST_CASE("LinuxCNC's rs274 takes arcs that turn the A axis as they go, ending each at the input's A",
+          "[oracle][linuxcnc][axes]") {
+  if (!rs274_available()) {
+    WARN("rs274 (Debian package linuxcnc-uspace) is not installed: skipped");
+    return;
+  }
+  // Half a circle of radius 10 mm in 1° steps; A turns 0.5° a step, then 1° a step.
+  std::string g = "G21 G90 G17\nG0 X10.0000 Y0.0000 Z0 A0.0000\nG1 F600\n";
+  for (int i = 1; i <= 180; ++i)
+    g += fmt::format("G1 X{:.4f} Y{:.4f} A{:.4f}\n", 10 * std::cos(deg_to_rad(i)), 10 * std::sin(deg_to_rad(i)),
+                     i <= 90 ? 0.5 * i : 45.0 + (i - 90));
+  g += "M2\n";
+  DiagnosticSink sink("rotary.ngc");
+  CompressOptions opt;
+  opt.dialect = load_dialect_file(ARCPRESS_SOURCE_DIR "/dialects/linuxcnc.toml");
+  auto r = compress("rotary.ngc", g, opt, sink);
+  REQUIRE(r.ok);
+  REQUIRE(r.within_band());
+  REQUIRE(r.stats.arcs_out >= 2);
+
+  fs::path dir = test::temp_dir("rs274-rotary");
+  test::write_file(dir / "strict.ini",
+                   "[RS274NGC]\nCENTER_ARC_RADIUS_TOLERANCE_MM = 0.001\nCENTER_ARC_RADIUS_TOLERANCE_INCH = 0.00004\n");
+  test::write_file(dir / "tools.tbl", "T1 P1 D3.0 ;\n");
+  test::write_file(dir / "out.ngc", r.output);
+  Rs274 ours = run_rs274(dir, dir / "out.ngc");
+  INFO("compressed: " << ours.error << r.output);
+  REQUIRE(ours.exit_code == 0);
+  // ARC_FEED(first end, second end, first centre, second centre, turn, normal end, A, B, C):
+  // every arc ends at an A the input has at that place (a multiple of 0.5° up to 45°, of 1°
+  // after), one of them where the rate changes.
+  std::istringstream in(ours.canon);
+  size_t arcs = 0;
+  bool at_change = false;
+  for (std::string line; std::getline(in, line);) {
+    size_t p = line.find("ARC_FEED(");
+    if (p == std::string::npos) continue;
+    auto v = args_of(line, line.find('(', p));
+    REQUIRE(v.size() >= 7);
+    const double a = v[6], step = a <= 45 ? 0.5 : 1.0;
+    CHECK(std::abs(a / step - std::round(a / step)) < 1e-6);
+    at_change = at_change || std::abs(a - 45) < 1e-6;
+    ++arcs;
+  }
+  CHECK(arcs == r.stats.arcs_out);
+  CHECK(at_change);
+}

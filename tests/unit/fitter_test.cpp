@@ -4,10 +4,14 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <functional>
 #include <random>
 
 #include "arcpress/api/arcpress.hpp"
 #include "arcpress/core/deviation.hpp"
+#include "arcpress/dialect/dialect_loader.hpp"
+#include "arcpress/lex/lexer.hpp"
+#include "arcpress/model/interpreter.hpp"
 
 using namespace arcpress;
 
@@ -670,4 +674,102 @@ TEST_CASE("runs cut apart by comments, feed changes, lone moves and input arcs m
   for (const std::string& m : lone) CHECK(o.r.output.find(m + "\n") != std::string::npos);
   for (const char* arc : {"G3 X14.5075 Y8.2603 I-9.7949 J-14.7014", "G3 X-19.8904 Y1.2543 I7.2938 J-1.6008"})
     CHECK(o.r.output.find(arc) != std::string::npos);
+}
+
+namespace {
+
+struct RotaryPt {
+  double x, y, a;  ///< mm, mm, degrees
+};
+
+/// A G21 G90 program along `pts` with the A axis turning as it goes.
+std::string rotary_program(const std::vector<RotaryPt>& pts) {
+  std::string s = fmt::format("G21 G90 G17\nG0 X{:.4f} Y{:.4f} Z0 A{:.4f}\nG1 F600\n", pts[0].x, pts[0].y, pts[0].a);
+  for (size_t i = 1; i < pts.size(); ++i) s += fmt::format("G1 X{:.4f} Y{:.4f} A{:.4f}\n", pts[i].x, pts[i].y, pts[i].a);
+  return s + "M2\n";
+}
+
+/// Half a circle of radius 10 mm in 1° steps, the A axis at a(i) degrees at step i, each
+/// number as rotary_program() prints it.
+std::vector<RotaryPt> turning_half_circle(const std::function<double(int)>& a) {
+  auto printed = [](double v) { return std::round(v * 1e4) / 1e4; };
+  std::vector<RotaryPt> p;
+  for (int i = 0; i <= 180; ++i)
+    p.push_back({printed(10 * std::cos(deg_to_rad(i))), printed(10 * std::sin(deg_to_rad(i))), printed(a(i))});
+  return p;
+}
+
+/// Reads `output` back and, carrying A linearly by path length along each of its feed blocks
+/// (as a controller does), returns how far A is from the input's at the input's vertices.
+/// Every block must end on an input vertex.
+double rotary_error_deg(const std::vector<RotaryPt>& in, const std::string& output) {
+  DiagnosticSink sink;
+  Program prog = lex("out.nc", output, sink);
+  Interpretation out = interpret(prog, sink);
+  REQUIRE(sink.error_count() == 0);
+  std::vector<double> length(in.size(), 0.0);  // along the input
+  for (size_t i = 1; i < in.size(); ++i) length[i] = length[i - 1] + std::hypot(in[i].x - in[i - 1].x, in[i].y - in[i - 1].y);
+  double worst = 0;
+  size_t from = 0;
+  for (const Move& m : out.moves) {
+    if (m.kind == MoveKind::Rapid) continue;
+    size_t to = from + 1;
+    while (to < in.size() && std::hypot(in[to].x - m.to[kX], in[to].y - m.to[kY]) > 1e-6) ++to;
+    REQUIRE(to < in.size());
+    CHECK(m.to[kA] == Approx(in[to].a).margin(1e-9));
+    for (size_t k = from + 1; k < to; ++k) {
+      const double t = (length[k] - length[from]) / (length[to] - length[from]);
+      worst = std::max(worst, std::abs(in[k].a - (in[from].a + t * (in[to].a - in[from].a))));
+    }
+    from = to;
+  }
+  CHECK(from == in.size() - 1);
+  return worst;
+}
+
+Outcome compress_for(const std::string& text, const char* dialect) {
+  DiagnosticSink sink;
+  CompressOptions opt;
+  opt.dialect = load_dialect_file(std::string(ARCPRESS_SOURCE_DIR "/dialects/") + dialect + ".toml");
+  Outcome o;
+  o.r = compress("t.nc", text, opt, sink);
+  REQUIRE(o.r.ok);
+  REQUIRE(o.r.within_band());
+  o.arcs = o.r.stats.arcs_out;
+  o.lines = o.r.stats.lines_out;
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("an extra axis turning at a steady rate rides along the arcs where the controller moves it in arcs, "
+          "and a primitive ends where its rate changes",
+          "[fit][axes]") {
+  // A turns 0.5° per step for 90 steps, then 1° per step.
+  auto pts = turning_half_circle([](int i) { return i <= 90 ? 0.5 * i : 45 + (i - 90); });
+  auto o = compress_for(rotary_program(pts), "linuxcnc");
+  CHECK(o.arcs >= 2);
+  CHECK(o.arcs + o.lines <= 4);
+  CHECK(o.r.output.find("A45.0000") != std::string::npos);  // a block ends where the rate changes
+  CHECK(rotary_error_deg(pts, o.r.output) <= 0.01);
+}
+
+TEST_CASE("where the controller does not move extra axes in arcs, a run where they move is fitted with lines",
+          "[fit][axes]") {
+  auto pts = turning_half_circle([](int i) { return 0.5 * i; });
+  auto o = compress_for(rotary_program(pts), "rs274");
+  CHECK(o.arcs == 0);
+  CHECK(o.lines < 180 / 2);  // lines still merge moves along which A stays linear
+  CHECK(rotary_error_deg(pts, o.r.output) <= 0.01);
+}
+
+TEST_CASE("an extra axis whose rate drifts by less than a few per cent a step still ends each primitive "
+          "before it leaves the band of its linear course",
+          "[fit][axes]") {
+  // A = 0.002·i² degrees: from step 40 on, neighbouring rates differ by less than 5 %, but
+  // across 50 steps A bends 1.25° away from the straight line between the ends.
+  auto pts = turning_half_circle([](int i) { return 0.002 * i * i; });
+  auto o = compress_for(rotary_program(pts), "linuxcnc");
+  CHECK(o.arcs >= 1);
+  CHECK(rotary_error_deg(pts, o.r.output) <= 0.01);
 }

@@ -17,6 +17,7 @@ FitOptions fit_options_for(const FitOptions& user, const Dialect& d, const Frame
   FitOptions o = user;
   o.arcs = user.arcs && d.arcs && d.plane_allowed(plane) && (d.relative_arcs || frame.absolute);
   o.helical = user.helical && d.helical;
+  o.extra_axes = user.extra_axes && d.extra_axes;
   o.max_sweep_deg = std::min(user.max_sweep_deg, d.max_sweep_deg);
   o.min_sweep_deg = std::max(user.min_sweep_deg, d.min_sweep_deg);
   o.min_radius_mm = std::max(user.min_radius_mm, d.min_radius_mm);

@@ -48,6 +48,7 @@ struct Dialect {
   std::string arc_header;                       ///< a block written once before the first arc, e.g. "G91.1"
   uint8_t planes = 0b111;                       ///< bit 0 XY (G17), bit 1 ZX (G18), bit 2 YZ (G19)
   bool helical = true;                          ///< linear motion along the plane's normal inside an arc
+  bool extra_axes = false;                      ///< A/B/C, U/V/W words inside an arc, moved linearly
   bool relative_arcs = true;                    ///< arcs allowed under G91
   bool zx_reversed = false;                     ///< G2/G3 turn the other way in G18 (Klipper)
   double max_sweep_deg = 180.0;                 ///< per block

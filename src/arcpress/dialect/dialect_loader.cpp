@@ -181,6 +181,7 @@ Dialect parse_dialect(const std::string& text, const std::string& path) {
       for (auto& p : planes) d.planes |= uint8_t(1u << (p[2] - '7'));
     }
     r.boolean("helical", d.helical);
+    r.boolean("extra_axes", d.extra_axes);
     r.boolean("relative", d.relative_arcs);
     r.boolean("zx_reversed", d.zx_reversed);
     r.number("max_sweep_deg", d.max_sweep_deg, 1, 359);

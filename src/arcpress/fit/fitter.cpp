@@ -25,6 +25,9 @@ constexpr double kHeightShare = 0.6;
 /// Share of the G1 angle by which the fitter may turn the tangent at a smooth joint; printing
 /// the arc centres may turn each side by a little more (the emitter re-checks that).
 constexpr double kJointShare = 0.9;
+/// How much the extrusion or an extra axis per mm may differ between two neighbouring moves
+/// inside one primitive, as a share of the larger rate.
+constexpr double kRateShare = 0.05;
 /// Candidates per primitive whose next step is looked at before choosing.
 constexpr int kLookahead = 6;
 /// Splits of a stretch into two primitives checked exactly per start tangent when merging.
@@ -82,11 +85,22 @@ class RunFitter {
       const auto& a = run.vertex(in, v);
       p_[v] = Vec3(a[ax.first], a[ax.second], a[ax.normal]);
       q_[v] = Vec2(a[ax.first], a[ax.second]);
-      if (v > 0) {
-        for (int x = kA; x < kE; ++x)
-          if (a[x] != run.vertex(in, v - 1)[x]) extra_axes_move_ = true;
-      }
     }
+    // The extra axes (A/B/C, U/V/W) that move in the run, their values at each vertex, and
+    // the path length to each vertex they are carried along.
+    for (int x = kA; x < kE; ++x)
+      for (uint32_t v = 1; v <= n_; ++v)
+        if (run.vertex(in, v)[x] != run.vertex(in, v - 1)[x]) {
+          extra_.push_back(x);
+          break;
+        }
+    if (!extra_.empty()) {
+      length_.assign(n_ + 1, 0.0);
+      for (uint32_t v = 1; v <= n_; ++v) length_[v] = length_[v - 1] + (p_[v] - p_[v - 1]).norm();
+      for (uint32_t v = 0; v <= n_; ++v)
+        for (int x : extra_) extra_values_.push_back(run.vertex(in, v)[x]);
+    }
+    arcs_ = o.arcs && (o.extra_axes || extra_.empty());
     eps_ = o.tolerance_mm * (1.0 - kRoundingReserve);
     line_kink_ = deg_to_rad(o.g1_angle_deg) / 4;
     const double g1 = deg_to_rad(o.g1_angle_deg);
@@ -131,11 +145,17 @@ class RunFitter {
                                                                    a < n_ ? &p_[a + 1] : nullptr, alone[b], alone[a],
                                                                    o.tolerance_mm));
       double l1 = (p_[v] - p_[v - 1]).norm(), l2 = (p_[v + 1] - p_[v]).norm();
-      // Extrusion per mm must stay (nearly) constant inside one primitive.
-      double e1 = run.vertex(in, v)[kE] - run.vertex(in, v - 1)[kE];
-      double e2 = run.vertex(in, v + 1)[kE] - run.vertex(in, v)[kE];
-      double r1 = e1 / l1, r2 = e2 / l2;
-      if ((e1 == 0) != (e2 == 0) || std::abs(r1 - r2) > 0.05 * std::max(std::abs(r1), std::abs(r2))) soft_[v] = 1;
+      // Extrusion and the extra axes per mm must stay (nearly) constant inside one primitive:
+      // a primitive ends where one starts or stops moving or changes its rate.
+      auto rate_changes = [&](int x) {
+        double d1 = run.vertex(in, v)[x] - run.vertex(in, v - 1)[x];
+        double d2 = run.vertex(in, v + 1)[x] - run.vertex(in, v)[x];
+        double r1 = d1 / l1, r2 = d2 / l2;
+        return (d1 == 0) != (d2 == 0) || std::abs(r1 - r2) > kRateShare * std::max(std::abs(r1), std::abs(r2));
+      };
+      if (rate_changes(kE)) soft_[v] = 1;
+      for (int x : extra_)
+        if (rate_changes(x)) soft_[v] = 1;
       if (!pinned.empty() && pinned[v]) soft_[v] = 1;
     }
     soft_upto_.assign(n_ + 2, 0);
@@ -146,7 +166,7 @@ class RunFitter {
   /// the tangent breaks at a smooth joint because the band allows nothing tangent there.
   std::vector<Chosen> fit() {
     std::vector<Chosen> out;
-    if (o_.method == FitOptions::Method::Keep || extra_axes_move_ || n_ < 2) return keep();
+    if (o_.method == FitOptions::Method::Keep || n_ < 2) return keep();
     // Stretches run from corner to corner, or to a fixed move; the tangent is free at a
     // corner and follows the fixed move's direction where the path is smooth.
     bool after_fitted = false;  // the last primitive in `out` was fitted, not fixed
@@ -301,7 +321,7 @@ class RunFitter {
       if (k < lo - slack || k > hi + slack) continue;
       const bool line = abs_alpha <= line_alpha_;
       if (!line) {
-        if (!o_.arcs || k < arc_lo - slack || k > arc_hi + slack) continue;
+        if (!arcs_ || k < arc_lo - slack || k > arc_hi + slack) continue;
         const double r = 1 / std::abs(k);
         if (r > o_.max_radius_mm || r < o_.min_radius_mm) continue;
         if (e - a < o_.min_arc_moves || abs_alpha < min_alpha_) continue;
@@ -324,8 +344,29 @@ class RunFitter {
     return make_arc(a, c.e, q(a) + left_normal(T) / c.k, c.k > 0);
   }
 
+  /// Whether every extra axis that moves, carried linearly by path length from vertex a to
+  /// vertex e as the controller carries it along one block, passes within the band of its
+  /// value at each vertex between (the band's number read in the axis's unit: mm, or
+  /// degrees for A/B/C, which keeps a point within the band up to 57 mm from the axis).
+  /// The vertices' rates per mm agree with their neighbours' (soft_), but a rate that
+  /// drifts slowly would still bend the axis away from the line over a long primitive.
+  bool extra_axes_linear(uint32_t a, uint32_t e) const {
+    const size_t k = extra_.size();
+    if (k == 0 || e <= a + 1) return true;
+    const double span = length_[e] - length_[a];
+    for (uint32_t m = a + 1; m < e; ++m) {
+      const double t = span > 0 ? (length_[m] - length_[a]) / span : 0;
+      for (size_t i = 0; i < k; ++i) {
+        const double va = extra_values_[a * k + i], ve = extra_values_[e * k + i];
+        if (std::abs(extra_values_[m * k + i] - (va + t * (ve - va))) > eps_) return false;
+      }
+    }
+    return true;
+  }
+
   /// The line from vertex a to vertex e, if the moves between stay inside the band.
   std::optional<Chosen> make_line(uint32_t a, uint32_t e, const Vec2& fallback_tangent) const {
+    if (!extra_axes_linear(a, e)) return std::nullopt;
     std::span<const Vec3> pts(p_.data() + a, e - a + 1);
     Deviation d = line_deviation(pts, eps_);
     if (!d.ordered || d.max_mm > eps_) return std::nullopt;
@@ -340,7 +381,7 @@ class RunFitter {
   /// The arc from vertex a to vertex e about `center`, if the moves between stay inside the
   /// band (in-plane share when it climbs) and the arc keeps the options' limits.
   std::optional<Chosen> make_arc(uint32_t a, uint32_t e, const Vec2& center, bool ccw) const {
-    if (!o_.arcs || e - a < std::max<uint32_t>(o_.min_arc_moves, 1)) return std::nullopt;
+    if (!arcs_ || e - a < std::max<uint32_t>(o_.min_arc_moves, 1) || !extra_axes_linear(a, e)) return std::nullopt;
     std::span<const Vec3> pts(p_.data() + a, e - a + 1);
     bool flat = true;
     for (const auto& p : pts) flat = flat && std::abs(p.z() - pts.front().z()) <= kLengthEpsMm;
@@ -1204,7 +1245,10 @@ class RunFitter {
   double eps_ = 0;                // band the fitter works to, mm
   double line_kink_ = 0;          // largest tangent-chord angle written as a line, rad
   double max_alpha_ = 0, min_alpha_ = 0, line_alpha_ = 0;  // pseudo-angles, see the constructor
-  bool extra_axes_move_ = false;
+  bool arcs_ = true;               // arcs allowed: by the options, and in this run by its extra axes
+  std::vector<int> extra_;         // the extra axes (kA .. kW) that move in the run
+  std::vector<double> extra_values_;  // their values at each vertex, extra_.size() per vertex
+  std::vector<double> length_;     // path length from vertex 0 to each vertex (mm), when extra_ move
 };
 
 }  // namespace

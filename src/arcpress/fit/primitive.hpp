@@ -39,6 +39,10 @@ struct FitOptions {
   double min_arc_length_mm = 0.0;  ///< shorter arcs become lines (firmware re-segmentation)
   uint32_t min_arc_moves = 0;      ///< an arc must replace at least this many input moves
   bool helical = true;             ///< arcs may move along the plane's normal axis
+  /// Arcs may move the extra axes (A/B/C, U/V/W), which the controller carries linearly along
+  /// the block. Lines always may; either way a primitive only spans moves along which every
+  /// extra axis moves linearly by path length, within the band (see the fitter).
+  bool extra_axes = true;
   /// Seed 004: a lone sharp jag whose vertex lies within half the band of its neighbours'
   /// chord (noise in digitised paths) is not a corner. Off by default: every turn sharper
   /// than corner_angle_deg is a corner.
