@@ -87,22 +87,44 @@ std::string canon_to_gcode(const std::string& canon) {
 
 bool rs274_available() { return std::system("command -v rs274 > /dev/null 2>&1") == 0; }
 
+/// `text` compressed for the linuxcnc dialect, read back within the band.
+CompressResult compressed_for_linuxcnc(const std::string& name, const std::string& text, double tolerance_mm = 0.01) {
+  DiagnosticSink sink(name);
+  CompressOptions opt;
+  opt.fit.tolerance_mm = tolerance_mm;
+  opt.dialect = load_dialect_file(ARCPRESS_SOURCE_DIR "/dialects/linuxcnc.toml");
+  CompressResult r = compress(name, text, opt, sink);
+  REQUIRE(r.ok);
+  REQUIRE(r.within_band());
+  return r;
+}
+
+/// Leaves the test case with a warning when LinuxCNC's rs274 is not installed.
+#define RS274_OR_SKIP()                                                          \
+  if (!rs274_available()) {                                                      \
+    WARN("rs274 (Debian package linuxcnc-uspace) is not installed: skipped");    \
+    return;                                                                      \
+  }
+
+/// A fresh folder holding what run_rs274() reads: the tightest arc-radius tolerance LinuxCNC
+/// allows (0.001 mm), and a tool table with tools 1 .. `tools`.
+fs::path rs274_folder(const std::string& tag, int tools = 1) {
+  fs::path dir = test::temp_dir(tag);
+  test::write_file(dir / "strict.ini",
+                   "[RS274NGC]\nCENTER_ARC_RADIUS_TOLERANCE_MM = 0.001\nCENTER_ARC_RADIUS_TOLERANCE_INCH = 0.00004\n");
+  std::string table;
+  for (int t = 1; t <= tools; ++t) table += fmt::format("T{} P{} D3.0 ;\n", t, t);
+  test::write_file(dir / "tools.tbl", table);
+  return dir;
+}
+
 }  // namespace
 
 TEST_CASE("LinuxCNC's rs274 accepts every compressed CNC corpus program and reads it within the band",
           "[oracle][linuxcnc]") {
-  if (!rs274_available()) {
-    WARN("rs274 (Debian package linuxcnc-uspace) is not installed: skipped");
-    return;
-  }
+  RS274_OR_SKIP();
   ARCPRESS_CORPUS_FILES_OR_SKIP(files)
-  fs::path dir = test::temp_dir("rs274");
-  test::write_file(dir / "strict.ini",
-                   "[RS274NGC]\nCENTER_ARC_RADIUS_TOLERANCE_MM = 0.001\nCENTER_ARC_RADIUS_TOLERANCE_INCH = 0.00004\n");
-  std::string tools;
-  for (int t = 1; t <= 99; ++t) tools += fmt::format("T{} P{} D3.0 ;\n", t, t);
-  test::write_file(dir / "tools.tbl", tools);
-  Dialect linuxcnc = load_dialect_file(ARCPRESS_SOURCE_DIR "/dialects/linuxcnc.toml");
+  fs::path dir = rs274_folder("rs274", 99);
 
   size_t judged = 0, arcs = 0;
   for (const auto& f : files) {
@@ -110,13 +132,7 @@ TEST_CASE("LinuxCNC's rs274 accepts every compressed CNC corpus program and read
     Rs274 original = run_rs274(dir, f);
     for (double tol : {0.01, 0.002}) {
       INFO(fmt::format("{} at tolerance {} mm", f.string(), tol));
-      DiagnosticSink sink(f.string());
-      CompressOptions opt;
-      opt.fit.tolerance_mm = tol;
-      opt.dialect = linuxcnc;
-      auto r = compress(f.string(), test::read_file(f), opt, sink);
-      REQUIRE(r.ok);
-      REQUIRE(r.within_band());
+      auto r = compressed_for_linuxcnc(f.string(), test::read_file(f), tol);
       arcs += r.stats.arcs_out;
       fs::path out = dir / "out.ngc";
       test::write_file(out, r.output);
@@ -149,10 +165,7 @@ TEST_CASE("LinuxCNC's rs274 accepts every compressed CNC corpus program and read
 
 TEST_CASE("LinuxCNC's rs274 reads the G18 and G19 arcs of a raster finishing program within the band",
           "[oracle][linuxcnc][plane]") {
-  if (!rs274_available()) {
-    WARN("rs274 (Debian package linuxcnc-uspace) is not installed: skipped");
-    return;
-  }
+  RS274_OR_SKIP();
   // Parallel finishing over a dome (sphere of radius 15 mm, its top 5 mm above the floor),
   // under G17: passes along X at fixed Y, then passes along Y at fixed X, 0.2 mm steps,
   // coordinates printed to 4 decimals as CAM systems print them.
@@ -174,20 +187,12 @@ TEST_CASE("LinuxCNC's rs274 reads the G18 and G19 arcs of a raster finishing pro
   passes(false);
   g += "G0 Z5\nG2 X21 Y-20 I8 J0\nM2\n";
 
-  fs::path dir = test::temp_dir("rs274-planes");
-  test::write_file(dir / "strict.ini",
-                   "[RS274NGC]\nCENTER_ARC_RADIUS_TOLERANCE_MM = 0.001\nCENTER_ARC_RADIUS_TOLERANCE_INCH = 0.00004\n");
-  test::write_file(dir / "tools.tbl", "T1 P1 D3.0 ;\n");
+  fs::path dir = rs274_folder("rs274-planes");
   test::write_file(dir / "raster.ngc", g);
   Rs274 original = run_rs274(dir, dir / "raster.ngc");
   REQUIRE(original.exit_code == 0);
 
-  DiagnosticSink sink("raster.ngc");
-  CompressOptions opt;
-  opt.dialect = load_dialect_file(ARCPRESS_SOURCE_DIR "/dialects/linuxcnc.toml");
-  auto r = compress("raster.ngc", g, opt, sink);
-  REQUIRE(r.ok);
-  REQUIRE(r.within_band());
+  auto r = compressed_for_linuxcnc("raster.ngc", g);
   CHECK(r.stats.plane_words_added == 24);  // G18 or G19 before, G17 after, each pass
   CHECK(r.stats.arcs_out >= 12);
   CHECK(r.stats.arcs_out + r.stats.lines_out < 2000 / 10);  // 2424 moves in
@@ -203,37 +208,26 @@ TEST_CASE("LinuxCNC's rs274 reads the G18 and G19 arcs of a raster finishing pro
   Program pb = lex("rs274(compressed)", canon_to_gcode(ours.canon), sb);
   Interpretation ia = interpret(pa, sa), ib = interpret(pb, sb);
   CompareOptions co;
-  co.tolerance_mm = opt.fit.tolerance_mm;
+  co.tolerance_mm = r.band_mm;
   PathComparison c = compare_paths(pa, ia, pb, ib, co);
   INFO(c.mismatch);
   CHECK(c.matched);
-  CHECK(c.max_deviation_mm <= opt.fit.tolerance_mm + 0.00015);
+  CHECK(c.max_deviation_mm <= r.band_mm + 0.00015);
 }
 
 TEST_CASE("LinuxCNC's rs274 takes arcs that turn the A axis as they go, ending each at the input's A",
           "[oracle][linuxcnc][axes]") {
-  if (!rs274_available()) {
-    WARN("rs274 (Debian package linuxcnc-uspace) is not installed: skipped");
-    return;
-  }
+  RS274_OR_SKIP();
   // Half a circle of radius 10 mm in 1° steps; A turns 0.5° a step, then 1° a step.
   std::string g = "G21 G90 G17\nG0 X10.0000 Y0.0000 Z0 A0.0000\nG1 F600\n";
   for (int i = 1; i <= 180; ++i)
     g += fmt::format("G1 X{:.4f} Y{:.4f} A{:.4f}\n", 10 * std::cos(deg_to_rad(i)), 10 * std::sin(deg_to_rad(i)),
                      i <= 90 ? 0.5 * i : 45.0 + (i - 90));
   g += "M2\n";
-  DiagnosticSink sink("rotary.ngc");
-  CompressOptions opt;
-  opt.dialect = load_dialect_file(ARCPRESS_SOURCE_DIR "/dialects/linuxcnc.toml");
-  auto r = compress("rotary.ngc", g, opt, sink);
-  REQUIRE(r.ok);
-  REQUIRE(r.within_band());
+  auto r = compressed_for_linuxcnc("rotary.ngc", g);
   REQUIRE(r.stats.arcs_out >= 2);
 
-  fs::path dir = test::temp_dir("rs274-rotary");
-  test::write_file(dir / "strict.ini",
-                   "[RS274NGC]\nCENTER_ARC_RADIUS_TOLERANCE_MM = 0.001\nCENTER_ARC_RADIUS_TOLERANCE_INCH = 0.00004\n");
-  test::write_file(dir / "tools.tbl", "T1 P1 D3.0 ;\n");
+  fs::path dir = rs274_folder("rs274-rotary");
   test::write_file(dir / "out.ngc", r.output);
   Rs274 ours = run_rs274(dir, dir / "out.ngc");
   INFO("compressed: " << ours.error << r.output);
