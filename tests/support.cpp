@@ -35,16 +35,21 @@ void write_file(const fs::path& p, const std::string& data) {
   f << data;
 }
 
-fs::path temp_dir(const std::string& tag) {
-  std::random_device rd;
-  fs::path d = fs::temp_directory_path() / ("arcpress-test-" + tag + "-" + std::to_string(rd()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+TempDir::TempDir(const std::string& tag)
+    : fs::path(fs::temp_directory_path() / ("arcpress-test-" + tag + "-" + std::to_string(std::random_device()()))) {
+  fs::remove_all(*this);
+  fs::create_directories(*this);
+}
+
+TempDir::TempDir(TempDir&& other) noexcept : fs::path(std::move(other)) { other.clear(); }
+
+TempDir::~TempDir() {
+  std::error_code ignored;  // a folder the test removed itself, or one that is busy: nothing to do
+  if (!empty()) fs::remove_all(*this, ignored);
 }
 
 Command run_arcpress(const std::string& args, const std::string& stdin_text) {
-  fs::path d = temp_dir("cmd");
+  TempDir d("cmd");
   write_file(d / "stdin", stdin_text);
   std::string cmd = std::string("'") + ARCPRESS_EXE + "' " + args + " < '" + (d / "stdin").string() + "' > '" +
                     (d / "stdout").string() + "' 2> '" + (d / "stderr").string() + "'";
@@ -53,7 +58,6 @@ Command run_arcpress(const std::string& args, const std::string& stdin_text) {
   c.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   c.out = read_file(d / "stdout");
   c.err = read_file(d / "stderr");
-  fs::remove_all(d);
   return c;
 }
 

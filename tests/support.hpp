@@ -19,8 +19,18 @@ struct Command {
 /// Runs the arcpress executable with `args` (shell words), feeding `stdin_text`.
 Command run_arcpress(const std::string& args, const std::string& stdin_text = "");
 
-/// A fresh empty folder under the system temp dir.
-std::filesystem::path temp_dir(const std::string& tag);
+/// A fresh empty folder under the system temp dir, removed with all it holds when the
+/// test is done with it (when this goes out of scope).
+class TempDir : public std::filesystem::path {
+ public:
+  explicit TempDir(const std::string& tag);
+  TempDir(TempDir&& other) noexcept;
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  TempDir& operator=(TempDir&&) = delete;
+  ~TempDir();
+};
+inline TempDir temp_dir(const std::string& tag) { return TempDir(tag); }
 
 }  // namespace arcpress::test
 

@@ -80,7 +80,7 @@ TEST_CASE("a missing input file exits with 3", "[cli]") {
 }
 
 TEST_CASE("strict mode refuses an unreadable block with its place and leaves no output", "[cli]") {
-  fs::path d = arcpress::test::temp_dir("strict");
+  auto d = arcpress::test::temp_dir("strict");
   arcpress::test::write_file(d / "in.nc", "G0 X0 Y0\nG1 X1 Y@\n");
   auto c = run_arcpress("--strict '" + (d / "in.nc").string() + "' -o '" + (d / "out.nc").string() + "'");
   CHECK(c.exit_code == 2);
@@ -88,7 +88,6 @@ TEST_CASE("strict mode refuses an unreadable block with its place and leaves no 
   CHECK_FALSE(fs::exists(d / "out.nc"));
   // No temporary files are left behind either.
   CHECK(std::distance(fs::directory_iterator(d), fs::directory_iterator()) == 1);
-  fs::remove_all(d);
 }
 
 TEST_CASE("non-strict mode passes an unreadable block through and warns", "[cli]") {
@@ -99,7 +98,7 @@ TEST_CASE("non-strict mode passes an unreadable block through and warns", "[cli]
 }
 
 TEST_CASE("the input is never overwritten unless --in-place is given", "[cli]") {
-  fs::path d = arcpress::test::temp_dir("inplace");
+  auto d = arcpress::test::temp_dir("inplace");
   fs::path in = d / "in.nc";
   arcpress::test::write_file(in, kProgram);
   auto c = run_arcpress("'" + in.string() + "' -o '" + in.string() + "'");
@@ -108,17 +107,15 @@ TEST_CASE("the input is never overwritten unless --in-place is given", "[cli]") 
   auto ok = run_arcpress("--in-place --method keep '" + in.string() + "'");
   CHECK(ok.exit_code == 0);
   CHECK(arcpress::test::read_file(in) == kProgram);
-  fs::remove_all(d);
 }
 
 TEST_CASE("an existing output file is replaced only when the run succeeds", "[cli]") {
-  fs::path d = arcpress::test::temp_dir("atomic");
+  auto d = arcpress::test::temp_dir("atomic");
   arcpress::test::write_file(d / "out.nc", "old content\n");
   arcpress::test::write_file(d / "bad.nc", "G1 X(\n");
   auto c = run_arcpress("--strict '" + (d / "bad.nc").string() + "' -o '" + (d / "out.nc").string() + "'");
   CHECK(c.exit_code == 2);
   CHECK(arcpress::test::read_file(d / "out.nc") == "old content\n");
-  fs::remove_all(d);
 }
 
 TEST_CASE("the stats flag reports counts on standard error", "[cli]") {
@@ -129,7 +126,7 @@ TEST_CASE("the stats flag reports counts on standard error", "[cli]") {
 }
 
 TEST_CASE("diff passes a compressed program within the band and fails it outside", "[cli][diff]") {
-  fs::path d = arcpress::test::temp_dir("diff");
+  auto d = arcpress::test::temp_dir("diff");
   fs::path in = fs::path(ARCPRESS_SOURCE_DIR) / "samples" / "contour.nc";
   fs::path out = d / "out.nc";
   auto c = run_arcpress("'" + in.string() + "' -o '" + out.string() + "' --tolerance 0.01");
@@ -146,7 +143,6 @@ TEST_CASE("diff passes a compressed program within the band and fails it outside
   auto moved = run_arcpress("diff '" + in.string() + "' '" + (d / "moved.nc").string() + "'");
   CHECK(moved.exit_code == 1);
   CHECK(moved.out.find("moved.nc") != std::string::npos);
-  fs::remove_all(d);
 }
 
 TEST_CASE("compression measures its own output and reports the deviation", "[cli]") {

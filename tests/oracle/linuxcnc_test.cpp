@@ -108,8 +108,8 @@ CompressResult compressed_for_linuxcnc(const std::string& name, const std::strin
 
 /// A fresh folder holding what run_rs274() reads: the tightest arc-radius tolerance LinuxCNC
 /// allows (0.001 mm), and a tool table with tools 1 .. `tools`.
-fs::path rs274_folder(const std::string& tag, int tools = 1) {
-  fs::path dir = test::temp_dir(tag);
+test::TempDir rs274_folder(const std::string& tag, int tools = 1) {
+  test::TempDir dir(tag);
   test::write_file(dir / "strict.ini",
                    "[RS274NGC]\nCENTER_ARC_RADIUS_TOLERANCE_MM = 0.001\nCENTER_ARC_RADIUS_TOLERANCE_INCH = 0.00004\n");
   std::string table;
@@ -124,7 +124,7 @@ TEST_CASE("LinuxCNC's rs274 accepts every compressed CNC corpus program and read
           "[oracle][linuxcnc]") {
   RS274_OR_SKIP();
   ARCPRESS_CORPUS_FILES_OR_SKIP(files)
-  fs::path dir = rs274_folder("rs274", 99);
+  auto dir = rs274_folder("rs274", 99);
 
   size_t judged = 0, arcs = 0;
   for (const auto& f : files) {
@@ -187,7 +187,7 @@ TEST_CASE("LinuxCNC's rs274 reads the G18 and G19 arcs of a raster finishing pro
   passes(false);
   g += "G0 Z5\nG2 X21 Y-20 I8 J0\nM2\n";
 
-  fs::path dir = rs274_folder("rs274-planes");
+  auto dir = rs274_folder("rs274-planes");
   test::write_file(dir / "raster.ngc", g);
   Rs274 original = run_rs274(dir, dir / "raster.ngc");
   REQUIRE(original.exit_code == 0);
@@ -227,7 +227,7 @@ TEST_CASE("LinuxCNC's rs274 takes arcs that turn the A axis as they go, ending e
   auto r = compressed_for_linuxcnc("rotary.ngc", g);
   REQUIRE(r.stats.arcs_out >= 2);
 
-  fs::path dir = rs274_folder("rs274-rotary");
+  auto dir = rs274_folder("rs274-rotary");
   test::write_file(dir / "out.ngc", r.output);
   Rs274 ours = run_rs274(dir, dir / "out.ngc");
   INFO("compressed: " << ours.error << r.output);
