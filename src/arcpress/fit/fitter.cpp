@@ -520,7 +520,7 @@ class RunFitter {
   /// Among the checked primitives from `a` along `T`, the one after which the chain reaches
   /// furthest in the next step (two-step look-ahead over a few long candidates); ties go
   /// to the longer primitive. A primitive after which the chain cannot go on tangentially
-  /// is taken only when there is no other.
+  /// is taken only when there is no other. `scored`, where given, receives its score.
   std::optional<Chosen> best_from(uint32_t a, const Vec2& T, uint32_t limit, Score* scored = nullptr) const {
     // Scored first, checked exactly in the order of their scores: the first that passes
     // wins, so most steps check one primitive. (A candidate's end tangent is T reflected
