@@ -47,10 +47,11 @@ struct Outcome {
   size_t arcs = 0, lines = 0;
 };
 
-Outcome compress_text(const std::string& text, FitOptions fit = {}) {
+Outcome compress_text(const std::string& text, FitOptions fit = {}, Dialect dialect = {}) {
   DiagnosticSink sink;
   CompressOptions opt;
   opt.fit = fit;
+  opt.dialect = std::move(dialect);
   Outcome o;
   o.r = compress("t.nc", text, opt, sink);
   REQUIRE(o.r.ok);
@@ -728,15 +729,8 @@ double rotary_error_deg(const std::vector<RotaryPt>& in, const std::string& outp
 }
 
 Outcome compress_for(const std::string& text, const char* dialect) {
-  DiagnosticSink sink;
-  CompressOptions opt;
-  opt.dialect = load_dialect_file(std::string(ARCPRESS_SOURCE_DIR "/dialects/") + dialect + ".toml");
-  Outcome o;
-  o.r = compress("t.nc", text, opt, sink);
-  REQUIRE(o.r.ok);
+  Outcome o = compress_text(text, {}, load_dialect_file(std::string(ARCPRESS_SOURCE_DIR "/dialects/") + dialect + ".toml"));
   REQUIRE(o.r.within_band());
-  o.arcs = o.r.stats.arcs_out;
-  o.lines = o.r.stats.lines_out;
   return o;
 }
 

@@ -1,6 +1,7 @@
 #include "arcpress/fit/fitter.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -28,6 +29,9 @@ constexpr double kJointShare = 0.9;
 /// How much the extrusion or an extra axis per mm may differ between two neighbouring moves
 /// inside one primitive, as a share of the larger rate.
 constexpr double kRateShare = 0.05;
+/// Share of the G1 angle by which the searches turn the tangent at a joint, each way (twice
+/// this stays within kJointShare).
+constexpr double kTurnShare = 0.45;
 /// Candidates per primitive whose next step is looked at before choosing.
 constexpr int kLookahead = 6;
 /// Splits of a stretch into two primitives checked exactly per start tangent when merging.
@@ -104,14 +108,15 @@ class RunFitter {
     eps_ = o.tolerance_mm * (1.0 - kRoundingReserve);
     line_kink_ = deg_to_rad(o.g1_angle_deg) / 4;
     const double g1 = deg_to_rad(o.g1_angle_deg);
-    half_left_ = Turn(0.45 * g1);
-    half_right_ = Turn(-0.45 * g1);
-    full_left_ = Turn(0.9 * g1);
-    full_right_ = Turn(-0.9 * g1);
-    for (double f : {0.3, -0.3, 0.6, -0.6}) root_turns_.emplace_back(f * g1);
-    for (double deg : {0.5, 1.0, 2.0, 4.0}) {
-      start_turns_.emplace_back(deg_to_rad(deg));
-      start_turns_.emplace_back(-deg_to_rad(deg));
+    half_left_ = Turn(kTurnShare * g1);
+    half_right_ = Turn(-kTurnShare * g1);
+    full_left_ = Turn(2 * kTurnShare * g1);
+    full_right_ = Turn(-2 * kTurnShare * g1);
+    root_turns_ = {Turn(0.3 * g1), Turn(-0.3 * g1), Turn(0.6 * g1), Turn(-0.6 * g1)};
+    for (size_t i = 0; i < 4; ++i) {
+      const double deg = 0.5 * double(1u << i);  // 0.5, 1, 2, 4
+      start_turns_[2 * i] = Turn(deg_to_rad(deg));
+      start_turns_[2 * i + 1] = Turn(-deg_to_rad(deg));
     }
     // Limits on the tangent-chord angle alpha (the sweep is 2 alpha) as pseudo-angles of
     // |alpha| in [0, π], so scan() tests each vertex without trigonometry.
@@ -818,7 +823,7 @@ class RunFitter {
   /// reflected about the chord), so the turn that meets the next joint is solved for, and
   /// only primitives that can meet it are checked exactly.
   void tighten(uint32_t a, std::vector<Chosen>& chain, const std::optional<Vec2>& incoming) const {
-    const double turn = 0.45 * deg_to_rad(o_.g1_angle_deg);
+    const double turn = kTurnShare * deg_to_rad(o_.g1_angle_deg);
     std::vector<Candidate>& cand = s_.tighten_cand;
     std::vector<size_t>& split = s_.split;
     std::vector<Vec2>& starts = s_.starts;
@@ -1149,9 +1154,7 @@ class RunFitter {
     return chain;
   }
 
-  static Vec2 rotated(const Vec2& T, double rad) {
-    return {T.x() * std::cos(rad) - T.y() * std::sin(rad), T.x() * std::sin(rad) + T.y() * std::cos(rad)};
-  }
+  static Vec2 rotated(const Vec2& T, double rad) { return Turn(rad)(T); }
 
   /// The input's own directions at `a`, where the tangent is free: those of circles through
   /// the next vertices, of the first chord, and of the input around `a` inside the stretch.
@@ -1234,10 +1237,10 @@ class RunFitter {
   std::vector<uint32_t> soft_upto_;  // soft vertices before each vertex (prefix count)
   std::vector<std::optional<Vec2>> heading_;  // input_tangent() of each vertex inside the stretch
   Scratch& s_ = thread_scratch();
-  Turn half_left_, half_right_;   // 0.45 of the G1 angle each way: a joint's turn in the searches
-  Turn full_left_, full_right_;   // 0.9 of it: the greedy step's largest turn
-  std::vector<Turn> root_turns_;  // roots(): 0.3 and 0.6 of it each way
-  std::vector<Turn> start_turns_; // start_tangents(): 0.5, 1, 2 and 4 degrees each way
+  Turn half_left_, half_right_;   // kTurnShare of the G1 angle each way: a joint's turn in the searches
+  Turn full_left_, full_right_;   // twice that: the greedy step's largest turn
+  std::array<Turn, 4> root_turns_;   // roots(): 0.3 and 0.6 of it each way
+  std::array<Turn, 8> start_turns_;  // start_tangents(): 0.5, 1, 2 and 4 degrees each way
   std::vector<FixedMove> fixed_;  // per move
   uint32_t stretch_start_ = 0;    // first vertex of the current stretch (after a corner or fixed move)
   uint32_t stretch_end_ = 0;      // its last vertex (a corner, a fixed move's start, or the end)
