@@ -73,6 +73,13 @@ struct Turn {
   Vec2 operator()(const Vec2& T) const { return {T.x() * c - T.y() * s, T.x() * s + T.y() * c}; }
 };
 
+/// Unit vectors at most a fixed angle (< π/2) apart, its sine worked out once.
+struct Cone {
+  double sin_rad = 0;
+  explicit Cone(double rad = 0) : sin_rad(std::sin(rad)) {}
+  bool holds(const Vec2& a, const Vec2& b) const { return a.dot(b) > 0 && std::abs(cross2(a, b)) <= sin_rad; }
+};
+
 class RunFitter {
  public:
   /// `run` spans the moves to fit; `fixed` (per move, empty: none) says which stay as they
@@ -112,6 +119,13 @@ class RunFitter {
     half_right_ = Turn(-kTurnShare * g1);
     full_left_ = Turn(2 * kTurnShare * g1);
     full_right_ = Turn(-2 * kTurnShare * g1);
+    g1_cone_ = Cone(g1);
+    // (The margin keeps the largest turn the searches make from failing by rounding.)
+    joint_cone_ = Cone(kJointShare * g1 + 1e-9);
+    on_course_cone_ = Cone(kOnCourseRad);
+    turn_cone_ = Cone(kTurnShare * g1);
+    turn_line_cone_ = Cone(kTurnShare * g1 + line_kink_);
+    two_turns_line_cone_ = Cone(2 * kTurnShare * g1 + line_kink_);
     root_turns_ = {Turn(0.3 * g1), Turn(-0.3 * g1), Turn(0.6 * g1), Turn(-0.6 * g1)};
     for (size_t i = 0; i < 4; ++i) {
       const double deg = 0.5 * double(1u << i);  // 0.5, 1, 2, 4
@@ -180,7 +194,7 @@ class RunFitter {
         Chosen m = input_move(a);
         if (fixed_[a].end) m.end_tangent = *fixed_[a].end;
         const auto& dir = fixed_[a].start;
-        m.kinked = after_fitted && !hard_[a] && dir && !within(out.back().end_tangent, *dir, g1_rad());
+        m.kinked = after_fitted && !hard_[a] && dir && !g1_cone_.holds(out.back().end_tangent, *dir);
         out.push_back(m);
         after_fitted = false;
         ++a;
@@ -195,7 +209,7 @@ class RunFitter {
       after_fitted = true;
       if (limit == a + 1) {  // one move between corners: it is its own answer
         Chosen m = input_move(a);
-        m.kinked = in_tangent_ && !within(*in_tangent_, m.end_tangent, g1_rad());
+        m.kinked = in_tangent_ && !g1_cone_.holds(*in_tangent_, m.end_tangent);
         out.push_back(m);
         a = limit;
         continue;
@@ -337,7 +351,7 @@ class RunFitter {
       if (e == stretch_end_ && out_tangent_) {
         const Vec2 c = u / std::sqrt(uu);
         const Vec2 end = line ? c : Vec2(2 * c.dot(T) * c - T);
-        if (!within(end, *out_tangent_, kJointShare * g1_rad() + 1e-9)) continue;
+        if (!joint_cone_.holds(end, *out_tangent_)) continue;
       }
       sink(Candidate{e, k, line});
     }
@@ -466,7 +480,7 @@ class RunFitter {
     sc.end = c.prim.end_vertex;
     sc.reach = reach_after(sc.end, c.end_tangent, limit);
     if (const auto& t = heading_[sc.end])
-      sc.on_course = within(*t, c.end_tangent, kOnCourseRad);
+      sc.on_course = on_course_cone_.holds(*t, c.end_tangent);
     return sc;
   }
 
@@ -581,8 +595,8 @@ class RunFitter {
     Score sc;
     auto c = best_from(a, T, limit, &sc);
     if (!c) return;
-    // (An arc leaves along T itself; the margin keeps the largest turn from failing by rounding.)
-    if (incoming && !within(*incoming, start_tangent(*c, a), kJointShare * g1_rad() + 1e-9)) return;
+    // (An arc leaves along T itself.)
+    if (incoming && !joint_cone_.holds(*incoming, start_tangent(*c, a))) return;
     if (!best || sc > best_score) {
       best = c;
       best_score = sc;
@@ -638,7 +652,7 @@ class RunFitter {
   /// the input is smooth and the tangent changes by more than the G1 angle, `forced` counts it.
   void append_counting_kink(std::vector<Chosen>& chain, Chosen c, uint32_t a, size_t& forced) const {
     const std::optional<Vec2> before = chain.empty() ? in_tangent_ : std::optional<Vec2>(chain.back().end_tangent);
-    if (before && !hard_[a] && !within(*before, start_tangent(c, a), g1_rad())) {
+    if (before && !hard_[a] && !g1_cone_.holds(*before, start_tangent(c, a))) {
       ++forced;
       c.kinked = true;
     }
@@ -781,11 +795,6 @@ class RunFitter {
 
   /// Signed angle from a to b, radians.
   static double angle_to(const Vec2& a, const Vec2& b) { return std::atan2(cross2(a, b), a.dot(b)); }
-  /// Whether unit vectors a and b are at most `rad` (< π/2) apart, without trigonometry
-  /// on the vectors.
-  static bool within(const Vec2& a, const Vec2& b, double rad) {
-    return a.dot(b) > 0 && std::abs(cross2(a, b)) <= std::sin(rad);
-  }
 
   /// The end tangent of the arc leaving `from` along T through `to`: T reflected about the
   /// chord (a line's is the chord itself, within the line allowance of that).
@@ -834,7 +843,7 @@ class RunFitter {
     auto aimed = [&](uint32_t from, const Vec2& in, uint32_t to, const std::optional<Vec2>& out) -> std::optional<Vec2> {
       if (!out) return in;
       const Vec2 end = reflected_end(from, in, to);
-      if (!within(end, *out, 2 * turn + line_kink_)) return std::nullopt;
+      if (!two_turns_line_cone_.holds(end, *out)) return std::nullopt;
       return rotated(in, std::clamp(-angle_to(end, *out), -turn, turn));
     };
     // After a merge at i, the joint before it may merge too: step back one.
@@ -853,7 +862,7 @@ class RunFitter {
           }
           // The tangent arriving at `from`: the previous primitive's, or at the start `incoming`.
           const std::optional<Vec2> in = i > 0 ? std::optional<Vec2>(chain[i - 1].end_tangent) : incoming;
-          auto meets = [&](const Chosen& c) { return !out || within(c.end_tangent, *out, turn); };
+          auto meets = [&](const Chosen& c) { return !out || turn_cone_.holds(c.end_tangent, *out); };
           // Start tangents: the incoming one (turned below), or at the stretch's start the
           // input's own directions; with a fixed next joint, the one ending exactly on it.
           starts.clear();
@@ -867,7 +876,7 @@ class RunFitter {
           for (const Vec2& T0 : starts) {
             if (w == 2) {
               std::optional<Vec2> T = in ? aimed(from, T0, to, out) : std::optional<Vec2>(T0);
-              if (!T || (!in && out && !within(reflected_end(from, T0, to), *out, turn + line_kink_))) continue;
+              if (!T || (!in && out && !turn_line_cone_.holds(reflected_end(from, T0, to), *out))) continue;
               auto c = through(from, *T, to);
               if (c && meets(*c)) repl = {*c};
             } else {
@@ -1028,8 +1037,6 @@ class RunFitter {
       // the other finds.
       next.clear();
       seen.clear();
-      order.resize(made.size());
-      for (uint32_t k = 0; k < order.size(); ++k) order[k] = k;
       if (g) {
         nodes.push_back({*g, guide, g->prim.end_vertex, g->end_tangent});
         guide = static_cast<int>(nodes.size()) - 1;
@@ -1040,11 +1047,15 @@ class RunFitter {
         guide = -2;
       }
       auto keep_best = [&](size_t count, auto better) {
-        // Indices sorted, not the candidates; ties keep the order of the sort before.
-        std::stable_sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) { return better(made[x], made[y]); });
-        for (uint32_t k : order) {
-          Made& m = made[k];
-          if (next.size() >= count) break;
+        // Taken best first, ties in the order made, from a heap of indices: a layer keeps
+        // few of its candidates, so most are never put in order.
+        auto after = [&](uint32_t x, uint32_t y) { return better(made[y], made[x]) || (!better(made[x], made[y]) && x > y); };
+        order.resize(made.size());
+        for (uint32_t k = 0; k < order.size(); ++k) order[k] = k;
+        std::make_heap(order.begin(), order.end(), after);
+        for (auto end = order.end(); end != order.begin() && next.size() < count; --end) {
+          std::pop_heap(order.begin(), end, after);
+          Made& m = made[*(end - 1)];
           if (m.from < 0) continue;  // failed its exact check, or kept already
           uint32_t e = m.c.prim.end_vertex;
           long bin = std::lround(std::atan2(m.c.end_tangent.y(), m.c.end_tangent.x()) / bin_rad);
@@ -1241,6 +1252,10 @@ class RunFitter {
   Turn full_left_, full_right_;   // twice that: the greedy step's largest turn
   std::array<Turn, 4> root_turns_;   // roots(): 0.3 and 0.6 of it each way
   std::array<Turn, 8> start_turns_;  // start_tangents(): 0.5, 1, 2 and 4 degrees each way
+  Cone g1_cone_;                  // the G1 angle: a joint within it is smooth
+  Cone joint_cone_;               // kJointShare of it: the turn the fitter may make at a joint
+  Cone on_course_cone_;           // kOnCourseRad: a primitive ending along the input
+  Cone turn_cone_, turn_line_cone_, two_turns_line_cone_;  // tighten(): one turn, plus a line's, two plus a line's
   std::vector<FixedMove> fixed_;  // per move
   uint32_t stretch_start_ = 0;    // first vertex of the current stretch (after a corner or fixed move)
   uint32_t stretch_end_ = 0;      // its last vertex (a corner, a fixed move's start, or the end)
