@@ -257,8 +257,6 @@ class RunFitter {
     return out;
   }
 
-  double g1_rad() const { return deg_to_rad(o_.g1_angle_deg); }
-
   /// Vertex v in the plane (its first two coordinates).
   const Vec2& q(uint32_t v) const { return q_[v]; }
   /// Whether a change of extrusion rate lies strictly between vertices a and e (it would end
