@@ -32,6 +32,9 @@ constexpr double kRateShare = 0.05;
 /// Share of the G1 angle by which the searches turn the tangent at a joint, each way (twice
 /// this stays within kJointShare).
 constexpr double kTurnShare = 0.45;
+/// Seed 000: pieces of the line detection this short (in moves) are not split further
+/// unless they leave the band.
+constexpr uint32_t kLoweMinMoves = 2;
 /// Candidates per primitive whose next step is looked at before choosing.
 constexpr int kLookahead = 6;
 /// Splits of a stretch into two primitives checked exactly per start tangent when merging.
@@ -628,10 +631,10 @@ class RunFitter {
   /// points whose centre, on the chord's bisector, best fits the points between (least
   /// squares) is kept while it stays inside the band; at the first vertex where neither it
   /// nor a line does, the last fit that did is written and the next primitive starts there.
-  /// Joints are not made tangent: every joint where the input is smooth and the tangents
-  /// differ by more than the G1 angle counts as forced.
+  /// Then the joints are made tangent where the band allows (make_tangent()).
   std::vector<Chosen> stream_chain(uint32_t a, uint32_t limit, size_t& forced) const {
     std::vector<Chosen> chain;
+    const uint32_t start = a;
     while (a < limit) {
       Chosen best = input_move(a);
       for (uint32_t e = a + 2; e <= limit && e - a <= o_.stream_window && !soft_[e - 1]; ++e) {
@@ -640,56 +643,146 @@ class RunFitter {
         if (!c) break;
         best = *c;
       }
-      append_counting_kink(chain, best, a, forced);
+      chain.push_back(best);
       a = best.prim.end_vertex;
     }
+    make_tangent(start, chain, forced);
     return chain;
   }
 
-  /// Appends `c` (starting at vertex a) to a chain whose joints are not made tangent: where
-  /// the input is smooth and the tangent changes by more than the G1 angle, `forced` counts it.
-  void append_counting_kink(std::vector<Chosen>& chain, Chosen c, uint32_t a, size_t& forced) const {
-    const std::optional<Vec2> before = chain.empty() ? in_tangent_ : std::optional<Vec2>(chain.back().end_tangent);
-    if (before && !hard_[a] && !g1_cone_.holds(*before, start_tangent(c, a))) {
-      ++forced;
-      c.kinked = true;
+  /// Seed 000's G1 adjustment of a chain from `a` fitted without regard to its joints, joint
+  /// by joint from the start. Where the tangent breaks at a smooth joint, the primitive after
+  /// it is replaced, where the band allows, by the one through the same end vertex that
+  /// leaves along the tangent arriving there, turned within kTurnShare of the G1 angle to
+  /// meet the primitive after it (the seed moves the arc's centre so that the tangents
+  /// agree); failing that, the two primitives on either side are split again at another
+  /// vertex, joined tangentially, leaving the joint before them as the first did and
+  /// meeting the one after them (the joint moves, which fixes arcs that overshot it).
+  /// Joints that stay broken are marked kinked and counted in `forced`.
+  void make_tangent(uint32_t a, std::vector<Chosen>& chain, size_t& forced) const {
+    auto from_of = [&](size_t i) { return i == 0 ? a : chain[i - 1].prim.end_vertex; };
+    // The tangent arriving at the start of primitive i, where that joint is smooth and unbroken.
+    auto arriving = [&](size_t i) -> std::optional<Vec2> {
+      if (hard_[from_of(i)] || chain[i].kinked) return std::nullopt;
+      return i == 0 ? in_tangent_ : std::optional<Vec2>(chain[i - 1].end_tangent);
+    };
+    // The tangent primitive i must meet at its end, if any.
+    auto leaving = [&](size_t i) -> std::optional<Vec2> {
+      const uint32_t to = chain[i].prim.end_vertex;
+      if (i + 1 < chain.size()) return start_tangent(chain[i + 1], to);
+      return to == stretch_end_ ? out_tangent_ : std::nullopt;
+    };
+    std::vector<Vec2> starts;
+    for (size_t i = 0; i < chain.size(); ++i) {
+      const uint32_t from = from_of(i), to = chain[i].prim.end_vertex;
+      const std::optional<Vec2> in = arriving(i);
+      if (!in || g1_cone_.holds(*in, start_tangent(chain[i], from))) continue;
+      const std::optional<Vec2> out = leaving(i);
+      std::optional<Chosen> one;
+      for (const std::optional<Vec2>& T : {aimed(from, *in, to, out), in})
+        if (!one && T && (one = through(from, *T, to)) && !g1_cone_.holds(*in, start_tangent(*one, from))) one.reset();
+      if (one) {
+        chain[i] = *one;
+        continue;
+      }
+      std::optional<std::pair<Chosen, Chosen>> two;
+      if (i > 0) {
+        const uint32_t before = from_of(i - 1);
+        starts.clear();
+        if (auto arrive = arriving(i - 1)) {
+          starts = {*arrive, half_left_(*arrive), half_right_(*arrive)};
+        } else {
+          start_tangents(before, to, starts);
+        }
+        for (const Vec2& T : starts)
+          if ((two = split_through(before, T, to, out, SIZE_MAX))) break;
+      }
+      if (two) {
+        two->first.kinked = chain[i - 1].kinked;
+        chain[i - 1] = two->first;
+        chain[i] = two->second;
+      } else {
+        chain[i].kinked = true;
+        ++forced;
+      }
     }
-    chain.push_back(c);
   }
 
-  /// Seed 000: Lowe-style line detection, then arcs over runs of the lines. The stretch is
-  /// split recursively at the vertex farthest from the chord until every piece is a line
-  /// inside the band (so the breakpoints adapt to the scale of the shape); then, from each
-  /// breakpoint, a primitive grows over as many following breakpoints as a line or the arc
-  /// through both end points (centre on the chord's bisector, least squares) keeps inside the
-  /// band. Joints are not made tangent; kinks at smooth joints count as forced.
-  std::vector<Chosen> lowe_chain(uint32_t a, uint32_t limit, size_t& forced) const {
-    std::vector<uint32_t> breaks{a};
-    std::vector<std::pair<uint32_t, uint32_t>> todo{{a, limit}};
-    while (!todo.empty()) {
-      auto [i, j] = todo.back();
-      todo.pop_back();
+  /// Seed 000's line detection (Lowe 1987): the stretch from `a` to `limit` is split
+  /// recursively at the vertex farthest from the chord, and each piece is rated by its
+  /// significance, largest deviation over length (lower is more significant). Bottom up, a
+  /// piece stands for itself where it is inside the band, has no change of extrusion rate
+  /// inside, and is at least as significant as the most significant piece below it; else it
+  /// stands for its pieces. So the split adapts to the scale of the shape: a straight
+  /// stretch stays whole however noisy within the band, a curve is cut down to pieces of
+  /// kLoweMinMoves moves, whose ends the arcs may then take. The breakpoints, `a` first.
+  std::vector<uint32_t> lowe_breaks(uint32_t a, uint32_t limit) const {
+    struct Piece {
+      uint32_t i, j;
+      uint32_t at;          // where it splits: the farthest vertex, or the first change of rate
+      double significance;  // largest deviation / length (lower: more significant)
+      bool must_split;      // outside the band, or a change of extrusion rate inside
+      int left = -1, right = -1;
+      double best = 0;      // the most significant significance it stands for
+      bool whole = true;    // stands for itself
+    };
+    std::vector<Piece> pieces;
+    auto add = [&](uint32_t i, uint32_t j) {
       double worst = 0;
-      uint32_t at = i;
-      for (uint32_t m = i + 1; m < j; ++m) {
-        double d = point_segment_distance(p_[m], p_[i], p_[j]);
-        if (d > worst) {
+      uint32_t at = i + 1;
+      for (uint32_t m = i + 1; m < j; ++m)
+        if (double d = point_segment_distance(p_[m], p_[i], p_[j]); d > worst) {
           worst = d;
           at = m;
         }
-      }
-      const bool soft_inside = soft_between(i, j);
-      if (j - i > 1 && (worst > eps_ || soft_inside)) {
-        if (soft_inside) {  // split at the first change of extrusion rate
-          at = i + 1;
-          while (!soft_[at]) ++at;
-        }
-        todo.push_back({at, j});
-        todo.push_back({i, at});
+      const bool soft = soft_between(i, j);
+      if (soft)
+        for (at = i + 1; !soft_[at];) ++at;
+      const double len = (p_[j] - p_[i]).norm();
+      const double sig = worst == 0 ? 0 : len > kLengthEpsMm ? worst / len : kInf;
+      pieces.push_back({i, j, at, sig, worst > eps_ || soft});
+      return static_cast<int>(pieces.size()) - 1;
+    };
+    add(a, limit);
+    // Top down: pieces are split until they are single moves, or short enough and inside.
+    for (size_t n = 0; n < pieces.size(); ++n) {
+      const Piece pc = pieces[n];
+      if (pc.j - pc.i <= 1 || (!pc.must_split && pc.j - pc.i <= kLoweMinMoves)) continue;
+      const int l = add(pc.i, pc.at), r = add(pc.at, pc.j);
+      pieces[n].left = l;
+      pieces[n].right = r;
+    }
+    // Bottom up (children come after their parents): which pieces stand for themselves.
+    for (size_t n = pieces.size(); n-- > 0;) {
+      Piece& pc = pieces[n];
+      pc.best = pc.significance;
+      if (pc.left < 0) continue;
+      const double below = std::min(pieces[pc.left].best, pieces[pc.right].best);
+      pc.whole = !pc.must_split && pc.significance <= below;
+      if (!pc.whole) pc.best = below;
+    }
+    std::vector<uint32_t> breaks{a};
+    std::vector<int> todo{0};
+    while (!todo.empty()) {
+      const Piece& pc = pieces[todo.back()];
+      todo.pop_back();
+      if (pc.whole) {
+        breaks.push_back(pc.j);
       } else {
-        breaks.push_back(j);
+        todo.push_back(pc.right);
+        todo.push_back(pc.left);
       }
     }
+    return breaks;
+  }
+
+  /// Seed 000: Lowe-style line detection, then arcs over runs of the lines. The breakpoints
+  /// come from lowe_breaks(); then, from each, a primitive grows over as many following
+  /// breakpoints as a line or the arc through both end points (centre on the chord's
+  /// bisector, least squares) keeps inside the band. Then the joints are made tangent where
+  /// the band allows (make_tangent()).
+  std::vector<Chosen> lowe_chain(uint32_t a, uint32_t limit, size_t& forced) const {
+    std::vector<uint32_t> breaks = lowe_breaks(a, limit);
     std::vector<Chosen> chain;
     for (size_t k = 0; k + 1 < breaks.size();) {
       const uint32_t from = breaks[k];
@@ -707,9 +800,10 @@ class RunFitter {
         best = c;
         next = j;
       }
-      append_counting_kink(chain, *best, from, forced);
+      chain.push_back(*best);
       k = next;
     }
+    make_tangent(a, chain, forced);
     return chain;
   }
 
@@ -804,6 +898,45 @@ class RunFitter {
     return 2 * c.dot(T) * c - T;
   }
 
+  /// The start along `in` turned within kTurnShare of the G1 angle so that the arc from
+  /// `from` to `to` ends as close to `out` as it can (`in` itself without `out`); nothing
+  /// when even the largest turn misses it.
+  std::optional<Vec2> aimed(uint32_t from, const Vec2& in, uint32_t to, const std::optional<Vec2>& out) const {
+    if (!out) return in;
+    const double turn = kTurnShare * deg_to_rad(o_.g1_angle_deg);
+    const Vec2 end = reflected_end(from, in, to);
+    if (!two_turns_line_cone_.holds(end, *out)) return std::nullopt;
+    return rotated(in, std::clamp(-angle_to(end, *out), -turn, turn));
+  }
+
+  /// Two primitives from `from` to `to`, the first leaving along T, joined tangentially, the
+  /// second turned within kTurnShare of the G1 angle to meet `out` (where given) within it.
+  /// Splits whose second primitive can meet `out` are tried longest first; at most `tries`
+  /// of them, spread evenly, are checked exactly.
+  std::optional<std::pair<Chosen, Chosen>> split_through(uint32_t from, const Vec2& T, uint32_t to,
+                                                         const std::optional<Vec2>& out, size_t tries) const {
+    std::vector<Candidate>& cand = s_.tighten_cand;
+    std::vector<size_t>& split = s_.split;
+    scan(from, T, to - 1, cand);
+    split.clear();
+    for (size_t k = cand.size(); k-- > 0;)
+      if (aimed(cand[k].e, reflected_end(from, T, cand[k].e), to, out)) split.push_back(k);
+    const double stride = std::max(1.0, double(split.size()) / double(tries));
+    for (double x = 0; x < double(split.size()); x += stride) {
+      const Candidate& c = cand[split[size_t(x)]];
+      // The second primitive's own cheap test first: it fails far more often.
+      auto T2_lite = aimed(c.e, unchecked(from, T, c).end_tangent, to, out);
+      if (!T2_lite || !through_candidate(c.e, *T2_lite, to)) continue;
+      auto first = make(from, T, c);
+      if (!first) continue;
+      auto T2 = aimed(c.e, first->end_tangent, to, out);
+      if (!T2) continue;
+      auto second = through(c.e, *T2, to);
+      if (second && (!out || turn_cone_.holds(second->end_tangent, *out))) return std::pair(*first, *second);
+    }
+    return std::nullopt;
+  }
+
   /// tighten() on each tangent-continuous part of a chain that starts at `a`: a forced kink
   /// frees the tangent on both sides of it, as a corner does.
   void tighten_between_kinks(uint32_t a, std::vector<Chosen>& chain) const {
@@ -830,20 +963,9 @@ class RunFitter {
   /// reflected about the chord), so the turn that meets the next joint is solved for, and
   /// only primitives that can meet it are checked exactly.
   void tighten(uint32_t a, std::vector<Chosen>& chain, const std::optional<Vec2>& incoming) const {
-    const double turn = kTurnShare * deg_to_rad(o_.g1_angle_deg);
-    std::vector<Candidate>& cand = s_.tighten_cand;
-    std::vector<size_t>& split = s_.split;
     std::vector<Vec2>& starts = s_.starts;
     std::vector<Vec2>& firsts = s_.firsts;
     std::vector<Chosen> repl;
-    // The start along `in` turned within the allowance so that the arc to `to` ends as close
-    // to `out` as it can; nothing when even the largest turn misses it.
-    auto aimed = [&](uint32_t from, const Vec2& in, uint32_t to, const std::optional<Vec2>& out) -> std::optional<Vec2> {
-      if (!out) return in;
-      const Vec2 end = reflected_end(from, in, to);
-      if (!two_turns_line_cone_.holds(end, *out)) return std::nullopt;
-      return rotated(in, std::clamp(-angle_to(end, *out), -turn, turn));
-    };
     // After a merge at i, the joint before it may merge too: step back one.
     for (size_t i = 0; i + 1 < chain.size();) {
       bool changed = false;
@@ -886,28 +1008,11 @@ class RunFitter {
               } else {
                 firsts.push_back(T0);
               }
-              for (const Vec2& T : firsts) {
-                scan(from, T, to - 1, cand);
-                // Splits whose second primitive can meet the next joint, longest first; at
-                // most kSplitsTried of them, spread evenly, are checked exactly.
-                split.clear();
-                for (size_t k = cand.size(); k-- > 0;)
-                  if (aimed(cand[k].e, reflected_end(from, T, cand[k].e), to, out)) split.push_back(k);
-                const double stride = std::max(1.0, double(split.size()) / kSplitsTried);
-                for (double x = 0; x < double(split.size()) && repl.empty(); x += stride) {
-                  const Candidate& c = cand[split[size_t(x)]];
-                  // The second primitive's own cheap test first: it fails far more often.
-                  auto T2_lite = aimed(c.e, unchecked(from, T, c).end_tangent, to, out);
-                  if (!T2_lite || !through_candidate(c.e, *T2_lite, to)) continue;
-                  auto first = make(from, T, c);
-                  if (!first) continue;
-                  auto T2 = aimed(c.e, first->end_tangent, to, out);
-                  if (!T2) continue;
-                  auto second = through(c.e, *T2, to);
-                  if (second && meets(*second)) repl = {*first, *second};
+              for (const Vec2& T : firsts)
+                if (auto two = split_through(from, T, to, out, kSplitsTried)) {
+                  repl = {two->first, two->second};
+                  break;
                 }
-                if (!repl.empty()) break;
-              }
             }
             if (!repl.empty()) break;
           }
