@@ -221,18 +221,29 @@ class RunFitter {
       if (search || o_.method == FitOptions::Method::Greedy)
         for (uint32_t v = a + 1; v < limit; ++v) heading_[v] = input_tangent(v, a, limit);
       size_t forced = 0;
-      std::vector<Chosen> chain = o_.method == FitOptions::Method::Stream ? stream_chain(a, limit, forced)
-                                  : o_.method == FitOptions::Method::Lowe ? lowe_chain(a, limit, forced)
-                                                                          : greedy_chain(a, in_tangent_, limit, forced);
-      // The greedy chain is the answer for stretches it covers in one or two primitives
-      // joined tangentially; longer ones, and those it could only cover with a forced kink,
-      // are searched again, and the chain with fewer kinks, then fewer primitives, wins.
-      if (search && o_.beam_width > 1 && (chain.size() > 2 || forced > 0)) {
+      std::vector<Chosen> chain;
+      if (o_.method == FitOptions::Method::Stream) {
+        chain = stream_chain(a, limit, forced);
+      } else if (o_.method == FitOptions::Method::Lowe) {
+        chain = lowe_chain(a, limit, forced);
+      } else {
+        // The greedy chain is the answer for stretches it covers in one or two primitives
+        // joined tangentially; longer ones, and those it could only cover with a forced
+        // kink, are searched again, and the chain with fewer kinks, then fewer primitives,
+        // wins. The greedy chain is walked only as far as the search and that choice need.
+        GreedyWalk greedy(*this, a, limit);
+        const bool searched = search && o_.beam_width > 1 && (greedy.at(2) || greedy.kinks() > 0);
         size_t beam_forced = 0;
-        auto b = beam_stretch(a, limit, chain, beam_forced);
-        if (std::pair(beam_forced, b.size()) < std::pair(forced, chain.size())) {
+        std::vector<Chosen> b;
+        if (searched) b = beam_stretch(a, limit, greedy, beam_forced);
+        // A beam chain of k primitives without kinks beats a greedy chain with more than k.
+        if (!searched || beam_forced > 0 || !greedy.at(b.size())) greedy.finish();
+        if (searched && std::pair(beam_forced, b.size()) < std::pair(greedy.kinks(), greedy.length())) {
           chain.swap(b);
           forced = beam_forced;
+        } else {
+          chain = std::move(greedy.chain);
+          forced = greedy.kinks();
         }
       }
       if (search && o_.merge) tighten_between_kinks(a, chain);
@@ -607,14 +618,36 @@ class RunFitter {
   /// The chain from `a` to `limit` built one primitive at a time, each the best-scoring of a
   /// few checked candidates. Where nothing leaves a smooth joint tangentially, the tangent
   /// breaks there and `forced` counts it.
-  std::vector<Chosen> greedy_chain(uint32_t a, std::optional<Vec2> tangent, uint32_t limit, size_t& forced) const {
+  /// The greedy chain, walked one primitive at a time as far as it is asked for.
+  struct GreedyWalk {
+    const RunFitter& f;
+    uint32_t a, limit;
+    std::optional<Vec2> tangent;
     std::vector<Chosen> chain;
-    while (a < limit) {
+    size_t forced = 0;
+
+    GreedyWalk(const RunFitter& fitter, uint32_t start, uint32_t end)
+        : f(fitter), a(start), limit(end), tangent(fitter.in_tangent_) {}
+    /// Its k-th primitive (from 0), walking on to it; null past its end.
+    const Chosen* at(size_t k) {
+      while (chain.size() <= k && a < limit) step();
+      return k < chain.size() ? &chain[k] : nullptr;
+    }
+    /// Walks to `limit`.
+    void finish() {
+      while (a < limit) step();
+    }
+    /// Primitives and forced kinks so far (the whole chain's after finish()).
+    size_t length() const { return chain.size(); }
+    size_t kinks() const { return forced; }
+
+   private:
+    void step() {
       std::optional<Chosen> c;
-      if (tangent) c = best_near(a, *tangent, limit);
+      if (tangent) c = f.best_near(a, *tangent, limit);
       if (!c) {
-        c = best_free(a, limit);
-        if (tangent && a > 0 && !hard_[a]) {
+        c = f.best_free(a, limit);
+        if (tangent && a > 0 && !f.hard_[a]) {
           ++forced;
           c->kinked = true;
         }
@@ -623,8 +656,7 @@ class RunFitter {
       a = c->prim.end_vertex;
       tangent = c->end_tangent;
     }
-    return chain;
-  }
+  };
 
   /// Seeds 001 and 003: each primitive grows one vertex at a time through a window of at
   /// most `stream_window` moves, as a controller would buffer them. The arc through both end
@@ -1079,7 +1111,7 @@ class RunFitter {
   /// input. The greedy chain (read off `greedy` up to its first kink, or chosen again when
   /// null) is always kept. When no chain goes on tangentially, the one reaching furthest is
   /// returned (empty when none leaves `a`), and the caller takes a kink there.
-  std::vector<Chosen> beam_chain(uint32_t a, uint32_t limit, const std::vector<Chosen>* greedy) const {
+  std::vector<Chosen> beam_chain(uint32_t a, uint32_t limit, GreedyWalk* greedy) const {
     std::vector<Node>& nodes = s_.nodes;
     std::vector<int>&layer = s_.layer, &next = s_.next;
     nodes.clear();
@@ -1105,13 +1137,13 @@ class RunFitter {
       if (guide == -1) {
         guide = layer.front();
         if (greedy) {
-          if (!greedy->front().kinked) g = greedy->front();
+          if (const Chosen* c = greedy->at(0); c && !c->kinked) g = *c;
         } else {
           g = arrives_along(a) ? best_near(a, *in_tangent_, limit) : std::optional<Chosen>(best_free(a, limit));
         }
       } else if (guide >= 0) {
         if (greedy) {
-          if (step < greedy->size() && !(*greedy)[step].kinked) g = (*greedy)[step];
+          if (const Chosen* c = greedy->at(step); c && !c->kinked) g = *c;
         } else {
           g = best_near(nodes[guide].v, nodes[guide].T, limit);
         }
@@ -1187,7 +1219,7 @@ class RunFitter {
 
   /// The beam search's chain from `a` to `limit`. Where no chain goes on tangentially, the
   /// tangent breaks at the furthest one's end (counted in `forced`) and the search restarts.
-  std::vector<Chosen> beam_stretch(uint32_t a, uint32_t limit, const std::vector<Chosen>& greedy, size_t& forced) const {
+  std::vector<Chosen> beam_stretch(uint32_t a, uint32_t limit, GreedyWalk& greedy, size_t& forced) const {
     std::vector<Chosen> chain;
     while (a < limit) {
       // After the first part, the tangent breaks where the chain before could not go on; the
