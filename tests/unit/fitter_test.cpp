@@ -3,8 +3,10 @@
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
+#include <iterator>
 #include <random>
 
 #include "arcpress/api/arcpress.hpp"
@@ -597,6 +599,36 @@ TEST_CASE("the streaming seed method: arcs through both end points, grown in a b
   CHECK(k.r.comparison.max_deviation_mm <= f.tolerance_mm);
   CHECK(k.r.comparison.smooth_joints_over_g1 > 0);
   CHECK(k.r.forced_kinks == k.r.comparison.smooth_joints_over_g1);
+}
+
+TEST_CASE("every tangent break the verifier finds at a smooth joint is one the fit reports as forced",
+          "[fit][property]") {
+  auto unreported = [](const Outcome& o) {
+    std::vector<uint32_t> left;
+    std::set_difference(o.r.comparison.kink_lines.begin(), o.r.comparison.kink_lines.end(),
+                        o.r.forced_kink_lines.begin(), o.r.forced_kink_lines.end(), std::back_inserter(left));
+    return left;
+  };
+  // Under G18, three moves lying flat in XY are fitted as a G17 run of their own (one line);
+  // the move after it climbs in Z and turns by 1.1° in XZ at the joint, which the line that
+  // replaced the three moves cannot follow.
+  auto flat = compress_text(
+      "G21 G90 G18\nG0 X0 Y0 Z0\nG1 F1000\nG1 X0.1050 Y0.0007 Z0\nG1 X0.2100 Y0.0012 Z0\n"
+      "G1 X0.2150 Y0.0013 Z0\nG1 X0.2200 Y0.0013 Z0.0001\nM2\n");
+  CHECK(flat.r.comparison.smooth_joints_over_g1 == 1);
+  CHECK(unreported(flat).empty());
+  // With --spikes, the jag at line 5 is noise, which makes line 6 a corner for the fit; the
+  // verifier skips no spikes and judges the joint there smooth, and it is reported.
+  FitOptions spikes;
+  spikes.spikes = true;
+  spikes.tolerance_mm = 0.002;
+  spikes.min_radius_mm = 0.5;
+  auto jag = compress_text(
+      "G21 G90 G17\nG0 X0 Y0 Z0\nG1 F1000\nG1 X-0.018 Y-0.001\nG1 X-0.019 Y-0.002\nG1 X-0.020 Y-0.002\n"
+      "G1 X-0.100 Y-0.020\nG1 X-0.180 Y-0.063\nM2\n",
+      spikes);
+  CHECK(jag.r.comparison.smooth_joints_over_g1 >= 1);
+  CHECK(unreported(jag).empty());
 }
 
 TEST_CASE("random polylines always stay inside the band", "[fit][property]") {

@@ -57,10 +57,13 @@ struct Candidate {
 
 /// A move of a chain that its fit leaves as it is (a lone move, an input arc, or a move of a
 /// run fitted in another plane), with the path's direction in the chain's plane where it
-/// leaves the move before and where it enters the move after (none where unknown).
+/// leaves the move before and where it enters the move after (none where unknown). Where
+/// that direction is a fitted line's that replaced several moves (a run fitted in another
+/// plane), the joint there is new, and judged as the fit's own joints are.
 struct FixedMove {
   bool fixed = false;
   std::optional<Vec2> start, end;
+  bool fitted_start = false, fitted_end = false;
 };
 
 struct Chosen {
@@ -157,15 +160,24 @@ class RunFitter {
                  !corner(v - 2, v - 1, v + 1) && !corner(v - 1, v + 1, v + 2);
     // The same corner rule, with the same band, as the verifier uses to judge joints (with
     // spikes skipped when asked): first each vertex alone, then with its neighbours' corners.
-    auto before = [&](uint32_t v) { return spike[v - 1] ? v - 2 : v - 1; };
-    auto after = [&](uint32_t v) { return spike[v + 1] ? v + 2 : v + 1; };
-    std::vector<uint8_t> alone(n_ + 1, 0);
-    for (uint32_t v = 1; v < n_; ++v) alone[v] = !spike[v] && corner(before(v), v, after(v));
+    auto corners = [&](const std::vector<uint8_t>& skipped) {
+      auto before = [&](uint32_t v) { return skipped[v - 1] ? v - 2 : v - 1; };
+      auto after = [&](uint32_t v) { return skipped[v + 1] ? v + 2 : v + 1; };
+      std::vector<uint8_t> alone(n_ + 1, 0), hard(n_ + 1, 0);
+      for (uint32_t v = 1; v < n_; ++v) alone[v] = !skipped[v] && corner(before(v), v, after(v));
+      for (uint32_t v = 1; v < n_; ++v) {
+        const uint32_t b = before(v), a = after(v);
+        hard[v] = alone[v] || (!skipped[v] && is_corner_beside_corner(b > 0 ? &p_[b - 1] : nullptr, p_[b], p_[v], p_[a],
+                                                                      a < n_ ? &p_[a + 1] : nullptr, alone[b], alone[a],
+                                                                      o.tolerance_mm));
+      }
+      return hard;
+    };
+    hard_ = corners(spike);
+    // The verifier knows no spikes: a joint it calls smooth that only skipping a spike made a
+    // corner is reported where the tangent breaks there (see report_spike_corners()).
+    if (std::find(spike.begin(), spike.end(), 1) != spike.end()) plain_hard_ = corners(std::vector<uint8_t>(n_ + 1, 0));
     for (uint32_t v = 1; v < n_; ++v) {
-      const uint32_t b = before(v), a = after(v);
-      hard_[v] = alone[v] || (!spike[v] && is_corner_beside_corner(b > 0 ? &p_[b - 1] : nullptr, p_[b], p_[v], p_[a],
-                                                                   a < n_ ? &p_[a + 1] : nullptr, alone[b], alone[a],
-                                                                   o.tolerance_mm));
       double l1 = (p_[v] - p_[v - 1]).norm(), l2 = (p_[v + 1] - p_[v]).norm();
       // Extrusion and the extra axes per mm must stay (nearly) constant inside one primitive:
       // a primitive ends where one starts or stops moving or changes its rate.
@@ -197,7 +209,8 @@ class RunFitter {
         Chosen m = input_move(a);
         if (fixed_[a].end) m.end_tangent = *fixed_[a].end;
         const auto& dir = fixed_[a].start;
-        m.kinked = after_fitted && !hard_[a] && dir && !g1_cone_.holds(out.back().end_tangent, *dir);
+        const bool new_joint = after_fitted || fixed_[a].fitted_start || (a > 0 && fixed_[a - 1].fitted_end);
+        m.kinked = new_joint && !hard_[a] && dir && !out.empty() && !g1_cone_.holds(out.back().end_tangent, *dir);
         out.push_back(m);
         after_fitted = false;
         ++a;
@@ -261,7 +274,25 @@ class RunFitter {
       out.insert(out.end(), chain.begin(), chain.end());
       a = limit;
     }
+    report_spike_corners(out);
     return out;
+  }
+
+  /// Marks as kinked the joints of `chain` (the whole fit) that are corners only because a
+  /// spike next to them was skipped, where the tangent breaks there: the verifier, which
+  /// skips no spikes, judges them as smooth joints.
+  void report_spike_corners(std::vector<Chosen>& chain) const {
+    if (plain_hard_.empty()) return;
+    for (size_t i = 1; i < chain.size(); ++i) {
+      const uint32_t before = i > 1 ? chain[i - 2].prim.end_vertex : 0, from = chain[i - 1].prim.end_vertex;
+      if (!hard_[from] || plain_hard_[from] || chain[i].kinked) continue;
+      // Between two moves left as they are, the joint is the input's own (unless one side
+      // is a line that replaced several moves in another plane).
+      const bool fixed = fixed_[from].fixed;
+      if (fixed && fixed_[before].fixed && !fixed_[from].fitted_start && !fixed_[from - 1].fitted_end) continue;
+      const std::optional<Vec2> dir = fixed ? fixed_[from].start : std::optional<Vec2>(start_tangent(chain[i], from));
+      if (dir && !g1_cone_.holds(chain[i - 1].end_tangent, *dir)) chain[i].kinked = true;
+    }
   }
 
  private:
@@ -1380,6 +1411,7 @@ class RunFitter {
   // building each from p_ would stall on the store that assembles it.
   std::vector<Vec2> q_;
   std::vector<uint8_t> hard_;     // corner: tangent may change, a primitive ends here
+  std::vector<uint8_t> plain_hard_;  // with spikes found: the corners with none skipped
   std::vector<uint8_t> soft_;     // extrusion rate changes: a primitive ends here, tangent kept
   std::vector<uint32_t> soft_upto_;  // soft vertices before each vertex (prefix count)
   std::vector<std::optional<Vec2>> heading_;  // input_tangent() of each vertex inside the stretch
@@ -1466,9 +1498,13 @@ std::vector<FitResult> fit_chain(const Interpretation& in, const RunChain& chain
       if (c.prim.kind != Primitive::Kind::Line) return std::nullopt;
       return direction(at(base + c.prim.end_vertex) - at(base + a));
     };
-    fixed[base].start = chord(0, got.front());
-    fixed[base + own[r].move_count - 1].end =
-        chord(got.size() > 1 ? got[got.size() - 2].prim.end_vertex : 0, got.back());
+    const uint32_t last_from = got.size() > 1 ? got[got.size() - 2].prim.end_vertex : 0;
+    FixedMove& first = fixed[base];
+    FixedMove& last = fixed[base + own[r].move_count - 1];
+    first.start = chord(0, got.front());
+    first.fitted_start = first.start && got.front().prim.end_vertex > 1;
+    last.end = chord(last_from, got.back());
+    last.fitted_end = last.end && got.back().prim.end_vertex > last_from + 1;
     for (uint32_t m = base; m + 1 < base + own[r].move_count; ++m) fixed[m].end = fixed[m + 1].start = std::nullopt;
   }
   for (uint32_t m = 0; m < chain.move_count; ++m)
@@ -1488,6 +1524,8 @@ std::vector<FitResult> fit_chain(const Interpretation& in, const RunChain& chain
       if (c.kinked) out[r].forced_at.push_back(from - base(r));
     } else if (c.kinked && r > 0 && base(r - 1) + own[r - 1].move_count == from) {
       out[r - 1].forced_at.push_back(own[r - 1].move_count);
+    } else if (c.kinked && r < own.size() && base(r) == from) {  // the start of a run fitted in another plane
+      out[r].forced_at.insert(out[r].forced_at.begin(), 0);
     }
     from = c.prim.end_vertex;
   }
