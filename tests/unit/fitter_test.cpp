@@ -629,6 +629,15 @@ TEST_CASE("every tangent break the verifier finds at a smooth joint is one the f
       spikes);
   CHECK(jag.r.comparison.smooth_joints_over_g1 >= 1);
   CHECK(unreported(jag).empty());
+  // A helix in YZ whose ends lie closer in the plane than the dialect's min_chord_mm would
+  // read as a full circle: the fit makes no such arc (were it made, the emitter would write
+  // the input's moves instead, and the joints beside them would break unreported).
+  auto tiny = compress_text(
+      "G21 G90 G19\nG0 X0 Y0 Z0\nG1 F1000\nG1 X0.0050 Y-0.0003 Z0.0001\nG1 X0.0100 Y-0.0006 Z0.0001\n"
+      "G1 X0.0149 Y-0.0012 Z0.0004\nG1 X0.0360 Y-0.0095 Z0.0008\nG1 X0.0407 Y-0.0113 Z0.0008\n"
+      "G1 X0.0574 Y-0.0178 Z-0.0001\nM2\n");
+  CHECK(tiny.r.stats.arcs_unprintable == 0);
+  CHECK(unreported(tiny).empty());
 }
 
 TEST_CASE("random polylines always stay inside the band", "[fit][property]") {

@@ -24,6 +24,7 @@ FitOptions fit_options_for(const FitOptions& user, const Dialect& d, const Frame
   o.max_radius_mm = std::min(user.max_radius_mm, d.max_radius_mm);
   o.min_arc_length_mm = std::max(user.min_arc_length_mm, d.min_arc_length_mm);
   o.min_arc_moves = std::max<uint32_t>(user.min_arc_moves, uint32_t(d.min_arc_moves));
+  o.min_chord_mm = std::max(user.min_chord_mm, d.min_chord_mm);
   return o;
 }
 

@@ -448,6 +448,7 @@ class RunFitter {
     bool flat = true;
     for (const auto& p : pts) flat = flat && std::abs(p.z() - pts.front().z()) <= kLengthEpsMm;
     if (!flat && !o_.helical) return std::nullopt;
+    if ((q(e) - q(a)).squaredNorm() < o_.min_chord_mm * o_.min_chord_mm) return std::nullopt;
     ArcGeom g = ArcGeom::through(pts.front(), pts.back(), center, ccw);
     if (!std::isfinite(g.radius_mm) || g.radius_mm < o_.min_radius_mm || g.radius_mm > o_.max_radius_mm)
       return std::nullopt;

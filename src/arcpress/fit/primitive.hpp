@@ -38,6 +38,7 @@ struct FitOptions {
   double min_sweep_deg = 0.0;      ///< flatter arcs become lines (controllers misread near-zero sweeps)
   double min_arc_length_mm = 0.0;  ///< shorter arcs become lines (firmware re-segmentation)
   uint32_t min_arc_moves = 0;      ///< an arc must replace at least this many input moves
+  double min_chord_mm = 0.0;       ///< arcs whose ends lie closer in their plane become lines (read as full circles)
   bool helical = true;             ///< arcs may move along the plane's normal axis
   /// Arcs may move the extra axes (A/B/C, U/V/W), which the controller carries linearly along
   /// the block. Lines always may; either way a primitive only spans moves along which every
