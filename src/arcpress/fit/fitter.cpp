@@ -1444,92 +1444,112 @@ std::vector<FitResult> fit_chain(const Interpretation& in, const RunChain& chain
                                  const std::function<FitOptions(const Run&)>& options_for) {
   std::span<const Run> own(&runs[chain.first_run], chain.run_count);
   const Move& lead = in.moves[chain.first_move];
-  Run all;
-  all.first_move = chain.first_move;
-  all.move_count = chain.move_count;
-  all.frame = lead.frame;
-  all.plane = lead.plane;
-  all.feed_mm_min = lead.feed_mm_min;
-  const auto ax = axes_of(all.plane);
-  auto at = [&](uint32_t v) {  // vertex v of the chain in its plane
-    const auto& p = all.vertex(in, v);
-    return Vec2(p[ax.first], p[ax.second]);
+  auto base = [&](size_t r) { return own[r].first_move - chain.first_move; };
+  // The chain as one run in `plane`.
+  auto whole = [&](Plane plane) {
+    Run all;
+    all.first_move = chain.first_move;
+    all.move_count = chain.move_count;
+    all.frame = lead.frame;
+    all.plane = plane;
+    all.feed_mm_min = lead.feed_mm_min;
+    return all;
   };
   auto direction = [](const Vec2& d) -> std::optional<Vec2> {
     if (d.norm() <= kLengthEpsMm) return std::nullopt;
     return Vec2(d.normalized());
   };
+  // The ends of each run's fit once made: the chain's vertices of its first and of its last
+  // primitive, where that primitive is a line (an arc in another plane leaves the joint
+  // unmeasured, as the verifier does).
+  struct LineEnds {
+    uint32_t from, to;
+  };
+  std::vector<std::optional<LineEnds>> first_line(own.size()), last_line(own.size());
+  std::vector<uint8_t> done(own.size(), 0);
   std::vector<FitResult> out(own.size());
-  // Everything but the runs in the chain's plane stays as it is in the chain's fit: lone moves
-  // and input arcs with their own directions; a run in another plane is fitted on its own
-  // first, and its first and last primitives give the directions at its ends (a line's
-  // chord; an arc in another plane leaves the joint unmeasured, as the verifier does).
-  std::vector<FixedMove> fixed(chain.move_count);
-  std::vector<uint8_t> pinned(chain.move_count + 1, 0);
-  for (uint32_t m = 0; m < chain.move_count; ++m) {
-    const Move& mv = in.moves[chain.first_move + m];
-    fixed[m].fixed = true;
-    if (is_arc(mv.kind)) {
-      const Vec2 c(mv.center[ax.first], mv.center[ax.second]);
-      auto along = [&](const Vec2& radius) -> std::optional<Vec2> {
-        if (radius.norm() <= kLengthEpsMm) return std::nullopt;
-        return arc_tangent(radius, mv.kind == MoveKind::ArcCCW);
-      };
-      fixed[m].start = along(at(m) - c);
-      fixed[m].end = along(at(m + 1) - c);
-    } else {
-      fixed[m].start = fixed[m].end = direction(at(m + 1) - at(m));
+
+  // The runs in `plane` fitted together, every other move of the chain left as it is: lone
+  // moves and input arcs with their own directions, runs already fitted with the directions
+  // of their end lines, runs still to be fitted (in another plane) with none.
+  auto fit_plane = [&](Plane plane) {
+    const Run all = whole(plane);
+    const auto ax = axes_of(plane);
+    auto at = [&](uint32_t v) {  // vertex v of the chain in the plane
+      const auto& p = all.vertex(in, v);
+      return Vec2(p[ax.first], p[ax.second]);
+    };
+    std::vector<FixedMove> fixed(chain.move_count);
+    std::vector<uint8_t> pinned(chain.move_count + 1, 0);
+    for (uint32_t m = 0; m < chain.move_count; ++m) {
+      const Move& mv = in.moves[chain.first_move + m];
+      fixed[m].fixed = true;
+      if (!is_arc(mv.kind)) {
+        fixed[m].start = fixed[m].end = direction(at(m + 1) - at(m));
+      } else if (mv.plane == plane) {
+        const Vec2 c(mv.center[ax.first], mv.center[ax.second]);
+        auto along = [&](const Vec2& radius) -> std::optional<Vec2> {
+          if (radius.norm() <= kLengthEpsMm) return std::nullopt;
+          return arc_tangent(radius, mv.kind == MoveKind::ArcCCW);
+        };
+        fixed[m].start = along(at(m) - c);
+        fixed[m].end = along(at(m + 1) - c);
+      }
     }
-  }
-  for (size_t r = 0; r < own.size(); ++r) {
-    const uint32_t base = own[r].first_move - chain.first_move;
-    pinned[base] = pinned[base + own[r].move_count] = 1;
-    if (own[r].plane == all.plane) {
-      for (uint32_t m = base; m < base + own[r].move_count; ++m) fixed[m].fixed = false;
-      continue;
+    for (size_t r = 0; r < own.size(); ++r) {
+      const uint32_t b = base(r), last = b + own[r].move_count - 1;
+      pinned[b] = pinned[last + 1] = 1;
+      if (own[r].plane == plane) {
+        for (uint32_t m = b; m <= last; ++m) fixed[m].fixed = false;
+        continue;
+      }
+      for (uint32_t m = b; m < last; ++m) fixed[m].end = fixed[m + 1].start = std::nullopt;
+      fixed[b].start = fixed[last].end = std::nullopt;
+      if (!done[r]) continue;
+      if (const auto& l = first_line[r]) {
+        fixed[b].start = direction(at(l->to) - at(l->from));
+        fixed[b].fitted_start = fixed[b].start && l->to > l->from + 1;
+      }
+      if (const auto& l = last_line[r]) {
+        fixed[last].end = direction(at(l->to) - at(l->from));
+        fixed[last].fitted_end = fixed[last].end && l->to > l->from + 1;
+      }
     }
-    std::vector<Chosen> got = RunFitter(in, own[r], options_for(own[r])).fit();
+    for (uint32_t m = 0; m < chain.move_count; ++m)
+      if (fixed[m].fixed) pinned[m] = pinned[m + 1] = 1;
+    std::vector<Chosen> fitted = RunFitter(in, all, options_for(all), fixed, pinned).fit();
+    // Back to each run's own vertices. A tangent break at the start of a fixed move is the
+    // joint at the end of the run before it, or at the start of the run it begins.
+    size_t r = 0;  // the first run that does not end at or before `from`
     uint32_t from = 0;
-    for (const Chosen& c : got) {
-      out[r].prims.push_back(c.prim);
-      if (c.kinked) out[r].forced_at.push_back(from);
+    for (const Chosen& c : fitted) {
+      while (r < own.size() && base(r) + own[r].move_count <= from) ++r;
+      if (!fixed[from].fixed) {
+        if (!first_line[r] && from == base(r) && c.prim.kind == Primitive::Kind::Line)
+          first_line[r] = LineEnds{from, c.prim.end_vertex};
+        if (c.prim.end_vertex == base(r) + own[r].move_count)
+          last_line[r] = c.prim.kind == Primitive::Kind::Line ? std::optional(LineEnds{from, c.prim.end_vertex}) : std::nullopt;
+        Primitive p = c.prim;
+        p.end_vertex -= base(r);
+        out[r].prims.push_back(p);
+        if (c.kinked) out[r].forced_at.push_back(from - base(r));
+      } else if (c.kinked && r > 0 && base(r - 1) + own[r - 1].move_count == from) {
+        // (A joint beside a run fitted in another plane is judged in both planes' passes.)
+        auto& forced = out[r - 1].forced_at;
+        if (forced.empty() || forced.back() != own[r - 1].move_count) forced.push_back(own[r - 1].move_count);
+      } else if (c.kinked && r < own.size() && base(r) == from) {
+        auto& forced = out[r].forced_at;
+        if (forced.empty() || forced.front() != 0) forced.insert(forced.begin(), 0);
+      }
       from = c.prim.end_vertex;
     }
-    auto chord = [&](uint32_t a, const Chosen& c) -> std::optional<Vec2> {
-      if (c.prim.kind != Primitive::Kind::Line) return std::nullopt;
-      return direction(at(base + c.prim.end_vertex) - at(base + a));
-    };
-    const uint32_t last_from = got.size() > 1 ? got[got.size() - 2].prim.end_vertex : 0;
-    FixedMove& first = fixed[base];
-    FixedMove& last = fixed[base + own[r].move_count - 1];
-    first.start = chord(0, got.front());
-    first.fitted_start = first.start && got.front().prim.end_vertex > 1;
-    last.end = chord(last_from, got.back());
-    last.fitted_end = last.end && got.back().prim.end_vertex > last_from + 1;
-    for (uint32_t m = base; m + 1 < base + own[r].move_count; ++m) fixed[m].end = fixed[m + 1].start = std::nullopt;
-  }
-  for (uint32_t m = 0; m < chain.move_count; ++m)
-    if (fixed[m].fixed) pinned[m] = pinned[m + 1] = 1;
-  std::vector<Chosen> fitted = RunFitter(in, all, options_for(all), fixed, pinned).fit();
-  // Back to each run's own vertices. A tangent break at the start of a fixed move is the
-  // joint at the end of the run before it.
-  auto base = [&](size_t r) { return own[r].first_move - chain.first_move; };
-  size_t r = 0;  // the first run that does not end at or before `from`
-  uint32_t from = 0;
-  for (const Chosen& c : fitted) {
-    while (r < own.size() && base(r) + own[r].move_count <= from) ++r;
-    if (!fixed[from].fixed) {
-      Primitive p = c.prim;
-      p.end_vertex -= base(r);
-      out[r].prims.push_back(p);
-      if (c.kinked) out[r].forced_at.push_back(from - base(r));
-    } else if (c.kinked && r > 0 && base(r - 1) + own[r - 1].move_count == from) {
-      out[r - 1].forced_at.push_back(own[r - 1].move_count);
-    } else if (c.kinked && r < own.size() && base(r) == from) {  // the start of a run fitted in another plane
-      out[r].forced_at.insert(out[r].forced_at.begin(), 0);
-    }
-    from = c.prim.end_vertex;
-  }
+    for (size_t k = 0; k < own.size(); ++k) done[k] = done[k] || own[k].plane == plane;
+  };
+  // Runs in other planes than the chain's first, plane by plane, then the chain's plane,
+  // which meets their end lines tangentially.
+  for (size_t r = 0; r < own.size(); ++r)
+    if (!done[r] && own[r].plane != lead.plane) fit_plane(own[r].plane);
+  fit_plane(lead.plane);
   return out;
 }
 

@@ -12,8 +12,10 @@ namespace arcpress {
 
 /// Fits the runs of `chain` (out of `runs`, as chain_runs() grouped them) together: one result
 /// per run of the chain, in order. Lone moves and input arcs of the chain stay as they are,
-/// and the joints with them and between runs are tangent where the path is smooth. A run
-/// in another plane than the chain's is fitted first, on its own. `options_for` gives the
+/// and the joints with them and between runs are tangent where the path is smooth. Runs in
+/// another plane than the chain's are fitted first, together with the others in their
+/// plane (tangent to each other across the moves between them, as seen in that plane); then
+/// the runs in the chain's plane, tangent to their end lines. `options_for` gives the
 /// options for fitting in a run's frame and plane.
 std::vector<FitResult> fit_chain(const Interpretation& in, const RunChain& chain, std::span<const Run> runs,
                                  const std::function<FitOptions(const Run&)>& options_for);

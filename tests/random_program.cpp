@@ -1,0 +1,80 @@
+#include "random_program.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <vector>
+
+namespace arcpress::test {
+
+RandomCase random_case(std::span<const uint8_t> bytes) {
+  RandomCase c;
+  const uint8_t o = bytes.size() > 0 ? bytes[0] : 0, form = bytes.size() > 1 ? bytes[1] : 0;
+  FitOptions& f = c.opt.fit;
+  const double tolerances_mm[] = {0.01, 0.001, 0.05, 0.002};
+  f.tolerance_mm = tolerances_mm[o & 3];
+  const FitOptions::Method methods[] = {FitOptions::Method::Arcs,   FitOptions::Method::Global,
+                                        FitOptions::Method::Greedy, FitOptions::Method::Stream,
+                                        FitOptions::Method::Lowe,   FitOptions::Method::Arcs};
+  f.method = methods[((o >> 2) & 7) % 6];
+  f.helical = (o >> 5) & 1;
+  f.min_radius_mm = (o >> 6) & 1 ? 0.0 : 0.05;
+  f.spikes = (o >> 7) & 1;
+  c.opt.threads = 1;
+
+  const char* planes[] = {"G17", "G18", "G19", "G17"};
+  const double steps_mm[] = {0.01, 0.1, 1.0, 0.003};  // the size of one step
+  const double step_mm = steps_mm[form & 3];
+  const int decimals = (form >> 2) & 1 ? 3 : 4;
+  const bool smooth = (form >> 5) & 1, flat = (form >> 6) & 1;
+  std::string& s = c.text;
+  s = fmt::format("G21 G90 {}\nG0 X0 Y0 Z0\nG1 F1000\n", planes[(form >> 3) & 3]);
+  double x = 0, y = 0, z = 0, hx = 1, hy = 0;
+  for (size_t i = 2; i + 2 < bytes.size(); i += 3) {
+    const auto a = static_cast<int8_t>(bytes[i]), b = static_cast<int8_t>(bytes[i + 1]),
+               h = static_cast<int8_t>(bytes[i + 2]);
+    if (smooth) {  // the heading turns by up to 0.3 rad, the step keeps its scale
+      const double t = a / 128.0 * 0.3;
+      const double nx = hx * std::cos(t) - hy * std::sin(t), ny = hx * std::sin(t) + hy * std::cos(t);
+      hx = nx;
+      hy = ny;
+      const double len = (static_cast<uint8_t>(b) / 255.0 + 0.05) * step_mm * 10;
+      x += hx * len;
+      y += hy * len;
+      if (!flat) z += h / 128.0 * step_mm * 0.1;
+    } else {
+      x += a / 128.0 * step_mm * 10;
+      y += b / 128.0 * step_mm * 10;
+      if (!flat) z += h / 128.0 * step_mm;
+    }
+    // Now and then a block that is no move: runs end there, and are fitted as one chain.
+    // (Feed changes only on smooth paths: where free steps cross back over the path within
+    // the band, no check can tell which pass a stretch of the fitted path belongs to, and
+    // the verifier's feed comparison may pair it with the wrong one.)
+    if ((h & 0x3f) == 0x21) s += "(note)\n";
+    if ((h & 0x3f) == 0x22 && smooth) s += fmt::format("G1 F{}\n", 500 + (i % 7) * 100);
+    s += fmt::format("G1 X{:.{}f} Y{:.{}f} Z{:.{}f}\n", x, decimals, y, decimals, z, decimals);
+  }
+  s += "M2\n";
+  return c;
+}
+
+std::string broken_promise(const CompressResult& r) {
+  if (!r.ok) return "the program was refused";
+  if (!r.verified) return "the output was not verified";
+  if (!r.comparison.matched) return "the output leaves the input path: " + r.comparison.mismatch;
+  if (!r.within_band())
+    return fmt::format("the output differs from the input (max deviation {} mm, band {} mm): {}",
+                       r.comparison.max_deviation_mm, r.band_mm, fmt::join(r.check.findings, "; "));
+  std::vector<uint32_t> unreported;
+  std::set_difference(r.comparison.kink_lines.begin(), r.comparison.kink_lines.end(), r.forced_kink_lines.begin(),
+                      r.forced_kink_lines.end(), std::back_inserter(unreported));
+  if (!unreported.empty())
+    return fmt::format("tangent breaks at smooth joints not reported as forced, at input lines {}",
+                       fmt::join(unreported, " "));
+  return {};
+}
+
+}  // namespace arcpress::test

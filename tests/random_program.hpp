@@ -1,0 +1,31 @@
+#pragma once
+// Programs and options made from arbitrary bytes, and the promises every compression of
+// them must keep: shared by the property test (bytes from a seeded generator) and the
+// fuzz target (bytes from libFuzzer), so that whatever the fuzzer finds, the test can
+// replay.
+#include <cstdint>
+#include <span>
+#include <string>
+
+#include "arcpress/api/arcpress.hpp"
+
+namespace arcpress::test {
+
+struct RandomCase {
+  CompressOptions opt;
+  std::string text;  ///< the program
+};
+
+/// The first two bytes choose the options (tolerance, method, helical arcs, smallest
+/// radius, spikes) and the program's form (plane, step scale, printed decimals, smooth
+/// turns or free steps, flat or wandering normal axis); every further three bytes make one
+/// G1 move, and some of them a comment or (on smooth paths) a feed change before it.
+RandomCase random_case(std::span<const uint8_t> bytes);
+
+/// The first promise `r` (compressed with verification) breaks, or empty when it keeps
+/// them all: it reads, its output reads back move by move onto the input path, stays
+/// within the band and keeps every non-motion block (as `arcpress diff` judges), and every
+/// smooth joint that turns by more than the G1 angle is one the fit reported as forced.
+std::string broken_promise(const CompressResult& r);
+
+}  // namespace arcpress::test
