@@ -66,6 +66,23 @@ Outcome compress_text(const std::string& text, FitOptions fit = {}, Dialect dial
   return o;
 }
 
+/// `first`, then `second` from its second point on (it starts where `first` ends).
+std::vector<Pt> joined(std::vector<Pt> first, const std::vector<Pt>& second) {
+  first.insert(first.end(), second.begin() + 1, second.end());
+  return first;
+}
+
+/// `pts` compressed with `f` is two arcs, tangent where they meet, inside the band.
+void check_two_tangent_arcs(const std::vector<Pt>& pts, const FitOptions& f) {
+  auto o = compress_text(program(pts), f);
+  INFO(o.r.output);
+  CHECK(o.arcs == 2);
+  CHECK(o.lines == 0);
+  CHECK(o.r.forced_kinks == 0);
+  CHECK(o.r.comparison.max_smooth_kink_deg <= f.g1_angle_deg);
+  CHECK(o.r.comparison.max_deviation_mm <= f.tolerance_mm);
+}
+
 }  // namespace
 
 TEST_CASE("a sampled quarter circle becomes one counter-clockwise arc inside the band", "[fit]") {
@@ -542,17 +559,9 @@ TEST_CASE("Lowe's significance cuts a curve finely enough for arcs to end where 
   // An S of two quarter circles sampled every degree. A split that stops as soon as its
   // pieces are inside the band leaves no breakpoint at the inflection, so no arc can end
   // there; pieces rated by deviation over length are split further along a curve.
-  std::vector<Pt> s = arc_points(0, 10, 10, -90, 0, 1), second = arc_points(20, 10, 10, 180, 90, 1);
-  s.insert(s.end(), second.begin() + 1, second.end());
   FitOptions f;
   f.method = FitOptions::Method::Lowe;
-  auto o = compress_text(program(s), f);
-  INFO(o.r.output);
-  CHECK(o.lines == 0);
-  CHECK(o.arcs == 2);
-  CHECK(o.r.forced_kinks == 0);
-  CHECK(o.r.comparison.max_smooth_kink_deg <= f.g1_angle_deg);
-  CHECK(o.r.comparison.max_deviation_mm <= f.tolerance_mm);
+  check_two_tangent_arcs(joined(arc_points(0, 10, 10, -90, 0, 1), arc_points(20, 10, 10, 180, 90, 1)), f);
 }
 
 TEST_CASE("the seed methods' joints are made tangent where the band allows (seed 000's G1 adjustment)", "[fit][lowe][stream]") {
@@ -560,18 +569,11 @@ TEST_CASE("the seed methods' joints are made tangent where the band allows (seed
   // Grown without regard to the joint, the first arc takes a few of the second's vertices
   // (they stay inside the band) and the two meet at an angle; the adjustment moves the
   // joint back to where both arcs fit tangentially.
-  std::vector<Pt> p = arc_points(0, 10, 10, -90, 0, 1), wider = arc_points(-20, 10, 30, 0, 60, 1.0 / 3);
-  p.insert(p.end(), wider.begin() + 1, wider.end());
+  const auto p = joined(arc_points(0, 10, 10, -90, 0, 1), arc_points(-20, 10, 30, 0, 60, 1.0 / 3));
   for (auto m : {FitOptions::Method::Stream, FitOptions::Method::Lowe}) {
     FitOptions f;
     f.method = m;
-    auto o = compress_text(program(p), f);
-    INFO(o.r.output);
-    CHECK(o.arcs == 2);
-    CHECK(o.lines == 0);
-    CHECK(o.r.forced_kinks == 0);
-    CHECK(o.r.comparison.max_smooth_kink_deg <= f.g1_angle_deg);
-    CHECK(o.r.comparison.max_deviation_mm <= f.tolerance_mm);
+    check_two_tangent_arcs(p, f);
   }
 }
 
