@@ -1445,16 +1445,6 @@ std::vector<FitResult> fit_chain(const Interpretation& in, const RunChain& chain
   std::span<const Run> own(&runs[chain.first_run], chain.run_count);
   const Move& lead = in.moves[chain.first_move];
   auto base = [&](size_t r) { return own[r].first_move - chain.first_move; };
-  // The chain as one run in `plane`.
-  auto whole = [&](Plane plane) {
-    Run all;
-    all.first_move = chain.first_move;
-    all.move_count = chain.move_count;
-    all.frame = lead.frame;
-    all.plane = plane;
-    all.feed_mm_min = lead.feed_mm_min;
-    return all;
-  };
   auto direction = [](const Vec2& d) -> std::optional<Vec2> {
     if (d.norm() <= kLengthEpsMm) return std::nullopt;
     return Vec2(d.normalized());
@@ -1473,7 +1463,12 @@ std::vector<FitResult> fit_chain(const Interpretation& in, const RunChain& chain
   // moves and input arcs with their own directions, runs already fitted with the directions
   // of their end lines, runs still to be fitted (in another plane) with none.
   auto fit_plane = [&](Plane plane) {
-    const Run all = whole(plane);
+    Run all;  // the chain as one run in `plane`
+    all.first_move = chain.first_move;
+    all.move_count = chain.move_count;
+    all.frame = lead.frame;
+    all.plane = plane;
+    all.feed_mm_min = lead.feed_mm_min;
     const auto ax = axes_of(plane);
     auto at = [&](uint32_t v) {  // vertex v of the chain in the plane
       const auto& p = all.vertex(in, v);
