@@ -641,6 +641,17 @@ TEST_CASE("every tangent break the verifier finds at a smooth joint is one the f
       "G1 X0.0574 Y-0.0178 Z-0.0001\nM2\n");
   CHECK(tiny.r.stats.arcs_unprintable == 0);
   CHECK(unreported(tiny).empty());
+  // Under G19, a path flat in XY is fitted in XY and written as lines, with no plane word:
+  // its joints are read in XY, where they were made, not in YZ, where the first two moves
+  // look like a step back and forth.
+  FitOptions wide;
+  wide.tolerance_mm = 0.05;
+  auto flat_xy = compress_text(
+      "G21 G90 G19\nG0 X0 Y0 Z0\nG1 F1000\nG1 X10.5000 Y-0.0246 Z0\nG1 X11.0392 Y-0.0246 Z0\n"
+      "G1 X13.4204 Y0.4156 Z0\nG1 X17.5916 Y2.2061 Z0\nM2\n",
+      wide);
+  CHECK(flat_xy.r.comparison.max_smooth_kink_deg < 90);
+  CHECK(unreported(flat_xy).empty());
 }
 
 TEST_CASE("programs made from random bytes keep every promise, in every plane, method and scale",

@@ -2,12 +2,14 @@
 // The C++ façade: one call runs the whole pipeline on a program held in memory.
 // lex -> interpret -> extract runs -> fit -> emit (-> verify).
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "arcpress/core/diagnostic.hpp"
 #include "arcpress/dialect/dialect.hpp"
 #include "arcpress/emit/emitter.hpp"
+#include "arcpress/extract/run.hpp"
 #include "arcpress/fit/primitive.hpp"
 #include "arcpress/verify/path_compare.hpp"
 #include "arcpress/verify/program_diff.hpp"
@@ -61,7 +63,10 @@ FitOptions fit_options_for(const FitOptions& user, const Dialect& dialect, const
 /// Reads `r.output` back with the dialect and compares it with the input program `input`
 /// (interpreted as `in`): fills r.check and r.comparison and sets r.verified. compress()
 /// calls it when `opt.verify` is set; a caller that edits the output can call it again.
-void verify_output(const Program& input, const Interpretation& in, const CompressOptions& opt, CompressResult& r);
+/// With the `runs` that were fitted, their joints are read in the planes they were fitted
+/// in (CompareOptions::fitted_plane).
+void verify_output(const Program& input, const Interpretation& in, const CompressOptions& opt, CompressResult& r,
+                   std::span<const Run> runs = {});
 
 /// Compresses `text` (the program called `name` in diagnostics). Never throws for bad
 /// input: problems go to `sink`, and in strict mode any of them makes `ok` false. With

@@ -28,7 +28,8 @@ FitOptions fit_options_for(const FitOptions& user, const Dialect& d, const Frame
   return o;
 }
 
-void verify_output(const Program& input, const Interpretation& in, const CompressOptions& opt, CompressResult& r) {
+void verify_output(const Program& input, const Interpretation& in, const CompressOptions& opt, CompressResult& r,
+                   std::span<const Run> runs) {
   const std::string name = input.name + " (output)";
   DiagnosticSink out_sink(name);
   Program out_prog = lex(name, r.output, out_sink);
@@ -37,6 +38,12 @@ void verify_output(const Program& input, const Interpretation& in, const Compres
   co.tolerance_mm = opt.fit.tolerance_mm;
   co.g1_angle_deg = opt.fit.g1_angle_deg;
   co.corner_angle_deg = opt.fit.corner_angle_deg;
+  if (!runs.empty()) {
+    co.fitted_plane.reserve(in.moves.size());
+    for (const Move& m : in.moves) co.fitted_plane.push_back(m.plane);
+    for (const Run& run : runs)
+      std::fill_n(co.fitted_plane.begin() + run.first_move, run.move_count, run.plane);
+  }
   r.comparison = compare_paths(input, in, out_prog, out_in, co);
   DiffOptions dopt;
   dopt.tolerance_mm = opt.fit.tolerance_mm;
@@ -108,7 +115,7 @@ CompressResult compress(const std::string& name, std::string text, const Compres
   r.output = emit_program(prog, in, runs, fits, eo, &r.stats);
   r.ok = true;
   r.band_mm = opt.fit.tolerance_mm;
-  if (opt.verify && !opt.passthrough) verify_output(prog, in, opt, r);
+  if (opt.verify && !opt.passthrough) verify_output(prog, in, opt, r, runs);
   return r;
 }
 

@@ -126,20 +126,29 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
       // Tangency at the joint with the previous output feed move.
       if (prev_j == long(j) - 1 && prev_j >= 0 && (replaced || prev_replaced) && ib.moves[prev_j].plane == mb.plane &&
           i >= 1 && is_feed(ia.moves[i - 1].kind)) {
-        Vec3 before = in_plane(ia.from(i - 1), mb.plane);
-        Vec3 at = in_plane(ia.from(i), mb.plane);
-        Vec3 after = in_plane(ia.moves[i].to, mb.plane);
+        // The plane the joint was made in: where both moves were fitted, else the output's.
+        Plane pl = mb.plane;
+        if (!opt.fitted_plane.empty() && opt.fitted_plane[i - 1] == opt.fitted_plane[i]) pl = opt.fitted_plane[i];
+        Vec3 before = in_plane(ia.from(i - 1), pl);
+        Vec3 at = in_plane(ia.from(i), pl);
+        Vec3 after = in_plane(ia.moves[i].to, pl);
         // The input's vertices one further out, and whether the neighbours are corners.
         std::optional<Vec3> before2, after2;
-        if (i >= 2 && is_feed(ia.moves[i - 2].kind)) before2 = in_plane(ia.from(i - 2), mb.plane);
-        if (i + 1 < ia.moves.size() && is_feed(ia.moves[i + 1].kind)) after2 = in_plane(ia.moves[i + 1].to, mb.plane);
+        if (i >= 2 && is_feed(ia.moves[i - 2].kind)) before2 = in_plane(ia.from(i - 2), pl);
+        if (i + 1 < ia.moves.size() && is_feed(ia.moves[i + 1].kind)) after2 = in_plane(ia.moves[i + 1].to, pl);
         bool before_corner = before2 && is_corner(*before2, before, at, opt.tolerance_mm, opt.corner_angle_deg);
         bool after_corner = after2 && is_corner(at, after, *after2, opt.tolerance_mm, opt.corner_angle_deg);
         if (!is_corner(before, at, after, opt.tolerance_mm, opt.corner_angle_deg) &&
             !is_corner_beside_corner(before2 ? &*before2 : nullptr, before, at, after, after2 ? &*after2 : nullptr,
                                      before_corner, after_corner, opt.tolerance_mm)) {
           ++r.smooth_joints;
-          double kink = angle_deg(end_tangent(ib, size_t(prev_j)), start_tangent(ib, j));
+          // (Only lines are written in another plane than the one they were fitted in.)
+          auto line_in_plane = [&](size_t q) {
+            const Vec3 step = in_plane(ib.moves[q].to, pl) - in_plane(ib.from(q), pl);
+            return Vec2(step.x(), step.y());
+          };
+          const double kink = pl == mb.plane ? angle_deg(end_tangent(ib, size_t(prev_j)), start_tangent(ib, j))
+                                             : angle_deg(line_in_plane(size_t(prev_j)), line_in_plane(j));
           r.max_smooth_kink_deg = std::max(r.max_smooth_kink_deg, kink);
           if (kink > opt.g1_angle_deg) {
             ++r.smooth_joints_over_g1;

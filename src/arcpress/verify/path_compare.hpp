@@ -18,6 +18,11 @@ struct CompareOptions {
   double tolerance_mm = 0.01;       ///< band the output path must stay in
   double g1_angle_deg = 0.5;        ///< tangent change allowed at smooth joints
   double corner_angle_deg = 30.0;   ///< input turns sharper than this are corners
+  /// Where given, one per input move: the plane it was fitted in. A joint between two moves
+  /// fitted in the same plane is read in that plane (a pass fitted in XZ under G17 and
+  /// written as lines is seen foreshortened in XY), any other in the plane the output is
+  /// in there. Empty: the output's plane everywhere (`arcpress diff`).
+  std::vector<Plane> fitted_plane;
 };
 
 struct PathComparison {
