@@ -50,11 +50,8 @@ RandomCase random_case(std::span<const uint8_t> bytes) {
       if (!flat) z += h / 128.0 * step_mm;
     }
     // Now and then a block that is no move: runs end there, and are fitted as one chain.
-    // (Feed changes only on smooth paths: where free steps cross back over the path within
-    // the band, no check can tell which pass a stretch of the fitted path belongs to, and
-    // the verifier's feed comparison may pair it with the wrong one.)
     if ((h & 0x3f) == 0x21) s += "(note)\n";
-    if ((h & 0x3f) == 0x22 && smooth) s += fmt::format("G1 F{}\n", 500 + (i % 7) * 100);
+    if ((h & 0x3f) == 0x22) s += fmt::format("G1 F{}\n", 500 + (i % 7) * 100);
     s += fmt::format("G1 X{:.{}f} Y{:.{}f} Z{:.{}f}\n", x, decimals, y, decimals, z, decimals);
   }
   s += "M2\n";

@@ -289,3 +289,38 @@ TEST_CASE("compress checks its own output with the code of arcpress diff: an alt
   CompressResult slower = verified(replaced("F300", "F200"));
   CHECK_FALSE(slower.within_band());
 }
+
+TEST_CASE("compression checks its feed move by move, so a path no wider than its band may change feed",
+          "[verify][feed]") {
+  // The whole path lies within 0.05 mm of itself: pairing the output with the input by place
+  // alone, as `arcpress diff` must, can take the stretch at F1000 for the one at F1100.
+  // compress() knows which input moves each output move stands for and compares those.
+  std::string t = "G21 G90 G18\nG0 X0 Y0 Z0\nG1 F1000\n";
+  for (const char* xyz : {"X0.0315 Y-0.0001 Z0.0001", "X0.0330 Y0.0001 Z0.0001", "X0.0475 Y0.0024 Z0.0002",
+                          "X0.0540 Y0.0034 Z0.0002", "X0.0598 Y0.0043 Z0.0003", "X0.0612 Y0.0045 Z0.0003"})
+    t += fmt::format("G1 {}\n", xyz);
+  t += "G1 F1100\n";
+  for (const char* xyz : {"X0.0749 Y0.0099 Z0.0001", "X0.0814 Y0.0129 Z0.0001", "X0.0830 Y0.0136 Z0.0002",
+                          "X0.0843 Y0.0143 Z0.0002", "X0.0857 Y0.0149 Z0.0002", "X0.0870 Y0.0156 Z0.0002",
+                          "X0.0884 Y0.0162 Z0.0002", "X0.0897 Y0.0169 Z0.0002"})
+    t += fmt::format("G1 {}\n", xyz);
+  t += "M2\n";
+  DiagnosticSink sink("f.nc");
+  CompressOptions opt;
+  opt.fit.tolerance_mm = 0.05;
+  opt.fit.min_radius_mm = 0;
+  CompressResult r = compress("f.nc", t, opt, sink);
+  REQUIRE(r.verified);
+  INFO(r.output << r.comparison.mismatch);
+  CHECK(r.within_band());
+  CHECK(r.stats.lines_out + r.stats.arcs_out < 14);
+  // ... and a feed that did change is still caught, move by move.
+  std::string slower = r.output;
+  slower.replace(slower.find("F1100"), 5, "F1050");
+  Program prog = lex("f.nc", t, sink);
+  Interpretation in = interpret(prog, sink);
+  CompressResult v = r;
+  v.output = slower;
+  verify_output(prog, in, opt, v);
+  CHECK_FALSE(v.within_band());
+}

@@ -49,6 +49,7 @@ void verify_output(const Program& input, const Interpretation& in, const Compres
   dopt.tolerance_mm = opt.fit.tolerance_mm;
   dopt.top = 1;
   dopt.threads = opt.threads;
+  dopt.feed = false;  // compare_paths() pairs the moves and compares their feed exactly
   r.check = diff_programs(input, in, out_prog, out_in, dopt);
   if (out_sink.error_count() > 0)
     r.check.findings.insert(r.check.findings.begin(), "the output does not read back: " + out_sink.format_all());

@@ -402,7 +402,7 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
         d.deviation_of_b[m] = std::max(d.deviation_of_b[m], sh.deviation_of_b[m]);
     d.max_deviation_mm = shares[0].top.max();
     d.worst = shares[0].top.take();
-    compare_feed(pa, ia, pb, ib, index_a, opt.tolerance_mm, [&](const Move& ma, const Move& mb, const Vec3& at) {
+    if (opt.feed) compare_feed(pa, ia, pb, ib, index_a, opt.tolerance_mm, [&](const Move& ma, const Move& mb, const Vec3& at) {
       double pct = 100.0 * std::abs(mb.feed_mm_min - ma.feed_mm_min) / ma.feed_mm_min;
       if (pct > d.max_feed_difference_pct) {
         d.max_feed_difference_pct = pct;

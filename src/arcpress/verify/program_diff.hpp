@@ -34,6 +34,11 @@ struct DiffOptions {
   /// Threads for the two directions of the path measure (1 or more; 0: as the machine
   /// has). The result is the same for any count.
   unsigned threads = 0;
+  /// Compare the feed along the paths. A caller that knows which moves of B stand for which
+  /// of A compares it move by move instead (compare_paths(), as compress() does): where the
+  /// band is as wide as the path's own features, pairing by place can take a stretch for
+  /// another pass with another feed.
+  bool feed = true;
 };
 
 /// One place where the paths are apart.
