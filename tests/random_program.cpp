@@ -7,6 +7,8 @@
 #include <iterator>
 #include <vector>
 
+#include "arcpress/dialect/dialect_loader.hpp"
+
 namespace arcpress::test {
 
 RandomCase random_case(std::span<const uint8_t> bytes) {
@@ -23,6 +25,12 @@ RandomCase random_case(std::span<const uint8_t> bytes) {
   f.min_radius_mm = (o >> 6) & 1 ? 0.0 : 0.05;
   f.spikes = (o >> 7) & 1;
   c.opt.threads = 1;
+  // The third byte: the controller (every shipped dialect, or the built-in RS274), and
+  // R-form arcs where it reads them.
+  const uint8_t target = bytes.size() > 2 ? bytes[2] : 0;
+  static const std::vector<Dialect> dialects = list_dialects(dialect_search_path(""));
+  if (const size_t pick = target % (dialects.size() + 1); pick > 0) c.opt.dialect = dialects[pick - 1];
+  if ((target & 0x80) && c.opt.dialect.radius_word) c.opt.arc_format = ArcFormat::Radius;
 
   const char* planes[] = {"G17", "G18", "G19", "G17"};
   const double steps_mm[] = {0.01, 0.1, 1.0, 0.003};  // the size of one step
@@ -32,7 +40,7 @@ RandomCase random_case(std::span<const uint8_t> bytes) {
   std::string& s = c.text;
   s = fmt::format("G21 G90 {}\nG0 X0 Y0 Z0\nG1 F1000\n", planes[(form >> 3) & 3]);
   double x = 0, y = 0, z = 0, hx = 1, hy = 0;
-  for (size_t i = 2; i + 2 < bytes.size(); i += 3) {
+  for (size_t i = 3; i + 2 < bytes.size(); i += 3) {
     const auto a = static_cast<int8_t>(bytes[i]), b = static_cast<int8_t>(bytes[i + 1]),
                h = static_cast<int8_t>(bytes[i + 2]);
     if (smooth) {  // the heading turns by up to 0.3 rad, the step keeps its scale

@@ -133,13 +133,13 @@ int run_compress(const CompressArgs& a) {
       DiffPlace w = r.check.worst.empty() ? DiffPlace{} : r.check.worst.front();
       fmt::print(stderr,
                  "  deviation      {:.6f} mm max (band {} mm), input line {}, output line {}\n"
-                 "  smooth joints  {} made, max kink {:.3f} deg, {} over {} deg ({} forced by the band)\n",
+                 "  smooth joints  {} made, max kink {:.3f} deg, {} over {} deg ({} forced by the band or the digits)\n",
                  r.check.max_deviation_mm, r.band_mm, w.line_a, w.line_b, c.smooth_joints, c.max_smooth_kink_deg,
                  c.smooth_joints_over_g1, a.opt.fit.g1_angle_deg, r.forced_kinks);
     } else {
       fmt::print(stderr,
                  "  deviation      not measured (--no-verify)\n"
-                 "  smooth joints  {} forced by the band to change tangent (others not measured)\n",
+                 "  smooth joints  {} forced by the band or the digits to change tangent (others not measured)\n",
                  r.forced_kinks);
     }
   }

@@ -652,9 +652,24 @@ TEST_CASE("every tangent break the verifier finds at a smooth joint is one the f
       wide);
   CHECK(flat_xy.r.comparison.max_smooth_kink_deg < 90);
   CHECK(unreported(flat_xy).empty());
+  // Fanuc prints three decimals: the centre of an arc of radius 0.024 mm lands on a grid
+  // that turns its end tangents by more than the G1 angle, whichever grid point is taken.
+  // The arc is still written (the lines around it would turn as much), and the joint it
+  // breaks is reported as forced by the digits.
+  FitOptions fine;
+  fine.tolerance_mm = 0.002;
+  fine.min_radius_mm = 0;
+  const double r_mm = 0.0237, x0 = 0.00037, y0 = 0.00041;
+  std::vector<Pt> small = {{-0.2, y0, 0}, {-0.1, y0, 0}, {-0.05, y0, 0}};
+  for (const Pt& p : arc_points(x0, y0 + r_mm, r_mm, -90, 0, 10)) small.push_back(p);
+  for (int k = 1; k <= 10; ++k) small.push_back({x0 + r_mm, y0 + r_mm + 0.02 * k, 0});
+  auto digits = compress_text(program(small), fine, find_dialect("fanuc", dialect_search_path("")));
+  CHECK(digits.arcs == 1);
+  CHECK(digits.r.comparison.smooth_joints_over_g1 >= 1);
+  CHECK(unreported(digits).empty());
 }
 
-TEST_CASE("programs made from random bytes keep every promise, in every plane, method and scale",
+TEST_CASE("programs made from random bytes keep every promise, in every plane, method, scale and dialect",
           "[fit][property]") {
   // The fuzz target (tests/fuzz) draws its bytes from libFuzzer; these come from a seeded
   // generator, so every run checks the same cases.

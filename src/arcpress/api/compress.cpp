@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <iterator>
 
 #include "arcpress/core/error.hpp"
 #include "arcpress/core/workers.hpp"
@@ -117,6 +118,27 @@ CompressResult compress(const std::string& name, std::string text, const Compres
   r.ok = true;
   r.band_mm = opt.fit.tolerance_mm;
   if (opt.verify && !opt.passthrough) verify_output(prog, in, opt, r, runs);
+  // Joints beside arcs whose end tangents the printed digits could not keep within the slack
+  // are forced by the digits: those that turn too far as read back, or all where the output
+  // was not read back.
+  std::vector<uint32_t> loose;
+  for (uint32_t m : r.stats.loose_arc_joints)
+    if (m < in.moves.size()) loose.push_back(prog.blocks[in.moves[m].block].line);
+  std::sort(loose.begin(), loose.end());
+  if (r.verified) {
+    std::vector<uint32_t> turned;
+    std::set_intersection(loose.begin(), loose.end(), r.comparison.kink_lines.begin(), r.comparison.kink_lines.end(),
+                          std::back_inserter(turned));
+    loose.swap(turned);
+  }
+  if (!loose.empty()) {
+    std::vector<uint32_t> all;
+    std::set_union(r.forced_kink_lines.begin(), r.forced_kink_lines.end(), loose.begin(), loose.end(),
+                   std::back_inserter(all));
+    all.erase(std::unique(all.begin(), all.end()), all.end());
+    r.forced_kink_lines.swap(all);
+    r.forced_kinks = r.forced_kink_lines.size();
+  }
   return r;
 }
 

@@ -178,6 +178,10 @@ class Emitter {
         out_.append(p_.eol(last));
         out_motion_ = arc ? (pr.ccw != flip(run.plane) ? 30 : 20) : 10;
         if (stats_) ++(arc ? stats_->arcs_out : stats_->lines_out);
+        if (stats_ && arc && loose_) {
+          stats_->loose_arc_joints.push_back(run.first_move + a);
+          stats_->loose_arc_joints.push_back(run.first_move + e);
+        }
       } else {
         // The input's own blocks: always readable, always on the path.
         for (uint32_t k = a; k < e; ++k) {
@@ -208,6 +212,7 @@ class Emitter {
   struct PrintedArc {
     std::string words;  ///< "I.. J.." or "R.."
     bool ok = false;
+    bool loose = false;  ///< no centre the digits allow keeps the end tangents within the slack
   };
 
   /// The text of one block for primitive `pr` over run vertices a .. pr.end_vertex, or
@@ -290,6 +295,7 @@ class Emitter {
     if (arc) {
       PrintedArc c = print_centre(run, fr, a, pr, end, st, sep);
       if (!c.ok) return std::nullopt;
+      loose_ = c.loose;
       s += sep;
       s += c.words;
     }
@@ -357,6 +363,7 @@ class Emitter {
             if (!digits_fit(t)) continue;
             out.words = st.letter('R') + t;
             out.ok = true;
+            out.loose = !tangent;
             return out;
           }
           continue;
@@ -389,6 +396,7 @@ class Emitter {
           if (axes.first > axes.second)  // I before J before K, as controllers print them
             out.words = st.letter(char('I' + axes.second)) + t2 + sep + st.letter(char('I' + axes.first)) + t1;
           out.ok = true;
+          out.loose = !tangent;
           return out;
         }
       }
@@ -445,6 +453,7 @@ class Emitter {
   const EmitOptions& opt_;
   std::vector<Vec3> pts_;     // scratch: input points of the arc being printed
   Vec2 ideal_{0, 0};          // scratch: the fitted centre of the arc being printed
+  bool loose_ = false;        // scratch: the arc just composed is loose (PrintedArc::loose)
   double tangent_slack_rad_ = deg_to_rad(opt_.tangent_slack_deg);
   bool header_done_ = false;  // the dialect's arc header is written, or the program set the mode
   std::string out_;
