@@ -118,11 +118,11 @@ CompressResult compress(const std::string& name, std::string text, const Compres
   r.ok = true;
   r.band_mm = opt.fit.tolerance_mm;
   if (opt.verify && !opt.passthrough) verify_output(prog, in, opt, r, runs);
-  // Joints beside arcs whose end tangents the printed digits could not keep within the slack
-  // are forced by the digits: those that turn too far as read back, or all where the output
-  // was not read back.
+  // Joints beside blocks the dialect's rules changed (an arc whose printed centre could not
+  // keep its end tangents, a primitive written back as its input moves) are forced by the
+  // digits: those that turn too far as read back, or all where the output was not read back.
   std::vector<uint32_t> loose;
-  for (uint32_t m : r.stats.loose_arc_joints)
+  for (uint32_t m : r.stats.rule_joints)
     if (m < in.moves.size()) loose.push_back(prog.blocks[in.moves[m].block].line);
   std::sort(loose.begin(), loose.end());
   if (r.verified) {

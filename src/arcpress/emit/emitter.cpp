@@ -161,7 +161,11 @@ class Emitter {
         text = compose(run, fr, a, pr, false);
         if (text && text->size() > d().max_line_length) text = compose(run, fr, a, pr, true);
         if (text && text->size() > d().max_line_length) text.reset();
-        if (!text && stats_) ++(arc ? stats_->arcs_unprintable : stats_->long_lines_kept);
+        if (!text && stats_) {
+          ++(arc ? stats_->arcs_unprintable : stats_->long_lines_kept);
+          stats_->rule_joints.push_back(run.first_move + a);
+          stats_->rule_joints.push_back(run.first_move + e);
+        }
       }
       if (text) {
         if (arc && !header_done_ && !d().arc_header.empty()) {
@@ -179,8 +183,8 @@ class Emitter {
         out_motion_ = arc ? (pr.ccw != flip(run.plane) ? 30 : 20) : 10;
         if (stats_) ++(arc ? stats_->arcs_out : stats_->lines_out);
         if (stats_ && arc && loose_) {
-          stats_->loose_arc_joints.push_back(run.first_move + a);
-          stats_->loose_arc_joints.push_back(run.first_move + e);
+          stats_->rule_joints.push_back(run.first_move + a);
+          stats_->rule_joints.push_back(run.first_move + e);
         }
       } else {
         // The input's own blocks: always readable, always on the path.

@@ -25,10 +25,11 @@ struct EmitStats {
   /// they broke the band, the controller's radius rule, its sweep limits or its line length.
   size_t arcs_unprintable = 0;
   size_t long_lines_kept = 0;    ///< fitted lines kept as input lines: too long for the dialect
-  /// Where arcs were printed whose end tangents the dialect's digits could not keep within
-  /// the slack (no centre on the printed grid did): the input moves starting at their
-  /// joints, start and end. A tangent break there is forced by the digits.
-  std::vector<uint32_t> loose_arc_joints;
+  /// Joints the dialect's rules may break: beside arcs whose end tangents its digits could
+  /// not keep within the slack (no centre on the printed grid did), and beside fitted
+  /// primitives written back as their input moves (arcs_unprintable, long_lines_kept). The
+  /// input moves starting at them, start and end of each such block.
+  std::vector<uint32_t> rule_joints;
 };
 
 struct EmitOptions {
