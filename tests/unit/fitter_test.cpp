@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <functional>
 #include <iterator>
 #include <random>
@@ -15,6 +16,7 @@
 #include "arcpress/lex/lexer.hpp"
 #include "arcpress/model/interpreter.hpp"
 #include "random_program.hpp"
+#include "support.hpp"
 
 using namespace arcpress;
 
@@ -698,6 +700,23 @@ TEST_CASE("programs made from random bytes keep every promise, in every plane, m
     INFO("trial " << trial << "\n" << c.text);
     CHECK(test::broken_promise(r) == "");
   }
+}
+
+TEST_CASE("the inputs fuzzing found replay without breaking a promise", "[fit][property]") {
+  // tests/fuzz/found: the bytes scripts/fuzz.sh stopped at, each named for what it found.
+  const std::filesystem::path dir = std::filesystem::path(ARCPRESS_SOURCE_DIR) / "tests" / "fuzz" / "found";
+  size_t replayed = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    const std::string data = test::read_file(e.path());
+    const std::vector<uint8_t> bytes(data.begin(), data.end());
+    test::RandomCase c = test::random_case(bytes);
+    DiagnosticSink sink;
+    CompressResult r = compress("found.nc", c.text, c.opt, sink);
+    INFO(e.path().filename().string() << "\n" << c.text);
+    CHECK(test::broken_promise(r) == "");
+    ++replayed;
+  }
+  CHECK(replayed >= 2);
 }
 
 TEST_CASE("random polylines always stay inside the band", "[fit][property]") {

@@ -210,7 +210,7 @@ class RunFitter {
         if (fixed_[a].end) m.end_tangent = *fixed_[a].end;
         const auto& dir = fixed_[a].start;
         const bool new_joint = after_fitted || fixed_[a].fitted_start || (a > 0 && fixed_[a - 1].fitted_end);
-        m.kinked = new_joint && !hard_[a] && dir && !out.empty() && !g1_cone_.holds(out.back().end_tangent, *dir);
+        m.kinked = new_joint && !hard_[a] && dir && !out.empty() && !joint_cone_.holds(out.back().end_tangent, *dir);
         out.push_back(m);
         after_fitted = false;
         ++a;
@@ -291,7 +291,7 @@ class RunFitter {
       const bool fixed = fixed_[from].fixed;
       if (fixed && fixed_[before].fixed && !fixed_[from].fitted_start && !fixed_[from - 1].fitted_end) continue;
       const std::optional<Vec2> dir = fixed ? fixed_[from].start : std::optional<Vec2>(start_tangent(chain[i], from));
-      if (dir && !g1_cone_.holds(chain[i - 1].end_tangent, *dir)) chain[i].kinked = true;
+      if (dir && !joint_cone_.holds(chain[i - 1].end_tangent, *dir)) chain[i].kinked = true;
     }
   }
 
@@ -740,11 +740,11 @@ class RunFitter {
     for (size_t i = 0; i < chain.size(); ++i) {
       const uint32_t from = from_of(i), to = chain[i].prim.end_vertex;
       const std::optional<Vec2> in = arriving(i);
-      if (!in || g1_cone_.holds(*in, start_tangent(chain[i], from))) continue;
+      if (!in || joint_cone_.holds(*in, start_tangent(chain[i], from))) continue;
       const std::optional<Vec2> out = leaving(i);
       std::optional<Chosen> one;
       for (const std::optional<Vec2>& T : {aimed(from, *in, to, out), in})
-        if (!one && T && (one = through(from, *T, to)) && !g1_cone_.holds(*in, start_tangent(*one, from))) one.reset();
+        if (!one && T && (one = through(from, *T, to)) && !joint_cone_.holds(*in, start_tangent(*one, from))) one.reset();
       if (one) {
         chain[i] = *one;
         continue;
