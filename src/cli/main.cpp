@@ -213,8 +213,9 @@ int main(int argc, char** argv) {
                  "keep: leave every G1 as it is; arcs: fit lines and arcs, fewest blocks; "
                  "global: as arcs, plus a wider search that finds fewer blocks on long smooth curves, slower; "
                  "greedy: fit lines and arcs one at a time, faster; stream: arcs through both end points grown "
-                 "move by move in a bounded window, joints not tangent (seed method); lowe: lines found by "
-                 "recursive splitting, then arcs over runs of them, joints not tangent (seed method)")
+                 "move by move in a bounded window, joints made tangent afterwards where the band allows (seed "
+                 "method); lowe: lines found by recursive splitting rated by significance, then arcs over runs "
+                 "of them, joints made tangent afterwards where the band allows (seed method)")
       ->check(CLI::IsMember({"keep", "arcs", "global", "greedy", "stream", "lowe"}))->capture_default_str();
   app.add_option("--g1-angle", a.opt.fit.g1_angle_deg, "Max tangent change in degrees at smooth joints")
       ->check(CLI::PositiveNumber)->capture_default_str();

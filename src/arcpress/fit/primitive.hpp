@@ -24,8 +24,8 @@ struct FitOptions {
     Arcs,    ///< G1-continuous lines and arcs, fewest found by a beam search over chains (default)
     Global,  ///< as Arcs, and a layered search over (vertex, tangent) states where it is shorter
     Greedy,  ///< G1-continuous lines and arcs, one primitive at a time with a short look-ahead
-    Stream,  ///< seeds 001/003: arcs through both end points grown one vertex at a time, no G1
-    Lowe,    ///< seed 000: recursive line detection, then arcs over runs of the lines, no G1
+    Stream,  ///< seeds 001/003: arcs through both end points grown one vertex at a time, then seed 000's G1 adjustment
+    Lowe,    ///< seed 000: Lowe's line detection, arcs over runs of the lines, then its G1 adjustment
   };
   Method method = Method::Arcs;
   bool arcs = true;                ///< false: lines only (the controller takes no arcs here)
