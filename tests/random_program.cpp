@@ -36,10 +36,12 @@ RandomCase random_case(std::span<const uint8_t> bytes) {
   const double steps_mm[] = {0.01, 0.1, 1.0, 0.003};  // the size of one step
   const double step_mm = steps_mm[form & 3];
   const int decimals = (form >> 2) & 1 ? 3 : 4;
-  const bool smooth = (form >> 5) & 1, flat = (form >> 6) & 1;
+  const bool smooth = (form >> 5) & 1, flat = (form >> 6) & 1, extrudes = (form >> 7) & 1;
   std::string& s = c.text;
-  s = fmt::format("G21 G90 {}\nG0 X0 Y0 Z0\nG1 F1000\n", planes[(form >> 3) & 3]);
+  s = fmt::format("G21 G90 {}{}\nG0 X0 Y0 Z0\nG1 F1000\n", planes[(form >> 3) & 3], extrudes ? " M83" : "");
   double x = 0, y = 0, z = 0, hx = 1, hy = 0;
+  double e_per_mm = 0.05;  // relative extrusion (M83), its rate changing now and then
+  double last_x = 0, last_y = 0;  // the last printed point, for the extrusion of a move
   for (size_t i = 3; i + 2 < bytes.size(); i += 3) {
     const auto a = static_cast<int8_t>(bytes[i]), b = static_cast<int8_t>(bytes[i + 1]),
                h = static_cast<int8_t>(bytes[i + 2]);
@@ -60,7 +62,15 @@ RandomCase random_case(std::span<const uint8_t> bytes) {
     // Now and then a block that is no move: runs end there, and are fitted as one chain.
     if ((h & 0x3f) == 0x21) s += "(note)\n";
     if ((h & 0x3f) == 0x22) s += fmt::format("G1 F{}\n", 500 + (i % 7) * 100);
-    s += fmt::format("G1 X{:.{}f} Y{:.{}f} Z{:.{}f}\n", x, decimals, y, decimals, z, decimals);
+    const double px = std::stod(fmt::format("{:.{}f}", x, decimals)), py = std::stod(fmt::format("{:.{}f}", y, decimals));
+    s += fmt::format("G1 X{:.{}f} Y{:.{}f} Z{:.{}f}", x, decimals, y, decimals, z, decimals);
+    if (extrudes) {
+      if ((h & 0x3f) == 0x23) e_per_mm *= 1.5;
+      s += fmt::format(" E{:.5f}", e_per_mm * std::hypot(px - last_x, py - last_y));
+    }
+    s += "\n";
+    last_x = px;
+    last_y = py;
   }
   s += "M2\n";
   return c;

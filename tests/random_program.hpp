@@ -18,7 +18,7 @@ struct RandomCase {
 
 /// The first three bytes choose the options (tolerance, method, helical arcs, smallest
 /// radius, spikes), the program's form (plane, step scale, printed decimals, smooth turns
-/// or free steps, flat or wandering normal axis) and the controller (a shipped dialect,
+/// or free steps, flat or wandering normal axis, extrusion) and the controller (a shipped dialect,
 /// R-form arcs); every further three bytes make one G1 move, and some of them a comment or
 /// a feed change before it.
 RandomCase random_case(std::span<const uint8_t> bytes);
