@@ -107,6 +107,10 @@ CompressResult compress(const std::string& name, std::string text, const Compres
     for (size_t k = 0; k < runs.size(); ++k)
       for (uint32_t v : fits[k].forced_at)
         r.forced_kink_lines.push_back(prog.blocks[in.moves[runs[k].first_move + v].block].line);
+    // In order, each once (a joint between two runs may be reported by both).
+    std::sort(r.forced_kink_lines.begin(), r.forced_kink_lines.end());
+    r.forced_kink_lines.erase(std::unique(r.forced_kink_lines.begin(), r.forced_kink_lines.end()),
+                              r.forced_kink_lines.end());
     r.forced_kinks = r.forced_kink_lines.size();
   }
   EmitOptions eo;

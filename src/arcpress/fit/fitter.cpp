@@ -1529,12 +1529,9 @@ std::vector<FitResult> fit_chain(const Interpretation& in, const RunChain& chain
         out[r].prims.push_back(p);
         if (c.kinked) out[r].forced_at.push_back(from - base(r));
       } else if (c.kinked && r > 0 && base(r - 1) + own[r - 1].move_count == from) {
-        // (A joint beside a run fitted in another plane is judged in both planes' passes.)
-        auto& forced = out[r - 1].forced_at;
-        if (forced.empty() || forced.back() != own[r - 1].move_count) forced.push_back(own[r - 1].move_count);
+        out[r - 1].forced_at.push_back(own[r - 1].move_count);
       } else if (c.kinked && r < own.size() && base(r) == from) {
-        auto& forced = out[r].forced_at;
-        if (forced.empty() || forced.front() != 0) forced.insert(forced.begin(), 0);
+        out[r].forced_at.push_back(0);
       }
       from = c.prim.end_vertex;
     }
@@ -1545,6 +1542,12 @@ std::vector<FitResult> fit_chain(const Interpretation& in, const RunChain& chain
   for (size_t r = 0; r < own.size(); ++r)
     if (!done[r] && own[r].plane != lead.plane) fit_plane(own[r].plane);
   fit_plane(lead.plane);
+  // The passes report a run's joints in their own order, a joint beside another plane's run
+  // possibly twice.
+  for (FitResult& f : out) {
+    std::sort(f.forced_at.begin(), f.forced_at.end());
+    f.forced_at.erase(std::unique(f.forced_at.begin(), f.forced_at.end()), f.forced_at.end());
+  }
   return out;
 }
 
