@@ -107,11 +107,6 @@ CompressResult compress(const std::string& name, std::string text, const Compres
     for (size_t k = 0; k < runs.size(); ++k)
       for (uint32_t v : fits[k].forced_at)
         r.forced_kink_lines.push_back(prog.blocks[in.moves[runs[k].first_move + v].block].line);
-    // In order, each once (a joint between two runs may be reported by both).
-    std::sort(r.forced_kink_lines.begin(), r.forced_kink_lines.end());
-    r.forced_kink_lines.erase(std::unique(r.forced_kink_lines.begin(), r.forced_kink_lines.end()),
-                              r.forced_kink_lines.end());
-    r.forced_kinks = r.forced_kink_lines.size();
   }
   EmitOptions eo;
   eo.band_mm = opt.fit.tolerance_mm;
@@ -135,14 +130,12 @@ CompressResult compress(const std::string& name, std::string text, const Compres
                           std::back_inserter(turned));
     loose.swap(turned);
   }
-  if (!loose.empty()) {
-    std::vector<uint32_t> all;
-    std::set_union(r.forced_kink_lines.begin(), r.forced_kink_lines.end(), loose.begin(), loose.end(),
-                   std::back_inserter(all));
-    all.erase(std::unique(all.begin(), all.end()), all.end());
-    r.forced_kink_lines.swap(all);
-    r.forced_kinks = r.forced_kink_lines.size();
-  }
+  // In order, each once (a joint between two runs may be reported by both).
+  auto& forced = r.forced_kink_lines;
+  forced.insert(forced.end(), loose.begin(), loose.end());
+  std::sort(forced.begin(), forced.end());
+  forced.erase(std::unique(forced.begin(), forced.end()), forced.end());
+  r.forced_kinks = forced.size();
   return r;
 }
 

@@ -153,6 +153,11 @@ class Emitter {
     const Plane own = in_.moves[run.first_move].plane;
     bool plane_selected = false;
     uint32_t a = 0;
+    auto rule_joints = [&](uint32_t e) {  // the joints of a block the dialect's rules changed
+      if (!stats_) return;
+      stats_->rule_joints.push_back(run.first_move + a);
+      stats_->rule_joints.push_back(run.first_move + e);
+    };
     for (const Primitive& pr : fit.prims) {
       uint32_t e = pr.end_vertex;
       bool arc = pr.kind == Primitive::Kind::Arc;
@@ -161,11 +166,8 @@ class Emitter {
         text = compose(run, fr, a, pr, false);
         if (text && text->size() > d().max_line_length) text = compose(run, fr, a, pr, true);
         if (text && text->size() > d().max_line_length) text.reset();
-        if (!text && stats_) {
-          ++(arc ? stats_->arcs_unprintable : stats_->long_lines_kept);
-          stats_->rule_joints.push_back(run.first_move + a);
-          stats_->rule_joints.push_back(run.first_move + e);
-        }
+        if (!text && stats_) ++(arc ? stats_->arcs_unprintable : stats_->long_lines_kept);
+        if (!text) rule_joints(e);
       }
       if (text) {
         if (arc && !header_done_ && !d().arc_header.empty()) {
@@ -182,10 +184,7 @@ class Emitter {
         out_.append(p_.eol(last));
         out_motion_ = arc ? (pr.ccw != flip(run.plane) ? 30 : 20) : 10;
         if (stats_) ++(arc ? stats_->arcs_out : stats_->lines_out);
-        if (stats_ && arc && loose_) {
-          stats_->rule_joints.push_back(run.first_move + a);
-          stats_->rule_joints.push_back(run.first_move + e);
-        }
+        if (arc && loose_) rule_joints(e);
       } else {
         // The input's own blocks: always readable, always on the path.
         for (uint32_t k = a; k < e; ++k) {

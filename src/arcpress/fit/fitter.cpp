@@ -209,8 +209,8 @@ class RunFitter {
         Chosen m = input_move(a);
         if (fixed_[a].end) m.end_tangent = *fixed_[a].end;
         const auto& dir = fixed_[a].start;
-        const bool new_joint = after_fitted || fixed_[a].fitted_start || (a > 0 && fixed_[a - 1].fitted_end);
-        m.kinked = new_joint && !hard_[a] && dir && !out.empty() && !joint_cone_.holds(out.back().end_tangent, *dir);
+        m.kinked = made_joint(a, !after_fitted) && !hard_[a] && dir && !out.empty() &&
+                   !joint_cone_.holds(out.back().end_tangent, *dir);
         out.push_back(m);
         after_fitted = false;
         ++a;
@@ -278,6 +278,13 @@ class RunFitter {
     return out;
   }
 
+  /// Whether the joint at vertex v, after a move that is fixed or not, is one the fit made:
+  /// between two moves left as they are it is the input's own, unless one side is a line
+  /// that replaced several moves in another plane.
+  bool made_joint(uint32_t v, bool fixed_before) const {
+    return !fixed_[v].fixed || !fixed_before || fixed_[v].fitted_start || (v > 0 && fixed_[v - 1].fitted_end);
+  }
+
   /// Marks as kinked the joints of `chain` (the whole fit) that are corners only because a
   /// spike next to them was skipped, where the tangent breaks there: the verifier, which
   /// skips no spikes, judges them as smooth joints.
@@ -285,12 +292,9 @@ class RunFitter {
     if (plain_hard_.empty()) return;
     for (size_t i = 1; i < chain.size(); ++i) {
       const uint32_t before = i > 1 ? chain[i - 2].prim.end_vertex : 0, from = chain[i - 1].prim.end_vertex;
-      if (!hard_[from] || plain_hard_[from] || chain[i].kinked) continue;
-      // Between two moves left as they are, the joint is the input's own (unless one side
-      // is a line that replaced several moves in another plane).
-      const bool fixed = fixed_[from].fixed;
-      if (fixed && fixed_[before].fixed && !fixed_[from].fitted_start && !fixed_[from - 1].fitted_end) continue;
-      const std::optional<Vec2> dir = fixed ? fixed_[from].start : std::optional<Vec2>(start_tangent(chain[i], from));
+      if (!hard_[from] || plain_hard_[from] || chain[i].kinked || !made_joint(from, fixed_[before].fixed)) continue;
+      const std::optional<Vec2> dir =
+          fixed_[from].fixed ? fixed_[from].start : std::optional<Vec2>(start_tangent(chain[i], from));
       if (dir && !joint_cone_.holds(chain[i - 1].end_tangent, *dir)) chain[i].kinked = true;
     }
   }
@@ -647,10 +651,10 @@ class RunFitter {
     }
   }
 
-  /// The chain from `a` to `limit` built one primitive at a time, each the best-scoring of a
-  /// few checked candidates. Where nothing leaves a smooth joint tangentially, the tangent
-  /// breaks there and `forced` counts it.
-  /// The greedy chain, walked one primitive at a time as far as it is asked for.
+  /// The greedy chain from `a` to `limit`, built one primitive at a time, each the
+  /// best-scoring of a few checked candidates, and walked only as far as it is asked for.
+  /// Where nothing leaves a smooth joint tangentially, the tangent breaks there and `forced`
+  /// counts it.
   struct GreedyWalk {
     const RunFitter& f;
     uint32_t a, limit;
