@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "arcpress/api/arcpress.hpp"
+#include "arcpress/fit/count_bound.hpp"
 
 namespace fs = std::filesystem;
 using clk = std::chrono::steady_clock;
@@ -32,6 +33,16 @@ struct Curve {
 
 Vec2 bezier(const Vec2& p0, const Vec2& p1, const Vec2& p2, double t) {
   return (1 - t) * (1 - t) * p0 + 2 * t * (1 - t) * p1 + t * t * p2;
+}
+
+/// The curve's samples as the program prints them (4 decimals).
+std::vector<Vec2> samples(const Curve& c) {
+  std::vector<Vec2> out;
+  for (int i = 0; i < c.samples; ++i) {
+    Vec2 p = c.f(c.t0 + (c.t1 - c.t0) * i / (c.samples - 1));
+    out.emplace_back(std::stod(fmt::format("{:.4f}", p.x())), std::stod(fmt::format("{:.4f}", p.y())));
+  }
+  return out;
 }
 
 std::string program(const Curve& c) {
@@ -113,13 +124,15 @@ int main(int argc, char** argv) {
        1000, 7},
   };
   fmt::print("Xu 2021 test curves, --min-radius 0 (B-splines: cubic, clamped uniform knots, the paper's control points)\n");
-  fmt::print("Xu's ε bounds a mean square; 'estimate' is the asymptotic G1 count under a max-deviation band\n");
+  fmt::print("Xu's ε bounds a mean square; 'estimate' is the asymptotic G1 count under a max-deviation band;\n");
+  fmt::print("'bound' the exact fewest lines and arcs, tangent or not, joined at vertices, with every vertex in the band\n");
   fmt::print("stream, lowe (seed methods, tangent only where their adjustment reaches): segments/forced kinks\n");
-  fmt::print("{:<9} {:>6} {:>8} {:>6} {:>6} {:>6} {:>9} {:>10} {:>10} {:>8} {:>8} {:>7} {:>9} {:>7} {:>8} {:>8}\n", "curve",
-             "points", "tol mm", "segs", "arcs", "Xu", "estimate", "max dev", "max kink", "forced", "ms", "global",
+  fmt::print("{:<9} {:>6} {:>8} {:>6} {:>6} {:>6} {:>9} {:>6} {:>10} {:>10} {:>8} {:>8} {:>7} {:>9} {:>7} {:>8} {:>8}\n", "curve",
+             "points", "tol mm", "segs", "arcs", "Xu", "estimate", "bound", "max dev", "max kink", "forced", "ms", "global",
              "global ms", "greedy", "stream", "lowe");
   for (const Curve& c : curves) {
     std::string text = program(c);
+    const std::vector<Vec2> pts = samples(c);
     const double rate_integral = curvature_rate_integral(c);
     for (double tol : {0.01, 0.005, 0.001}) {
       CompressOptions opt;
@@ -156,9 +169,9 @@ int main(int argc, char** argv) {
       auto seed = [](const CompressResult& x) {
         return fmt::format("{}/{}", x.stats.lines_out + x.stats.arcs_out, x.forced_kinks);
       };
-      fmt::print("{:<9} {:>6} {:>8.3f} {:>6} {:>6} {:>6} {:>9.1f} {:>10.6f} {:>9.3f}° {:>8} {:>8.2f} {:>7} {:>9.2f} {:>7} {:>8} {:>8}\n", c.name,
+      fmt::print("{:<9} {:>6} {:>8.3f} {:>6} {:>6} {:>6} {:>9.1f} {:>6} {:>10.6f} {:>9.3f}° {:>8} {:>8.2f} {:>7} {:>9.2f} {:>7} {:>8} {:>8}\n", c.name,
                  c.samples, tol, r.stats.lines_out + r.stats.arcs_out, r.stats.arcs_out,
-                 tol == 0.01 ? std::to_string(c.xu_arcs) : "", 0.200 * std::cbrt(1 / tol) * rate_integral,
+                 tol == 0.01 ? std::to_string(c.xu_arcs) : "", 0.200 * std::cbrt(1 / tol) * rate_integral, min_primitive_count(pts, tol),
                  r.comparison.max_deviation_mm,
                  r.comparison.max_smooth_kink_deg, r.forced_kinks, best, gl.stats.lines_out + gl.stats.arcs_out,
                  global_ms, g.stats.lines_out + g.stats.arcs_out,

@@ -1,0 +1,20 @@
+#pragma once
+// A lower bound on the primitives a fit can need, for judging the fitter's counts: the fewest
+// lines and arcs (any radius, any sweep, tangent at their joints or not) whose joints are
+// vertices of the polyline and which keep every vertex between within the band. The fitter's
+// primitives are all of this kind (and held to more: the moves between vertices, the joints'
+// tangents, the options' limits), so no fit of the same polyline in the same band has fewer.
+#include <cstddef>
+#include <span>
+
+#include "arcpress/core/geometry.hpp"
+
+namespace arcpress {
+
+/// The fewest primitives as above over `pts` (the polyline's vertices in its plane, mm),
+/// each vertex within `band_mm` (mm) of the circle or line of the primitive spanning it.
+/// Exact (dynamic programming over every pair of vertices): O(n²) tests, most of them ended
+/// by the vertex that ended the test before, so meant for curves of thousands of points.
+size_t min_primitive_count(std::span<const Vec2> pts, double band_mm);
+
+}  // namespace arcpress

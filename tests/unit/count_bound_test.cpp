@@ -1,0 +1,96 @@
+// Specifications of the lower bound on primitive counts (fit/count_bound), and of the fitter
+// against it: no fit of a polyline has fewer primitives than the bound in the same band.
+#include <catch2/catch.hpp>
+#include <fmt/format.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "arcpress/api/arcpress.hpp"
+#include "arcpress/fit/count_bound.hpp"
+
+using namespace arcpress;
+
+namespace {
+
+/// The points as a program prints them with 4 decimals, read back.
+std::vector<Vec2> printed(const std::vector<Vec2>& pts) {
+  std::vector<Vec2> out;
+  for (const Vec2& p : pts) out.emplace_back(std::stod(fmt::format("{:.4f}", p.x())), std::stod(fmt::format("{:.4f}", p.y())));
+  return out;
+}
+
+std::string program(const std::vector<Vec2>& pts) {
+  std::string s = fmt::format("G21 G90 G17\nG0 X{:.4f} Y{:.4f} Z0\nG1 F600\n", pts[0].x(), pts[0].y());
+  for (size_t i = 1; i < pts.size(); ++i) s += fmt::format("G1 X{:.4f} Y{:.4f}\n", pts[i].x(), pts[i].y());
+  return s + "M2\n";
+}
+
+std::vector<Vec2> arc(const Vec2& c, double r, double a0_deg, double a1_deg, int moves) {
+  std::vector<Vec2> p;
+  for (int i = 0; i <= moves; ++i) {
+    const double a = deg_to_rad(a0_deg + (a1_deg - a0_deg) * i / moves);
+    p.push_back(c + r * Vec2(std::cos(a), std::sin(a)));
+  }
+  return p;
+}
+
+std::vector<Vec2> sampled(int moves, double t0, double t1, const std::function<Vec2(double)>& f) {
+  std::vector<Vec2> p;
+  for (int i = 0; i <= moves; ++i) p.push_back(f(t0 + (t1 - t0) * i / moves));
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("a polyline on one circle or one line needs one primitive; nothing needs none", "[fit][bound]") {
+  CHECK(min_primitive_count(printed(arc({0, 0}, 5, 0, 170, 80)), 0.01) == 1);
+  CHECK(min_primitive_count(printed(arc({3, -2}, 0.5, 90, -200, 60)), 0.01) == 1);  // more than half a turn
+  CHECK(min_primitive_count(sampled(50, 0, 1, [](double t) { return Vec2(10 * t, 3 * t); }), 0.001) == 1);
+  CHECK(min_primitive_count(std::vector<Vec2>{{1, 1}}, 0.01) == 0);
+  CHECK(min_primitive_count(std::vector<Vec2>{}, 0.01) == 0);
+}
+
+TEST_CASE("a zigzag wider than the band: any three vertices lie on a circle, four do not", "[fit][bound]") {
+  std::vector<Vec2> zigzag;
+  for (int i = 0; i <= 10; ++i) zigzag.emplace_back(i, i % 2 ? 1.0 : 0.0);
+  CHECK(min_primitive_count(zigzag, 0.01) == 5);
+  zigzag.emplace_back(11, 1);
+  CHECK(min_primitive_count(zigzag, 0.01) == 6);
+}
+
+TEST_CASE("two arcs of different radii need two primitives; a band wide enough for one circle needs one",
+          "[fit][bound]") {
+  auto first = arc({0, 0}, 10, -90, 0, 40);   // radius 10, ends at (10, 0) heading +y
+  auto second = arc({8, 0}, 2, 0, 90, 40);    // radius 2, tangent there
+  first.insert(first.end(), second.begin() + 1, second.end());
+  CHECK(min_primitive_count(printed(first), 0.01) == 2);
+  CHECK(min_primitive_count(printed(first), 0.01) <= min_primitive_count(printed(first), 0.001));
+  CHECK(min_primitive_count(printed(first), 5.0) == 1);
+}
+
+TEST_CASE("no fit has fewer primitives than the bound in the same band, whatever the method", "[fit][bound]") {
+  const std::vector<std::pair<const char*, std::vector<Vec2>>> curves = {
+      {"sine", sampled(600, 0, 4 * kPi, [](double t) { return Vec2(t, 2 * std::sin(t)); })},
+      {"spiral", sampled(800, 0.5, 5 * kPi, [](double t) { return Vec2(t * std::cos(t), t * std::sin(t)); })},
+      {"y=x^3", sampled(1000, -2, 2, [](double x) { return Vec2(x, x * x * x); })},
+  };
+  for (const auto& [name, raw] : curves)
+    for (double tol : {0.05, 0.01, 0.002})
+      for (auto method : {FitOptions::Method::Arcs, FitOptions::Method::Global, FitOptions::Method::Greedy,
+                          FitOptions::Method::Stream, FitOptions::Method::Lowe}) {
+        CompressOptions opt;
+        opt.fit.tolerance_mm = tol;
+        opt.fit.min_radius_mm = 0;
+        opt.fit.method = method;
+        DiagnosticSink sink;
+        const CompressResult r = compress("t.nc", program(raw), opt, sink);
+        REQUIRE(r.ok);
+        REQUIRE(r.comparison.matched);
+        const size_t bound = min_primitive_count(printed(raw), tol);
+        INFO(name << " at " << tol << " mm, method " << int(method) << ": bound " << bound);
+        CHECK(bound >= 2);
+        CHECK(r.stats.lines_out + r.stats.arcs_out >= bound);
+      }
+}
