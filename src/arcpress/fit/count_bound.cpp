@@ -47,6 +47,79 @@ class DirectionSet {
   std::vector<Interval> set_, next_;
 };
 
+/// The angle `a` (rad) moved by whole turns into (ref - π, ref + π].
+double near(double a, double ref) {
+  return ref + std::remainder(a - ref, 2 * kPi);
+}
+
+struct Range {
+  double lo, hi;  // rad
+};
+
+/// The (offset, curvature) points of a convex polygon: offsets (rad) of the start tangent
+/// from a range's middle, curvatures (1/mm) of the circle leaving along it.
+class Polygon {
+ public:
+  void box(double half_width_rad, double max_curvature) {
+    v_ = {{-half_width_rad, -max_curvature}, {half_width_rad, -max_curvature},
+          {half_width_rad, max_curvature}, {-half_width_rad, max_curvature}};
+  }
+  bool empty() const { return v_.size() < 3; }
+  /// Keeps the points with a·offset + b·curvature <= c.
+  void keep(double a, double b, double c) {
+    tmp_.clear();
+    const size_t n = v_.size();
+    for (size_t s = 0; s < n; ++s) {
+      const Vec2& p = v_[s];
+      const Vec2& q = v_[(s + 1) % n];
+      const double fp = a * p.x() + b * p.y() - c, fq = a * q.x() + b * q.y() - c;
+      if (fp <= 0) tmp_.push_back(p);
+      if ((fp < 0 && fq > 0) || (fp > 0 && fq < 0)) tmp_.push_back(p + (q - p) * (fp / (fp - fq)));
+    }
+    v_.swap(tmp_);
+  }
+  /// The smallest and largest offset.
+  Range offsets() const {
+    Range r{kPi, -kPi};
+    for (const Vec2& p : v_) {
+      r.lo = std::min(r.lo, p.x());
+      r.hi = std::max(r.hi, p.x());
+    }
+    return r;
+  }
+
+ private:
+  std::vector<Vec2> v_, tmp_;
+};
+
+/// Sorted, merged ranges minus `taken`; what is left is added to `taken`.
+std::vector<Range> take_new(std::vector<Range> ranges, std::vector<Range>& taken) {
+  std::sort(ranges.begin(), ranges.end(), [](const Range& x, const Range& y) { return x.lo < y.lo; });
+  std::vector<Range> merged;
+  for (const Range& r : ranges)
+    if (!merged.empty() && r.lo <= merged.back().hi) merged.back().hi = std::max(merged.back().hi, r.hi);
+    else merged.push_back(r);
+  std::vector<Range> fresh;
+  for (Range r : merged) {
+    // Cut away every taken range; `taken` is sorted and disjoint.
+    for (const Range& t : taken) {
+      if (t.hi <= r.lo || t.lo >= r.hi) continue;
+      if (t.lo > r.lo) fresh.push_back({r.lo, t.lo});
+      r.lo = std::max(r.lo, t.hi);
+      if (r.lo >= r.hi) break;
+    }
+    if (r.lo < r.hi) fresh.push_back(r);
+  }
+  ranges = taken;
+  ranges.insert(ranges.end(), fresh.begin(), fresh.end());
+  std::sort(ranges.begin(), ranges.end(), [](const Range& x, const Range& y) { return x.lo < y.lo; });
+  taken.clear();
+  for (const Range& r : ranges)
+    if (!taken.empty() && r.lo <= taken.back().hi) taken.back().hi = std::max(taken.back().hi, r.hi);
+    else taken.push_back(r);
+  return fresh;
+}
+
 }  // namespace
 
 size_t min_primitive_count(std::span<const Vec2> pts, double band_mm) {
@@ -92,6 +165,103 @@ size_t min_primitive_count(std::span<const Vec2> pts, double band_mm) {
     }
   }
   return best[n];
+}
+
+size_t min_g1_primitive_count(std::span<const Vec2> pts, double band_mm, double g1_angle_deg) {
+  const size_t n = pts.size() < 2 ? 0 : pts.size() - 1;  // moves
+  if (n == 0) return 0;
+  const double eps = band_mm, g1 = deg_to_rad(g1_angle_deg);
+  const double half = deg_to_rad(0.125);  // a state's tangent range is at most twice this wide
+  // The circle leaving vertex i along the tangent at angle θ0 + δ, with curvature k: a vertex
+  // u (from i) is within ε of it when |k w − 2 u·N| <= 2ε, w = |u|² − ε², N its left normal.
+  // u·N = (u·N0) cos δ − (u·T0) sin δ differs from the line (u·N0) − (u·T0) δ by at most
+  // |u| (δ²/2 + |δ|³/6): with that allowance the condition bounds (δ, k) by two half-planes.
+  const double bend = half * half / 2 + half * half * half / 6;
+  const double slack = 1e-9 * eps;  // rounding, on the side of keeping
+  // A vertex's own direction: the angles at it are kept near it (no wrap-around).
+  auto reference = [&](size_t v) {
+    const Vec2 d = pts[std::min(v + 1, n)] - pts[v > 0 ? v - 1 : 0];
+    return std::atan2(d.y(), d.x());
+  };
+  struct State {
+    size_t v;
+    double mid;  // rad: the tangents mid ± half
+  };
+  std::vector<std::vector<Range>> taken(n + 1), arriving(n + 1);
+  std::vector<size_t> touched;
+  std::vector<State> layer, next;
+  auto add_states = [&](size_t v, const std::vector<Range>& ranges) {
+    for (const Range& r : ranges) {
+      const int pieces = std::max(1, int(std::ceil((r.hi - r.lo) / (2 * half))));
+      const double step = (r.hi - r.lo) / pieces;
+      for (int k = 0; k < pieces; ++k) next.push_back({v, r.lo + (k + 0.5) * step});
+    }
+  };
+  {
+    const double ref = reference(0);
+    add_states(0, take_new({{ref - kPi, ref + kPi}}, taken[0]));
+  }
+  Polygon poly, end;
+  for (size_t count = 1; !next.empty(); ++count) {
+    layer.swap(next);
+    next.clear();
+    for (const State& st : layer) {
+      const size_t i = st.v;
+      const Vec2 T0(std::cos(st.mid), std::sin(st.mid)), N0 = left_normal(T0);
+      poly.box(half, 1e9);
+      for (size_t j = i + 1; j <= n; ++j) {
+        if (j > i + 1) {  // vertex j - 1 is now between the ends
+          const Vec2 u = pts[j - 1] - pts[i];
+          const double w = u.squaredNorm() - eps * eps;
+          const double bn = u.dot(N0), bt = u.dot(T0), ul = u.norm();
+          if (w > 0) {
+            const double allow = 2 * eps + 2 * ul * bend + slack;
+            poly.keep(2 * bt, w, allow + 2 * bn);
+            poly.keep(-2 * bt, -w, allow - 2 * bn);
+          }
+          // An arc of at most half a turn lies ahead of its start tangent, and the vertex
+          // within ε of it: u·T >= -ε, u·T = (u·T0) cos δ + (u·N0) sin δ.
+          poly.keep(-bn, 0, bt + eps + ul * bend + slack);
+          if (poly.empty()) break;
+        }
+        const Vec2 d = pts[j] - pts[i];
+        const double dd = d.squaredNorm();
+        if (dd == 0) {  // back at vertex i: any circle through it, leaving any way
+          if (j == n) return count;
+          arriving[j].push_back({reference(j) - kPi, reference(j) + kPi});
+          touched.push_back(j);
+          continue;
+        }
+        // The circle through vertex j, k |d|² = 2 d·N, and at most half a turn (T·d >= 0).
+        const double chord = std::atan2(d.y(), d.x());
+        const double rel = near(chord - st.mid, 0);
+        const double lo = std::max(-half, rel - kPi / 2), hi = std::min(half, rel + kPi / 2);
+        if (lo > hi) continue;
+        end = poly;
+        const double dn = d.dot(N0), dt = d.dot(T0), allow = 2 * std::sqrt(dd) * bend + slack;
+        end.keep(2 * dt, dd, allow + 2 * dn);
+        end.keep(-2 * dt, -dd, allow - 2 * dn);
+        end.keep(1, 0, hi + 1e-15);
+        end.keep(-1, 0, -lo + 1e-15);
+        if (end.empty()) continue;
+        if (j == n) return count;
+        // The arc ends along its start tangent mirrored in the chord; the next may turn by g1.
+        const Range off = end.offsets();
+        const double ref = reference(j);
+        const double a = near(2 * chord - st.mid - off.hi, ref), b = a + (off.hi - off.lo);
+        arriving[j].push_back({a - g1, b + g1});
+        touched.push_back(j);
+      }
+    }
+    std::sort(touched.begin(), touched.end());
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    for (size_t v : touched) {
+      add_states(v, take_new(std::move(arriving[v]), taken[v]));
+      arriving[v].clear();
+    }
+    touched.clear();
+  }
+  return 0;
 }
 
 }  // namespace arcpress
