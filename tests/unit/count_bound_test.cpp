@@ -92,6 +92,20 @@ TEST_CASE("tangent joints: one circle needs one arc, two tangent arcs of differe
   }
 }
 
+TEST_CASE("a right-angle corner: no tangent chain gets round it inside the band; repeated vertices are no obstacle",
+          "[fit][bound]") {
+  std::vector<Vec2> corner;
+  for (int i = 0; i <= 10; ++i) corner.emplace_back(i, 0);
+  for (int i = 1; i <= 10; ++i) corner.emplace_back(10, i);
+  CHECK(min_g1_primitive_count(corner, 0.01, 0.5) == 0);
+  CHECK(min_primitive_count(corner, 0.01) == 2);
+  std::vector<Vec2> repeated = printed(arc({0, 0}, 5, 0, 90, 30));
+  repeated.insert(repeated.begin() + 10, repeated[10]);
+  repeated.insert(repeated.begin() + 20, 2, repeated[20]);
+  CHECK(min_primitive_count(repeated, 0.01) == 1);
+  CHECK(min_g1_primitive_count(repeated, 0.01, 0.5) == 1);
+}
+
 TEST_CASE("no fit has fewer primitives than the bound in the same band, whatever the method", "[fit][bound]") {
   const std::vector<std::pair<const char*, std::vector<Vec2>>> curves = {
       {"sine", sampled(400, 0, 4 * kPi, [](double t) { return Vec2(t, 2 * std::sin(t)); })},

@@ -243,6 +243,13 @@ size_t min_g1_primitive_count(std::span<const Vec2> pts, double band_mm, double 
         end.keep(-2 * dt, -dd, allow - 2 * dn);
         end.keep(1, 0, hi + 1e-15);
         end.keep(-1, 0, -lo + 1e-15);
+        if (j == i + 1) {
+          // One move: the arc stays within ε of it, so it bulges by at most ε off its chord,
+          // which bounds its curvature: |k| <= 8ε / (|d|² + 4ε²).
+          const double k_max = 8 * eps / (dd + 4 * eps * eps) * (1 + 1e-9);
+          end.keep(0, 1, k_max);
+          end.keep(0, -1, k_max);
+        }
         if (end.empty()) continue;
         if (j == n) return count;
         // The arc ends along its start tangent mirrored in the chord; the next may turn by g1.

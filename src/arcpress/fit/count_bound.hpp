@@ -18,13 +18,13 @@ namespace arcpress {
 size_t min_primitive_count(std::span<const Vec2> pts, double band_mm);
 
 /// The fewest primitives as above that also join tangentially, each joint turning by at
-/// most `g1_angle_deg`, each arc sweeping at most half a turn (the fitter's default
-/// limit), over a polyline without corners; 0 when no such chain exists. The start
-/// tangent is free. Found breadth first over (vertex, tangent) states, each tangent range
-/// taken once, by the first layer that reaches it; the curvatures that keep the vertices
-/// in the band are bounded by half-planes over a tangent range of a quarter degree (the
-/// circle's bend over it allowed for), so a range is kept whenever some tangent in it
-/// could be, and the count is still a lower bound.
+/// most `g1_angle_deg`, each arc sweeping at most half a turn (the fitter's default limit)
+/// and an arc over one move bulging by at most the band off it; 0 when no such chain
+/// exists (a corner). The start tangent is free. Found breadth first over (vertex, tangent)
+/// states, each tangent range taken once, by the first layer that reaches it; the
+/// curvatures that keep the vertices in the band are bounded by half-planes over a tangent
+/// range of a quarter degree (the circle's bend over it allowed for), so a range is kept
+/// whenever some tangent in it could be, and the count is still a lower bound.
 size_t min_g1_primitive_count(std::span<const Vec2> pts, double band_mm, double g1_angle_deg);
 
 }  // namespace arcpress
