@@ -137,3 +137,34 @@ TEST_CASE("no fit has fewer primitives than the bound in the same band, whatever
       }
     }
 }
+
+TEST_CASE("on the published test curves at 0.01 mm, the global method finds the fewest tangent primitives and the "
+          "default search is at most one more", "[fit][bound]") {
+  auto bezier = [](Vec2 p0, Vec2 p1, Vec2 p2) {
+    return [=](double t) { return Vec2((1 - t) * (1 - t) * p0 + 2 * t * (1 - t) * p1 + t * t * p2); };
+  };
+  const std::vector<std::pair<const char*, std::vector<Vec2>>> curves = {
+      {"bezier1", sampled(999, 0, 1, bezier({1, 1}, {5, 1}, {1, 2.75}))},
+      {"bezier2", sampled(999, 0, 1, bezier({0.54, 3.40}, {7.22, 3.61}, {7.39, 3.14}))},
+      {"leaf", sampled(999, 0, 5, [](double t) { return Vec2(30 * t / (1 + t * t * t), 30 * t * t / (1 + t * t * t)); })},
+      {"y=x^3", sampled(1999, -2, 2, [](double x) { return Vec2(x, x * x * x); })},
+      {"loop", sampled(999, -2, 2,
+                       [](double t) { return Vec2(10 * (t * t * t - t) / (t * t + 1), 10 * (t * t - 1) / (t * t + 1)); })},
+  };
+  for (const auto& [name, raw] : curves) {
+    const size_t optimum = min_g1_primitive_count(printed(raw), 0.01, 0.5);
+    auto count = [&](FitOptions::Method method) {
+      CompressOptions opt;
+      opt.fit.min_radius_mm = 0;
+      opt.fit.method = method;
+      DiagnosticSink sink;
+      const CompressResult r = compress("t.nc", program(raw), opt, sink);
+      REQUIRE(r.comparison.matched);
+      REQUIRE(r.forced_kinks == 0);
+      return r.stats.lines_out + r.stats.arcs_out;
+    };
+    INFO(name << ": the fewest tangent primitives " << optimum);
+    CHECK(count(FitOptions::Method::Global) == optimum);
+    CHECK(count(FitOptions::Method::Arcs) <= optimum + 1);
+  }
+}
