@@ -1,6 +1,7 @@
 #include "arcpress/fit/count_bound.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -60,9 +61,8 @@ struct Range {
 /// from a range's middle, curvatures (1/mm) of the circle leaving along it.
 class Polygon {
  public:
-  void box(double half_width_rad, double max_curvature) {
-    v_ = {{-half_width_rad, -max_curvature}, {half_width_rad, -max_curvature},
-          {half_width_rad, max_curvature}, {-half_width_rad, max_curvature}};
+  void box(double half_width_rad, double k_lo, double k_hi) {
+    v_ = {{-half_width_rad, k_lo}, {half_width_rad, k_lo}, {half_width_rad, k_hi}, {-half_width_rad, k_hi}};
   }
   bool empty() const { return v_.size() < 3; }
   /// Keeps the points with a·offset + b·curvature <= c.
@@ -201,28 +201,40 @@ size_t min_g1_primitive_count(std::span<const Vec2> pts, double band_mm, double 
     const double ref = reference(0);
     add_states(0, take_new({{ref - kPi, ref + kPi}}, taken[0]));
   }
-  Polygon poly, end;
+  // Circles turning left (k >= 0) and right (k <= 0) apart: a move inside the arc may not cut
+  // more than ε into the circle, and its middle, from `a` at u, bounds k from one side only:
+  // k w - 2 u·N >= -2ε turning left, <= 2ε turning right (from |u - N/k| >= 1/|k| - ε).
+  std::array<Polygon, 2> sides, ends;
   for (size_t count = 1; !next.empty(); ++count) {
     layer.swap(next);
     next.clear();
     for (const State& st : layer) {
       const size_t i = st.v;
       const Vec2 T0(std::cos(st.mid), std::sin(st.mid)), N0 = left_normal(T0);
-      poly.box(half, 1e9);
+      sides[0].box(half, 0, 1e9);
+      sides[1].box(half, -1e9, 0);
+      // The half-planes a point u (from vertex i) puts on (δ, k): both sides of the band, or
+      // (a move's middle) the inner side only.
+      auto bound = [&](Polygon& poly, const Vec2& u, bool outer, bool inner) {
+        const double w = u.squaredNorm() - eps * eps;
+        if (w <= 0) return;  // within ε of vertex i, which is on every such circle
+        const double bn = u.dot(N0), bt = u.dot(T0), allow = 2 * eps + 2 * u.norm() * bend + slack;
+        if (outer) poly.keep(2 * bt, w, allow + 2 * bn);
+        if (inner) poly.keep(-2 * bt, -w, allow - 2 * bn);
+      };
+      auto middle = [&](size_t m) { return Vec2(0.5 * (pts[m] + pts[m + 1]) - pts[i]); };
       for (size_t j = i + 1; j <= n; ++j) {
-        if (j > i + 1) {  // vertex j - 1 is now between the ends
+        if (j > i + 1) {  // vertex j - 1 is now between the ends, and the move before it
           const Vec2 u = pts[j - 1] - pts[i];
-          const double w = u.squaredNorm() - eps * eps;
           const double bn = u.dot(N0), bt = u.dot(T0), ul = u.norm();
-          if (w > 0) {
-            const double allow = 2 * eps + 2 * ul * bend + slack;
-            poly.keep(2 * bt, w, allow + 2 * bn);
-            poly.keep(-2 * bt, -w, allow - 2 * bn);
+          for (int side = 0; side < 2; ++side) {
+            bound(sides[side], u, true, true);
+            bound(sides[side], middle(j - 2), side == 1, side == 0);
+            // An arc of at most half a turn lies ahead of its start tangent, and the vertex
+            // within ε of it: u·T >= -ε, u·T = (u·T0) cos δ + (u·N0) sin δ.
+            sides[side].keep(-bn, 0, bt + eps + ul * bend + slack);
           }
-          // An arc of at most half a turn lies ahead of its start tangent, and the vertex
-          // within ε of it: u·T >= -ε, u·T = (u·T0) cos δ + (u·N0) sin δ.
-          poly.keep(-bn, 0, bt + eps + ul * bend + slack);
-          if (poly.empty()) break;
+          if (sides[0].empty() && sides[1].empty()) break;
         }
         const Vec2 d = pts[j] - pts[i];
         const double dd = d.squaredNorm();
@@ -237,23 +249,30 @@ size_t min_g1_primitive_count(std::span<const Vec2> pts, double band_mm, double 
         const double rel = near(chord - st.mid, 0);
         const double lo = std::max(-half, rel - kPi / 2), hi = std::min(half, rel + kPi / 2);
         if (lo > hi) continue;
-        end = poly;
         const double dn = d.dot(N0), dt = d.dot(T0), allow = 2 * std::sqrt(dd) * bend + slack;
-        end.keep(2 * dt, dd, allow + 2 * dn);
-        end.keep(-2 * dt, -dd, allow - 2 * dn);
-        end.keep(1, 0, hi + 1e-15);
-        end.keep(-1, 0, -lo + 1e-15);
-        if (j == i + 1) {
-          // One move: the arc stays within ε of it, so it bulges by at most ε off its chord,
-          // which bounds its curvature: |k| <= 8ε / (|d|² + 4ε²).
-          const double k_max = 8 * eps / (dd + 4 * eps * eps) * (1 + 1e-9);
-          end.keep(0, 1, k_max);
-          end.keep(0, -1, k_max);
+        Range off{kPi, -kPi};
+        for (int side = 0; side < 2; ++side) {
+          Polygon& end = ends[side];
+          end = sides[side];
+          end.keep(2 * dt, dd, allow + 2 * dn);
+          end.keep(-2 * dt, -dd, allow - 2 * dn);
+          end.keep(1, 0, hi + 1e-15);
+          end.keep(-1, 0, -lo + 1e-15);
+          bound(end, middle(j - 1), side == 1, side == 0);
+          if (j == i + 1) {
+            // One move: the arc stays within ε of it, so it bulges by at most ε off its
+            // chord, which bounds its curvature: |k| <= 8ε / (|d|² + 4ε²).
+            const double k_max = 8 * eps / (dd + 4 * eps * eps) * (1 + 1e-9);
+            end.keep(0, 1, k_max);
+            end.keep(0, -1, k_max);
+          }
+          if (end.empty()) continue;
+          const Range r = end.offsets();
+          off = {std::min(off.lo, r.lo), std::max(off.hi, r.hi)};
         }
-        if (end.empty()) continue;
+        if (off.lo > off.hi) continue;
         if (j == n) return count;
         // The arc ends along its start tangent mirrored in the chord; the next may turn by g1.
-        const Range off = end.offsets();
         const double ref = reference(j);
         const double a = near(2 * chord - st.mid - off.hi, ref), b = a + (off.hi - off.lo);
         arriving[j].push_back({a - g1, b + g1});
