@@ -1276,7 +1276,8 @@ class RunFitter {
 
   /// The G1 chain from `a` to `limit` with the fewest primitives, found breadth first over
   /// states (vertex, tangent leaving it): layer k holds the states k primitives reach, and
-  /// each is expanded by every end its curvature scan allows, each end checked exactly once.
+  /// each is expanded, along its tangent and along it turned by the joint's whole allowance
+  /// either way, by every end its curvature scan allows, each end checked exactly once.
   /// To stay near-linear, a layer keeps one state per tangent bin (kTangentBinShare of the
   /// G1 angle) in each vertex group (the last layer's advance over kLayerGroups), only ends
   /// at or beyond the layer's furthest vertex are taken (the layer before reached the
@@ -1301,25 +1302,32 @@ class RunFitter {
     while (!layer.empty()) {
       next.clear();
       uint32_t next_front = front;
+      // A state reached by a primitive goes on along its end tangent, or turned at the joint
+      // by all of kJointShare of the G1 angle either way (the turns between come in through
+      // the states' own spread of tangents).
       for (int i : layer) {
-        const uint32_t v = states[i].v;
-        const Vec2 T = states[i].T;
-        scan(v, T, limit, cand);
-        for (size_t k = cand.size(); k-- > 0 && cand[k].e >= front;) {  // furthest first
-          const Candidate& c = cand[k];
-          const uint32_t group = std::max<uint32_t>(1, std::max(advance, next_front - front) / kLayerGroups);
-          const Vec2 end = unchecked(v, T, c).end_tangent;
-          const long bin = std::lround(std::atan2(end.y(), end.x()) / bin_rad);
-          const uint64_t key = (uint64_t(c.e - c.e % group) << 32) | uint32_t(bin);  // group's first vertex
-          if (c.e < limit && seen.count(key)) continue;
-          auto made = make(v, T, c);
-          if (!made) continue;
-          states.push_back({*made, i, c.e, made->end_tangent});
-          const int id = static_cast<int>(states.size()) - 1;
-          if (c.e >= limit) return chain_to(states, id);
-          seen.insert(key);
-          next.push_back(id);
-          next_front = std::max(next_front, c.e);
+        for (const Turn* turn : {(const Turn*)nullptr, &full_left_, &full_right_}) {
+          if (turn && states[i].parent < 0) break;
+          const uint32_t v = states[i].v;
+          const Vec2 T = turn ? (*turn)(states[i].T) : states[i].T;
+          scan(v, T, limit, cand);
+          for (size_t k = cand.size(); k-- > 0 && cand[k].e >= front;) {  // furthest first
+            const Candidate& c = cand[k];
+            const uint32_t group = std::max<uint32_t>(1, std::max(advance, next_front - front) / kLayerGroups);
+            const Vec2 end = unchecked(v, T, c).end_tangent;
+            const long bin = std::lround(std::atan2(end.y(), end.x()) / bin_rad);
+            const uint64_t key = (uint64_t(c.e - c.e % group) << 32) | uint32_t(bin);  // group's first vertex
+            if (c.e < limit && seen.count(key)) continue;
+            auto made = make(v, T, c);
+            // (A line's chord may lie off T by the line allowance, on top of the turn.)
+            if (!made || (turn && !joint_cone_.holds(states[i].T, start_tangent(*made, v)))) continue;
+            states.push_back({*made, i, c.e, made->end_tangent});
+            const int id = static_cast<int>(states.size()) - 1;
+            if (c.e >= limit) return chain_to(states, id);
+            seen.insert(key);
+            next.push_back(id);
+            next_front = std::max(next_front, c.e);
+          }
         }
         if (states.size() > max_states) return {};
       }
