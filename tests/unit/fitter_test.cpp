@@ -670,12 +670,12 @@ TEST_CASE("every tangent break the verifier finds at a smooth joint is one the f
   CHECK(digits.r.comparison.smooth_joints_over_g1 >= 1);
   CHECK(unreported(digits).empty());
   // With a band of 0.001 mm, no centre on Fanuc's 0.001 mm grid keeps this arc of radius
-  // 1.1 mm inside it: the emitter writes the input's moves instead, and the joints beside
+  // 1.3 mm inside it: the emitter writes the input's moves instead, and the joints beside
   // them break, as forced by the digits.
   FitOptions finest;
   finest.tolerance_mm = 0.001;
   finest.min_radius_mm = 0;
-  const double r2_mm = 1.137;
+  const double r2_mm = 1.292;
   std::vector<Pt> kept = {{-0.2, y0, 0}, {-0.1, y0, 0}, {-0.05, y0, 0}};
   for (const Pt& p : arc_points(x0, y0 + r2_mm, r2_mm, -90, 0, 3)) kept.push_back(p);
   for (int k = 1; k <= 10; ++k) kept.push_back({x0 + r2_mm, y0 + r2_mm + 0.05 * k, 0});

@@ -29,8 +29,8 @@ constexpr double kJointShare = 0.9;
 /// How much the extrusion or an extra axis per mm may differ between two neighbouring moves
 /// inside one primitive, as a share of the larger rate.
 constexpr double kRateShare = 0.05;
-/// Share of the G1 angle by which the searches turn the tangent at a joint, each way (twice
-/// this stays within kJointShare).
+/// Share of the G1 angle by which the greedy step first turns the tangent at a joint, each
+/// way; twice this (kJointShare) is its largest turn, and the searches' turn.
 constexpr double kTurnShare = 0.45;
 /// Seed 000: pieces of the line detection this short (in moves) are not split further
 /// unless they leave the band.
@@ -1141,8 +1141,9 @@ class RunFitter {
 
   /// The G1 chain from `a` to `limit` with the fewest primitives a beam search finds. Layer k
   /// holds the chains of k primitives, at most `beam_width` of them, those reaching furthest
-  /// with distinct end tangents; each is extended along its end tangent and along tangents
-  /// turned by a little under half the G1 angle each way. The first chain reaching `limit`
+  /// with distinct end tangents; each is extended along its end tangent and along it turned
+  /// by the whole joint allowance (kJointShare of the G1 angle) each way: the chains' own
+  /// spread of tangents covers the turns between. The first chain reaching `limit`
   /// wins. The tangent at `a` is free, so the roots are a fan of start tangents read off the
   /// input. The greedy chain (read off `greedy` up to its first kink, or chosen again when
   /// null) is always kept. When no chain goes on tangentially, the one reaching furthest is
@@ -1187,13 +1188,13 @@ class RunFitter {
       ++step;
       for (int i : layer) {
         const Node nd = nodes[i];
-        for (const Turn* turn : {(const Turn*)nullptr, &half_left_, &half_right_}) {
+        for (const Turn* turn : {(const Turn*)nullptr, &full_left_, &full_right_}) {
           if (turn && nd.parent < 0) break;
           const Vec2 T = turn ? (*turn)(nd.T) : nd.T;
           pick(nd.v, T, limit, o_.beam_branch, out);
           for (const Candidate& cd : out) {
             if (cd.e >= limit) {
-              if (auto c = make(nd.v, T, cd)) {
+              if (auto c = made_from(nd, T, cd)) {
                 nodes.push_back({*c, i, c->prim.end_vertex, c->end_tangent});
                 return chain_to(nodes, static_cast<int>(nodes.size()) - 1);
               }
@@ -1233,7 +1234,7 @@ class RunFitter {
           long bin = std::lround(std::atan2(m.c.end_tangent.y(), m.c.end_tangent.x()) / bin_rad);
           std::pair<uint32_t, long> key{e, bin};
           if (std::find(seen.begin(), seen.end(), key) != seen.end()) continue;
-          auto c = make(nodes[m.from].v, m.T, m.cand);
+          auto c = made_from(nodes[m.from], m.T, m.cand);
           const int from = m.from;
           m.from = -1;
           if (!c) continue;
@@ -1251,6 +1252,15 @@ class RunFitter {
       layer.swap(next);
     }
     return furthest < 0 ? std::vector<Chosen>{} : chain_to(nodes, furthest);
+  }
+
+  /// Candidate `cd` from node `nd` along `T` (its tangent, or that turned at the joint),
+  /// checked exactly, and held to the joint allowance: a line's chord may lie off T by the
+  /// line allowance, on top of the turn.
+  std::optional<Chosen> made_from(const Node& nd, const Vec2& T, const Candidate& cd) const {
+    auto c = make(nd.v, T, cd);
+    if (c && !joint_cone_.holds(nd.T, start_tangent(*c, nd.v))) return std::nullopt;
+    return c;
   }
 
   /// The beam search's chain from `a` to `limit`. Where no chain goes on tangentially, the
@@ -1429,8 +1439,8 @@ class RunFitter {
   std::vector<uint32_t> soft_upto_;  // soft vertices before each vertex (prefix count)
   std::vector<std::optional<Vec2>> heading_;  // input_tangent() of each vertex inside the stretch
   Scratch& s_ = thread_scratch();
-  Turn half_left_, half_right_;   // kTurnShare of the G1 angle each way: a joint's turn in the searches
-  Turn full_left_, full_right_;   // twice that: the greedy step's largest turn
+  Turn half_left_, half_right_;   // kTurnShare of the G1 angle each way: the greedy step's first turns
+  Turn full_left_, full_right_;   // twice that, the whole joint allowance: its largest, and the searches' turn
   std::array<Turn, 4> root_turns_;   // roots(): 0.3 and 0.6 of it each way
   std::array<Turn, 8> start_turns_;  // start_tangents(): 0.5, 1, 2 and 4 degrees each way
   Cone g1_cone_;                  // the G1 angle: a joint within it is smooth
