@@ -125,8 +125,8 @@ int main(int argc, char** argv) {
   };
   fmt::print("Xu 2021 test curves, --min-radius 0 (B-splines: cubic, clamped uniform knots, the paper's control points)\n");
   fmt::print("Xu's ε bounds a mean square; 'estimate' is the asymptotic G1 count under a max-deviation band;\n");
-  fmt::print("bounds: the fewest lines and arcs joined at vertices with every vertex in the band, 'C0' tangent or not\n");
-  fmt::print("(at 0.01 mm, where Xu's counts are compared; it takes seconds on plum),\n");
+  fmt::print("bounds: the fewest lines and arcs joined at vertices with every vertex in the band;\n");
+  fmt::print("'C0' tangent or not (at 0.01 mm only, where the paper's counts are compared: seconds on plum),\n");
   fmt::print("'G1' tangent within the G1 angle and at most half a turn each (no fit joined so has fewer)\n");
   fmt::print("stream, lowe (seed methods, tangent only where their adjustment reaches): segments/forced kinks\n");
   fmt::print("{:<9} {:>6} {:>8} {:>6} {:>6} {:>6} {:>9} {:>5} {:>5} {:>10} {:>10} {:>8} {:>8} {:>7} {:>9} {:>7} {:>8} {:>8}\n", "curve",
