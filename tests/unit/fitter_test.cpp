@@ -407,6 +407,24 @@ TEST_CASE("the global method never needs more primitives than the default search
   CHECK(fewer_primitives({plum_points(), cubic_points()}, {0.01, 0.005}, search, global) >= 3);
 }
 
+TEST_CASE("the default search does not wiggle: where its chain leaves a narrow place along a tangent it can only "
+          "bring back by S-bends, the stretch is searched layer by layer", "[fit][search]") {
+  // Plum at these tolerances: the beam met an inner tip with a tangent that left it wiggling
+  // along the next petal in dozens of alternating arcs (102 blocks at 0.009 mm, 166 at
+  // 0.003 mm, where the layered search needs 38 and 47).
+  FitOptions search, global;
+  global.method = FitOptions::Method::Global;
+  for (double tol : {0.003, 0.009, 0.012}) {
+    search.tolerance_mm = global.tolerance_mm = tol;
+    search.min_radius_mm = global.min_radius_mm = 0;
+    auto d = compress_text(program(plum_points()), search);
+    auto g = compress_text(program(plum_points()), global);
+    INFO("tolerance " << tol << ": " << d.arcs + d.lines << " blocks, the global method " << g.arcs + g.lines);
+    CHECK(d.arcs + d.lines <= g.arcs + g.lines + 2);
+    CHECK(d.r.forced_kinks == 0);
+  }
+}
+
 namespace {
 /// Outlines like a slicer's perimeters: `count` of them, each three edges of 3 to 6 moves
 /// of 0.6-0.95 mm that turn 0-6° per vertex (the turn drifting along the edge, with a

@@ -35,6 +35,9 @@ constexpr double kTurnShare = 0.45;
 /// Seed 000: pieces of the line detection this short (in moves) are not split further
 /// unless they leave the band.
 constexpr uint32_t kLoweMinMoves = 2;
+/// The default search's chain is searched again layer by layer (as the global method's) when
+/// this many arcs in a row each turn the other way from the one before.
+constexpr int kWiggleArcs = 4;
 /// Candidates per primitive whose next step is looked at before choosing.
 constexpr int kLookahead = 6;
 /// Splits of a stretch into two primitives checked exactly per start tangent when merging.
@@ -262,8 +265,10 @@ class RunFitter {
       if (search && o_.merge) tighten_between_kinks(a, chain);
       // The global method also searches every (vertex, tangent) state layer by layer, for
       // every stretch the greedy chain does not cover with one primitive, and keeps that
-      // chain when, merged too, it has fewer kinks, or as few and fewer primitives.
-      if (o_.method == FitOptions::Method::Global && chain.size() > 1) {
+      // chain when, merged too, it has fewer kinks, or as few and fewer primitives. The
+      // default method does so where its chain wiggles.
+      if ((o_.method == FitOptions::Method::Global && chain.size() > 1) ||
+          (o_.method == FitOptions::Method::Arcs && wiggles(chain))) {
         auto g = layered_chain(a, limit);
         if (!g.empty() && o_.merge) tighten(a, g, in_tangent_);
         if (!g.empty() && std::pair(size_t(0), g.size()) < std::pair(forced, chain.size())) {
@@ -276,6 +281,20 @@ class RunFitter {
     }
     report_spike_corners(out);
     return out;
+  }
+
+  /// Whether `chain` wiggles: several arcs in a row, each turning the other way from the one
+  /// before, as a chain does that left a narrow place (plum's inner tips) with a tangent it
+  /// can only bring back to the path by S-bends, all tangent, all inside the band, and many.
+  bool wiggles(const std::vector<Chosen>& chain) const {
+    int run = 0;
+    for (size_t i = 1; i < chain.size(); ++i) {
+      const Primitive &p = chain[i].prim, &before = chain[i - 1].prim;
+      const bool back = p.kind == Primitive::Kind::Arc && before.kind == Primitive::Kind::Arc && p.ccw != before.ccw;
+      run = back ? run + 1 : 0;
+      if (run >= kWiggleArcs) return true;
+    }
+    return false;
   }
 
   /// Whether the joint at vertex v, after a move that is fixed or not, is one the fit made:
