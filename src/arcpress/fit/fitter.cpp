@@ -1275,7 +1275,7 @@ class RunFitter {
 
   /// Candidate `cd` from node `nd` along `T` (its tangent, or that turned at the joint),
   /// checked exactly, and held to the joint allowance: a line's chord may lie off T by the
-  /// line allowance, on top of the turn.
+  /// line allowance, on top of the turn. (The beam's and the layered search's.)
   std::optional<Chosen> made_from(const Node& nd, const Vec2& T, const Candidate& cd) const {
     auto c = make(nd.v, T, cd);
     if (c && !joint_cone_.holds(nd.T, start_tangent(*c, nd.v))) return std::nullopt;
@@ -1347,9 +1347,8 @@ class RunFitter {
             const long bin = std::lround(std::atan2(end.y(), end.x()) / bin_rad);
             const uint64_t key = (uint64_t(c.e - c.e % group) << 32) | uint32_t(bin);  // group's first vertex
             if (c.e < limit && seen.count(key)) continue;
-            auto made = make(v, T, c);
-            // (A line's chord may lie off T by the line allowance, on top of the turn.)
-            if (!made || (turn && !joint_cone_.holds(states[i].T, start_tangent(*made, v)))) continue;
+            auto made = made_from(states[i], T, c);
+            if (!made) continue;
             states.push_back({*made, i, c.e, made->end_tangent});
             const int id = static_cast<int>(states.size()) - 1;
             if (c.e >= limit) return chain_to(states, id);
