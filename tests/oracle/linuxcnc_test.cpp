@@ -30,8 +30,11 @@ struct Rs274 {
 
 Rs274 run_rs274(const fs::path& dir, const fs::path& program) {
   fs::path out = dir / "canon.txt", err = dir / "err.txt";
-  std::string cmd = fmt::format("rs274 -i '{}' -t '{}' -g '{}' > '{}' 2> '{}'", (dir / "strict.ini").string(),
-                                (dir / "tools.tbl").string(), program.string(), out.string(), err.string());
+  // rs274 keeps its tool table in $HOME/.tool.mmap, truncated when it starts: with one HOME,
+  // oracle tests running at once (ctest -j) would read each other's half-written tables.
+  std::string cmd = fmt::format("HOME='{}' rs274 -i '{}' -t '{}' -g '{}' > '{}' 2> '{}'", dir.string(),
+                                (dir / "strict.ini").string(), (dir / "tools.tbl").string(), program.string(),
+                                out.string(), err.string());
   int status = std::system(cmd.c_str());
   Rs274 r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
