@@ -45,14 +45,12 @@ std::vector<Vec2> samples(const Curve& c) {
   return out;
 }
 
-std::string program(const Curve& c) {
+/// A program that moves along `pts` (printed to 4 decimals, as samples() reads them).
+std::string program(const std::vector<Vec2>& pts) {
   std::string s = "G21 G90 G17\n";
-  for (int i = 0; i < c.samples; ++i) {
-    double t = c.t0 + (c.t1 - c.t0) * i / (c.samples - 1);
-    Vec2 p = c.f(t);
-    s += i == 0 ? fmt::format("G0 X{:.4f} Y{:.4f} Z0\nG1 F1000\n", p.x(), p.y())
-                : fmt::format("G1 X{:.4f} Y{:.4f}\n", p.x(), p.y());
-  }
+  for (size_t i = 0; i < pts.size(); ++i)
+    s += i == 0 ? fmt::format("G0 X{:.4f} Y{:.4f} Z0\nG1 F1000\n", pts[i].x(), pts[i].y())
+                : fmt::format("G1 X{:.4f} Y{:.4f}\n", pts[i].x(), pts[i].y());
   return s + "M2\n";
 }
 
@@ -133,8 +131,8 @@ int main(int argc, char** argv) {
              "points", "tol mm", "segs", "arcs", "Xu", "estimate", "C0", "G1", "max dev", "max kink", "forced", "ms", "global",
              "global ms", "greedy", "stream", "lowe");
   for (const Curve& c : curves) {
-    std::string text = program(c);
     const std::vector<Vec2> pts = samples(c);
+    const std::string text = program(pts);
     const double rate_integral = curvature_rate_integral(c);
     for (double tol : {0.01, 0.005, 0.001}) {
       CompressOptions opt;

@@ -92,16 +92,20 @@ class Polygon {
   std::vector<Vec2> v_, tmp_;
 };
 
-/// Sorted, merged ranges minus `taken`; what is left is added to `taken`.
-std::vector<Range> take_new(std::vector<Range> ranges, std::vector<Range>& taken) {
+/// `ranges` sorted, overlapping ones merged.
+std::vector<Range> merged(std::vector<Range> ranges) {
   std::sort(ranges.begin(), ranges.end(), [](const Range& x, const Range& y) { return x.lo < y.lo; });
-  std::vector<Range> merged;
+  std::vector<Range> out;
   for (const Range& r : ranges)
-    if (!merged.empty() && r.lo <= merged.back().hi) merged.back().hi = std::max(merged.back().hi, r.hi);
-    else merged.push_back(r);
+    if (!out.empty() && r.lo <= out.back().hi) out.back().hi = std::max(out.back().hi, r.hi);
+    else out.push_back(r);
+  return out;
+}
+
+/// `ranges` minus `taken` (sorted and disjoint); what is left is added to `taken`.
+std::vector<Range> take_new(std::vector<Range> ranges, std::vector<Range>& taken) {
   std::vector<Range> fresh;
-  for (Range r : merged) {
-    // Cut away every taken range; `taken` is sorted and disjoint.
+  for (Range r : merged(std::move(ranges))) {
     for (const Range& t : taken) {
       if (t.hi <= r.lo || t.lo >= r.hi) continue;
       if (t.lo > r.lo) fresh.push_back({r.lo, t.lo});
@@ -110,13 +114,8 @@ std::vector<Range> take_new(std::vector<Range> ranges, std::vector<Range>& taken
     }
     if (r.lo < r.hi) fresh.push_back(r);
   }
-  ranges = taken;
-  ranges.insert(ranges.end(), fresh.begin(), fresh.end());
-  std::sort(ranges.begin(), ranges.end(), [](const Range& x, const Range& y) { return x.lo < y.lo; });
-  taken.clear();
-  for (const Range& r : ranges)
-    if (!taken.empty() && r.lo <= taken.back().hi) taken.back().hi = std::max(taken.back().hi, r.hi);
-    else taken.push_back(r);
+  taken.insert(taken.end(), fresh.begin(), fresh.end());
+  taken = merged(std::move(taken));
   return fresh;
 }
 
