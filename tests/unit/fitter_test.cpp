@@ -178,6 +178,40 @@ TEST_CASE("a smooth curve is fitted with tangent-continuous joints", "[fit]") {
   CHECK(so.r.comparison.max_smooth_kink_deg <= 0.5);
 }
 
+TEST_CASE("moves that go nowhere are stepped over: they cut no curve, make no corner and are not written back",
+          "[fit]") {
+  // The ellipse quadrant with every 37th point repeated, as some CAM posts write, and the
+  // run's last point repeated before a retract at another feed.
+  std::vector<Pt> p;
+  for (int i = 0; i <= 400; ++i) {
+    double t = kPi / 2 * i / 400.0;
+    p.push_back({30 * std::cos(t), 10 * std::sin(t), 0});
+    if (i % 37 == 5 || i == 400) p.push_back(p.back());
+  }
+  std::string text = program(p);
+  text.insert(text.rfind("M2"), "G1 Z5.0000 F300\n");
+  auto o = compress_text(text);
+  INFO(o.r.output);
+  CHECK(o.r.stats.moves_in == p.size() - 1);  // all in the run: 400 moves and 12 repeats
+  CHECK(o.arcs >= 2);
+  CHECK(o.arcs <= 8);
+  CHECK(o.r.comparison.max_deviation_mm <= 0.01);
+  // The verifier judges the joints beside repeated points as smooth, as the fitter does.
+  CHECK(o.r.comparison.smooth_joints + 1 >= o.arcs + o.lines - 1);
+  CHECK(o.r.comparison.max_smooth_kink_deg <= 0.5);
+  CHECK(o.r.forced_kinks == 0);
+  // No block of the output repeats the position before it.
+  DiagnosticSink sink;
+  Program back = lex("out.nc", o.r.output, sink);
+  Interpretation in = interpret(back, sink, Dialect{});
+  for (size_t m = 0; m < in.moves.size(); ++m) CHECK_FALSE(in.goes_nowhere(m));
+
+  // Kept as they are by the Keep method.
+  FitOptions keep;
+  keep.method = FitOptions::Method::Keep;
+  CHECK(compress_text(text, keep).r.output == text);
+}
+
 TEST_CASE("rounding the printed centres keeps smooth joints within the G1 angle", "[fit]") {
   // Xu's plum: tips of radius 0.009 mm, where a centre digit turns the tangent by degrees.
   std::vector<Pt> p;

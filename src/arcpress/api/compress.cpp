@@ -106,7 +106,7 @@ CompressResult compress(const std::string& name, std::string text, const Compres
     fits = fit_runs(in, runs, opt);
     for (size_t k = 0; k < runs.size(); ++k)
       for (uint32_t v : fits[k].forced_at)
-        r.forced_kink_lines.push_back(prog.blocks[in.moves[runs[k].first_move + v].block].line);
+        r.forced_kink_lines.push_back(prog.blocks[in.moves[in.joint_move(runs[k].first_move + v)].block].line);
   }
   EmitOptions eo;
   eo.band_mm = opt.fit.tolerance_mm;
@@ -122,7 +122,7 @@ CompressResult compress(const std::string& name, std::string text, const Compres
   // digits: those that turn too far as read back, or all where the output was not read back.
   std::vector<uint32_t> loose;
   for (uint32_t m : r.stats.rule_joints)
-    if (m < in.moves.size()) loose.push_back(prog.blocks[in.moves[m].block].line);
+    if (m < in.moves.size()) loose.push_back(prog.blocks[in.moves[in.joint_move(m)].block].line);
   std::sort(loose.begin(), loose.end());
   if (r.verified) {
     std::vector<uint32_t> turned;

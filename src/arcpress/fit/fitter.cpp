@@ -95,14 +95,18 @@ class RunFitter {
   /// are, and `pinned` (per vertex, empty: none) where a primitive must end (where one run
   /// meets the next or a fixed move), the tangent going on there.
   RunFitter(const Interpretation& in, const Run& run, const FitOptions& o, std::vector<FixedMove> fixed = {},
-            const std::vector<uint8_t>& pinned = {})
-      : o_(o), n_(run.move_count), fixed_(std::move(fixed)) {
-    fixed_.resize(n_);
+            std::vector<uint8_t> pinned = {})
+      : o_(o), at_(vertices_kept(in, run, o, fixed, pinned)), n_(uint32_t(at_.size() - 1)) {
+    fixed.resize(run.move_count);
+    if (!pinned.empty())
+      for (uint32_t v = 0; v <= n_; ++v) pinned[v] = pinned[at_[v]];
+    for (uint32_t v = 0; v < n_; ++v) fixed_.push_back(fixed[at_[v]]);
+    auto vertex = [&](uint32_t v) -> const AxisValues& { return run.vertex(in, at_[v]); };
     auto ax = axes_of(run.plane);
     p_.resize(n_ + 1);
     q_.resize(n_ + 1);
     for (uint32_t v = 0; v <= n_; ++v) {
-      const auto& a = run.vertex(in, v);
+      const auto& a = vertex(v);
       p_[v] = Vec3(a[ax.first], a[ax.second], a[ax.normal]);
       q_[v] = Vec2(a[ax.first], a[ax.second]);
     }
@@ -110,7 +114,7 @@ class RunFitter {
     // the path length to each vertex they are carried along.
     for (int x = kA; x < kE; ++x)
       for (uint32_t v = 1; v <= n_; ++v)
-        if (run.vertex(in, v)[x] != run.vertex(in, v - 1)[x]) {
+        if (vertex(v)[x] != vertex(v - 1)[x]) {
           extra_.push_back(x);
           break;
         }
@@ -118,7 +122,7 @@ class RunFitter {
       length_.assign(n_ + 1, 0.0);
       for (uint32_t v = 1; v <= n_; ++v) length_[v] = length_[v - 1] + (p_[v] - p_[v - 1]).norm();
       for (uint32_t v = 0; v <= n_; ++v)
-        for (int x : extra_) extra_values_.push_back(run.vertex(in, v)[x]);
+        for (int x : extra_) extra_values_.push_back(vertex(v)[x]);
     }
     arcs_ = o.arcs && (o.extra_axes || extra_.empty());
     eps_ = o.tolerance_mm * (1.0 - kRoundingReserve);
@@ -185,8 +189,8 @@ class RunFitter {
       // Extrusion and the extra axes per mm must stay (nearly) constant inside one primitive:
       // a primitive ends where one starts or stops moving or changes its rate.
       auto rate_changes = [&](int x) {
-        double d1 = run.vertex(in, v)[x] - run.vertex(in, v - 1)[x];
-        double d2 = run.vertex(in, v + 1)[x] - run.vertex(in, v)[x];
+        double d1 = vertex(v)[x] - vertex(v - 1)[x];
+        double d2 = vertex(v + 1)[x] - vertex(v)[x];
         double r1 = d1 / l1, r2 = d2 / l2;
         return (d1 == 0) != (d2 == 0) || std::abs(r1 - r2) > kRateShare * std::max(std::abs(r1), std::abs(r2));
       };
@@ -201,7 +205,35 @@ class RunFitter {
 
   /// The primitives over all moves (fixed moves as themselves), each marked `kinked` where
   /// the tangent breaks at a smooth joint because the band allows nothing tangent there.
+  /// Their end vertices are the run's.
   std::vector<Chosen> fit() {
+    std::vector<Chosen> out = fit_kept();
+    for (Chosen& c : out) c.prim.end_vertex = at_[c.prim.end_vertex];
+    return out;
+  }
+
+  /// The run's vertices the fitter works on: all, less those that only repeat the one before
+  /// (after a move that goes nowhere: no direction, so no corner either), which the
+  /// primitive over their neighbours steps over. Where such a vertex must stay
+  /// (the run's end, a pinned vertex) the one it repeats goes instead, unless that must stay
+  /// too. The Keep method keeps them all.
+  static std::vector<uint32_t> vertices_kept(const Interpretation& in, const Run& run, const FitOptions& o,
+                                             const std::vector<FixedMove>& fixed, const std::vector<uint8_t>& pinned) {
+    const uint32_t n = run.move_count;
+    auto must_stay = [&](uint32_t v) { return v == 0 || v == n || (!pinned.empty() && pinned[v]); };
+    std::vector<uint32_t> at{0};
+    for (uint32_t v = 1; v <= n; ++v) {
+      const bool nowhere = o.method != FitOptions::Method::Keep && (fixed.empty() || !fixed[v - 1].fixed) &&
+                           in.goes_nowhere(run.first_move + v - 1);
+      if (!nowhere) at.push_back(v);
+      else if (must_stay(v) && !must_stay(at.back())) at.back() = v;
+      else if (must_stay(v)) at.push_back(v);
+    }
+    return at;
+  }
+
+ private:
+  std::vector<Chosen> fit_kept() {
     std::vector<Chosen> out;
     if (o_.method == FitOptions::Method::Keep || n_ < 2) return keep();
     // Stretches run from corner to corner, or to a fixed move; the tangent is free at a
@@ -318,7 +350,6 @@ class RunFitter {
     }
   }
 
- private:
   std::vector<Chosen> keep() const {
     std::vector<Chosen> out;
     for (uint32_t v = 0; v < n_; ++v) out.push_back(input_move(v));
@@ -1446,7 +1477,8 @@ class RunFitter {
   }
 
   const FitOptions& o_;
-  uint32_t n_;
+  std::vector<uint32_t> at_;      // the run's vertex of each vertex the fitter works on (vertices_kept())
+  uint32_t n_;                    // moves the fitter works on: at_.size() - 1
   std::vector<Vec3> p_;           // vertices in plane coordinates (first, second, normal)
   // The same in the plane, stored as such: the scans read them as whole vectors, where
   // building each from p_ would stall on the store that assembles it.

@@ -268,8 +268,10 @@ class Interpreter {
     if (kind == MoveKind::ArcCW || kind == MoveKind::ArcCCW) {
       m.center = arc_center(b, fr, target, ijk, ijk_seen, r_seen, r_value, kind, m.known);
     }
+    // A move along X, Y or Z, or one that goes nowhere at all (which the fitter steps over);
+    // not one that moves only E or the extra axes (a retraction, a rotary index).
     bool moved_xyz = target[kX] != pos_[kX] || target[kY] != pos_[kY] || target[kZ] != pos_[kZ];
-    m.fittable = only_g1_words && kind == MoveKind::Line && m.known && moved_xyz && !fr.inverse_time &&
+    m.fittable = only_g1_words && kind == MoveKind::Line && m.known && (moved_xyz || target == pos_) && !fr.inverse_time &&
                  !fr.diameter_mode && feed_known_;
     pos_ = target;
     known_ = known_after;

@@ -66,6 +66,18 @@ Vec2 end_tangent(const Interpretation& in, size_t i) {
   return arc_tangent(Vec2(e.x() - c.x(), e.y() - c.y()), m.kind == MoveKind::ArcCCW);
 }
 
+/// The input vertex nearest to vertex v (the start of move v) along the feed path, before
+/// it (step -1) or after it (step +1), past moves that go nowhere (a fit steps over them, so
+/// they make no corner); none where the feed path ends first.
+std::optional<size_t> vertex_beside(const Interpretation& in, size_t v, int step) {
+  for (size_t u = v;;) {
+    const size_t move = step < 0 ? u - 1 : u;  // the move between u and the next vertex out
+    if ((step < 0 && u == 0) || move >= in.moves.size() || !is_feed(in.moves[move].kind)) return std::nullopt;
+    u = step < 0 ? u - 1 : u + 1;
+    if (!in.goes_nowhere(move)) return u;
+  }
+}
+
 double angle_deg(const Vec2& a, const Vec2& b) {
   if (a.squaredNorm() == 0 || b.squaredNorm() == 0) return 0;
   return rad_to_deg(std::atan2(std::abs(cross2(a, b)), a.dot(b)));
@@ -94,6 +106,10 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
                                i < ia.moves.size() ? a.blocks[ia.moves[i].block].line : 0);
       return r;
     }
+    // Input moves after it that go nowhere belong to it too, unless the output has such a
+    // move of its own next.
+    const bool output_stays = j + 1 < ib.moves.size() && same_point(ib.moves[j + 1].to, mb.to);
+    while (!output_stays && is_feed(mb.kind) && k + 1 < ia.moves.size() && ia.goes_nowhere(k + 1)) ++k;
     bool replaced = k > i;
     if (is_feed(mb.kind) && mb.known) {
       ++r.moves_b;
@@ -133,18 +149,20 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
         r.worst_point = from_plane(pts[std::min(d.at_index, pts.size() - 1)], mb.plane);
       }
       // Tangency at the joint with the previous output feed move.
+      // The input's vertices beside the joint, and one further out, past moves that go nowhere.
+      const auto v_before = vertex_beside(ia, i, -1), v_after = vertex_beside(ia, i, +1);
       if (prev_j == long(j) - 1 && prev_j >= 0 && (replaced || prev_replaced) && ib.moves[prev_j].plane == mb.plane &&
-          i >= 1 && is_feed(ia.moves[i - 1].kind)) {
+          v_before && v_after) {
         // The plane the joint was made in: where both moves were fitted, else the output's.
         Plane pl = mb.plane;
-        if (!opt.fitted_plane.empty() && opt.fitted_plane[i - 1] == opt.fitted_plane[i]) pl = opt.fitted_plane[i];
-        Vec3 before = in_plane(ia.from(i - 1), pl);
+        if (!opt.fitted_plane.empty() && opt.fitted_plane[*v_before] == opt.fitted_plane[i]) pl = opt.fitted_plane[i];
+        Vec3 before = in_plane(ia.from(*v_before), pl);
         Vec3 at = in_plane(ia.from(i), pl);
-        Vec3 after = in_plane(ia.moves[i].to, pl);
-        // The input's vertices one further out, and whether the neighbours are corners.
+        Vec3 after = in_plane(ia.from(*v_after), pl);
+        // Whether the neighbours are corners.
         std::optional<Vec3> before2, after2;
-        if (i >= 2 && is_feed(ia.moves[i - 2].kind)) before2 = in_plane(ia.from(i - 2), pl);
-        if (i + 1 < ia.moves.size() && is_feed(ia.moves[i + 1].kind)) after2 = in_plane(ia.moves[i + 1].to, pl);
+        if (auto u = vertex_beside(ia, *v_before, -1)) before2 = in_plane(ia.from(*u), pl);
+        if (auto u = vertex_beside(ia, *v_after, +1)) after2 = in_plane(ia.from(*u), pl);
         bool before_corner = before2 && is_corner(*before2, before, at, opt.tolerance_mm, opt.corner_angle_deg);
         bool after_corner = after2 && is_corner(at, after, *after2, opt.tolerance_mm, opt.corner_angle_deg);
         if (!is_corner(before, at, after, opt.tolerance_mm, opt.corner_angle_deg) &&
@@ -161,7 +179,7 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
           r.max_smooth_kink_deg = std::max(r.max_smooth_kink_deg, kink);
           if (kink > opt.g1_angle_deg) {
             ++r.smooth_joints_over_g1;
-            r.kink_lines.push_back(a.blocks[ia.moves[i].block].line);
+            r.kink_lines.push_back(a.blocks[ia.moves[ia.joint_move(i)].block].line);
           }
         }
       }
