@@ -85,8 +85,8 @@ struct Interpretation {
   /// Whether move `i` is a G1 that goes nowhere (every axis as before). A fit steps over
   /// such moves; a joint is named by the first move after it that goes somewhere.
   bool goes_nowhere(size_t i) const { return moves[i].kind == MoveKind::Line && moves[i].to == from(i); }
-  /// The move that names the joint at the start of move `i`: the first from `i` on that is
-  /// not a feed move going nowhere (or the last move).
+  /// The move that names the joint at the start of move `i`: the first from `i` on that does
+  /// not go nowhere (or the last move).
   size_t joint_move(size_t i) const {
     while (i + 1 < moves.size() && goes_nowhere(i)) ++i;
     return i;
