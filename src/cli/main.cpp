@@ -130,11 +130,14 @@ int run_compress(const CompressArgs& a) {
                st.arcs_unprintable, st.long_lines_kept, st.plane_words_added, s);
     if (r.verified) {
       const auto& c = r.comparison;
-      DiffPlace w = r.check.worst.empty() ? DiffPlace{} : r.check.worst.front();
+      // Where the worst place is, when there is one (a path written back as it was has none).
+      std::string where;
+      if (!r.check.worst.empty() && r.check.worst.front().line_a > 0)
+        where = fmt::format(", input line {}, output line {}", r.check.worst.front().line_a, r.check.worst.front().line_b);
       fmt::print(stderr,
-                 "  deviation      {:.6f} mm max (band {} mm), input line {}, output line {}\n"
+                 "  deviation      {:.6f} mm max (band {} mm){}\n"
                  "  smooth joints  {} made, max kink {:.3f} deg, {} over {} deg ({} forced by the band or the digits)\n",
-                 r.check.max_deviation_mm, r.band_mm, w.line_a, w.line_b, c.smooth_joints, c.max_smooth_kink_deg,
+                 r.check.max_deviation_mm, r.band_mm, where, c.smooth_joints, c.max_smooth_kink_deg,
                  c.smooth_joints_over_g1, a.opt.fit.g1_angle_deg, r.forced_kinks);
     } else {
       fmt::print(stderr,
