@@ -764,7 +764,10 @@ TEST_CASE("the inputs fuzzing found replay without breaking a promise", "[fit][p
     test::RandomCase c = test::random_case(bytes);
     DiagnosticSink sink;
     CompressResult r = compress("found.nc", c.text, c.opt, sink);
-    INFO(e.path().filename().string() << "\n" << c.text);
+    INFO(e.path().filename().string() << ": " << c.opt.dialect.name << ", tolerance " << c.opt.fit.tolerance_mm
+                                      << " mm, method " << int(c.opt.fit.method) << ", helical " << c.opt.fit.helical
+                                      << ", min radius " << c.opt.fit.min_radius_mm << " mm, spikes " << c.opt.fit.spikes
+                                      << "\n" << c.text);
     CHECK(test::broken_promise(r) == "");
     ++replayed;
   }

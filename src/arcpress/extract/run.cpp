@@ -34,6 +34,14 @@ bool moves_along(const Interpretation& in, size_t i, size_t t, int axis) {
   return false;
 }
 
+/// How many of the moves [i, t) go somewhere (a move that goes nowhere lies in every plane,
+/// so it neither makes a piece flat in one nor ends it).
+size_t moves_going(const Interpretation& in, size_t i, size_t t) {
+  size_t n = 0;
+  for (size_t k = i; k < t; ++k) n += !in.goes_nowhere(k);
+  return n;
+}
+
 void add_run(const Interpretation& in, size_t i, size_t j, Plane plane, uint32_t min_moves, std::vector<Run>& runs) {
   if (j - i < min_moves) return;
   const Move& m = in.moves[i];
@@ -48,7 +56,7 @@ void add_run(const Interpretation& in, size_t i, size_t j, Plane plane, uint32_t
 
 /// Splits the fittable moves [i, j) (one frame, plane and feed) into runs by the plane they
 /// lie in. The program's plane is kept wherever it can hold arcs. Where it climbs (its normal
-/// axis moves) over at least kMinPlanePieceMoves moves that all keep one other principal axis
+/// axis moves) over at least kMinPlanePieceMoves moves (that go somewhere) that all keep one other principal axis
 /// fixed, those moves lie flat in that other plane, whose arcs are the only ones that can
 /// follow them (their projection on the program's plane is a straight line): they become a
 /// run of their own in that plane. So a raster pass in XZ under G17 becomes G18 arcs rather
@@ -71,7 +79,7 @@ void split_by_plane(const Interpretation& in, size_t i, size_t j, uint32_t min_m
     for (int axis = 0; axis < 3; ++axis) {
       if (axis == own_normal || m < blocked[axis]) continue;
       size_t t = flat_until(in, m, j, axis);
-      if (t - m >= kMinPlanePieceMoves && moves_along(in, m, t, own_normal)) {
+      if (moves_going(in, m, t) >= kMinPlanePieceMoves && moves_along(in, m, t, own_normal)) {
         if (t > best_end) {
           best_end = t;
           best_axis = axis;
@@ -138,10 +146,13 @@ std::vector<RunChain> chain_runs(const Interpretation& in, const std::vector<Run
     if (open) {
       const Move& prev = mv[k - 1];
       const bool same_piece = r >= 0 && run_of[k - 1] == r;
-      if (prev.frame != mv[k].frame || prev.plane != mv[k].plane ||
-          (!same_piece && is_corner(point(k - 1, mv[k].plane), point(k, mv[k].plane), point(k + 1, mv[k].plane), band_mm,
-                                    corner_angle_deg)))
-        close();
+      // The corner rule at the joint, with the vertices beside it past moves that go nowhere.
+      auto corner = [&] {
+        const auto b = in.vertex_beside(k, -1), a = in.vertex_beside(k, +1);
+        return !b || !a || is_corner(point(*b, mv[k].plane), point(k, mv[k].plane), point(*a, mv[k].plane), band_mm,
+                                     corner_angle_deg);
+      };
+      if (prev.frame != mv[k].frame || prev.plane != mv[k].plane || (!same_piece && corner())) close();
     }
     if (!open) {
       cur = {uint32_t(k), 0, r >= 0 ? uint32_t(r) : uint32_t(0), 0};

@@ -165,18 +165,34 @@ class RunFitter {
       spike[v] = !spike[v - 1] && corner(v - 1, v, v + 1) &&
                  point_segment_distance(p_[v], p_[v - 1], p_[v + 1]) <= 0.5 * o.tolerance_mm &&
                  !corner(v - 2, v - 1, v + 1) && !corner(v - 1, v + 1, v + 2);
+    // Moves that go nowhere and stay (fixed ones, or those between two vertices that must
+    // stay): the corner rule steps past them, as the verifier does.
+    std::vector<uint8_t> nowhere(n_, 0);
+    for (uint32_t v = 0; v < n_; ++v) {
+      nowhere[v] = 1;
+      for (uint32_t k = at_[v]; k < at_[v + 1]; ++k) nowhere[v] = nowhere[v] && in.goes_nowhere(run.first_move + k);
+    }
     // The same corner rule, with the same band, as the verifier uses to judge joints (with
     // spikes skipped when asked): first each vertex alone, then with its neighbours' corners.
+    // A vertex's neighbours are the nearest vertices elsewhere, past spikes when skipped.
     auto corners = [&](const std::vector<uint8_t>& skipped) {
-      auto before = [&](uint32_t v) { return skipped[v - 1] ? v - 2 : v - 1; };
-      auto after = [&](uint32_t v) { return skipped[v + 1] ? v + 2 : v + 1; };
+      auto before = [&](uint32_t v, bool past_spikes) {
+        uint32_t u = v - 1;
+        while (u > 0 && (nowhere[u] || (past_spikes && skipped[u]))) --u;
+        return u;
+      };
+      auto after = [&](uint32_t v, bool past_spikes) {
+        uint32_t u = v + 1;
+        while (u < n_ && (nowhere[u - 1] || (past_spikes && skipped[u]))) ++u;
+        return u;
+      };
       std::vector<uint8_t> alone(n_ + 1, 0), hard(n_ + 1, 0);
-      for (uint32_t v = 1; v < n_; ++v) alone[v] = !skipped[v] && corner(before(v), v, after(v));
+      for (uint32_t v = 1; v < n_; ++v) alone[v] = !skipped[v] && corner(before(v, true), v, after(v, true));
       for (uint32_t v = 1; v < n_; ++v) {
-        const uint32_t b = before(v), a = after(v);
-        hard[v] = alone[v] || (!skipped[v] && is_corner_beside_corner(b > 0 ? &p_[b - 1] : nullptr, p_[b], p_[v], p_[a],
-                                                                      a < n_ ? &p_[a + 1] : nullptr, alone[b], alone[a],
-                                                                      o.tolerance_mm));
+        const uint32_t b = before(v, true), a = after(v, true);
+        hard[v] = alone[v] || (!skipped[v] && is_corner_beside_corner(b > 0 ? &p_[before(b, false)] : nullptr, p_[b], p_[v],
+                                                                      p_[a], a < n_ ? &p_[after(a, false)] : nullptr,
+                                                                      alone[b], alone[a], o.tolerance_mm));
       }
       return hard;
     };

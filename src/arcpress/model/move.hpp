@@ -3,6 +3,7 @@
 // one Move per block that changes position.
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "arcpress/core/geometry.hpp"
@@ -90,6 +91,18 @@ struct Interpretation {
   size_t joint_move(size_t i) const {
     while (i + 1 < moves.size() && goes_nowhere(i)) ++i;
     return i;
+  }
+  /// The vertex nearest to vertex v (the start of move v) along the feed path that is not
+  /// v itself, before it (step -1) or after it (step +1): past moves that go nowhere, as
+  /// fits and the corner rule step past them. None where the feed path ends first.
+  std::optional<size_t> vertex_beside(size_t v, int step) const {
+    for (size_t u = v;;) {
+      if (step < 0 ? u == 0 : u >= moves.size()) return std::nullopt;
+      const size_t move = step < 0 ? u - 1 : u;  // the move between u and the next vertex out
+      if (!is_feed(moves[move].kind)) return std::nullopt;
+      u = step < 0 ? u - 1 : u + 1;
+      if (!goes_nowhere(move)) return u;
+    }
   }
 };
 

@@ -66,18 +66,6 @@ Vec2 end_tangent(const Interpretation& in, size_t i) {
   return arc_tangent(Vec2(e.x() - c.x(), e.y() - c.y()), m.kind == MoveKind::ArcCCW);
 }
 
-/// The input vertex nearest to vertex v (the start of move v) along the feed path, before
-/// it (step -1) or after it (step +1), past moves that go nowhere (a fit steps over them, so
-/// they make no corner); none where the feed path ends first.
-std::optional<size_t> vertex_beside(const Interpretation& in, size_t v, int step) {
-  for (size_t u = v;;) {
-    const size_t move = step < 0 ? u - 1 : u;  // the move between u and the next vertex out
-    if ((step < 0 && u == 0) || move >= in.moves.size() || !is_feed(in.moves[move].kind)) return std::nullopt;
-    u = step < 0 ? u - 1 : u + 1;
-    if (!in.goes_nowhere(move)) return u;
-  }
-}
-
 double angle_deg(const Vec2& a, const Vec2& b) {
   if (a.squaredNorm() == 0 || b.squaredNorm() == 0) return 0;
   return rad_to_deg(std::atan2(std::abs(cross2(a, b)), a.dot(b)));
@@ -150,7 +138,7 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
       }
       // Tangency at the joint with the previous output feed move.
       // The input's vertices beside the joint, and one further out, past moves that go nowhere.
-      const auto v_before = vertex_beside(ia, i, -1), v_after = vertex_beside(ia, i, +1);
+      const auto v_before = ia.vertex_beside(i, -1), v_after = ia.vertex_beside(i, +1);
       if (prev_j == long(j) - 1 && prev_j >= 0 && (replaced || prev_replaced) && ib.moves[prev_j].plane == mb.plane &&
           v_before && v_after) {
         // The plane the joint was made in: where both moves were fitted, else the output's.
@@ -161,8 +149,8 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
         Vec3 after = in_plane(ia.from(*v_after), pl);
         // Whether the neighbours are corners.
         std::optional<Vec3> before2, after2;
-        if (auto u = vertex_beside(ia, *v_before, -1)) before2 = in_plane(ia.from(*u), pl);
-        if (auto u = vertex_beside(ia, *v_after, +1)) after2 = in_plane(ia.from(*u), pl);
+        if (auto u = ia.vertex_beside(*v_before, -1)) before2 = in_plane(ia.from(*u), pl);
+        if (auto u = ia.vertex_beside(*v_after, +1)) after2 = in_plane(ia.from(*u), pl);
         bool before_corner = before2 && is_corner(*before2, before, at, opt.tolerance_mm, opt.corner_angle_deg);
         bool after_corner = after2 && is_corner(at, after, *after2, opt.tolerance_mm, opt.corner_angle_deg);
         if (!is_corner(before, at, after, opt.tolerance_mm, opt.corner_angle_deg) &&
