@@ -34,14 +34,6 @@ bool moves_along(const Interpretation& in, size_t i, size_t t, int axis) {
   return false;
 }
 
-/// How many of the moves [i, t) go somewhere (a move that goes nowhere lies in every plane,
-/// so it neither makes a piece flat in one nor ends it).
-size_t moves_going(const Interpretation& in, size_t i, size_t t) {
-  size_t n = 0;
-  for (size_t k = i; k < t; ++k) n += !in.goes_nowhere(k);
-  return n;
-}
-
 void add_run(const Interpretation& in, size_t i, size_t j, Plane plane, uint32_t min_moves, std::vector<Run>& runs) {
   if (j - i < min_moves) return;
   const Move& m = in.moves[i];
@@ -79,7 +71,8 @@ void split_by_plane(const Interpretation& in, size_t i, size_t j, uint32_t min_m
     for (int axis = 0; axis < 3; ++axis) {
       if (axis == own_normal || m < blocked[axis]) continue;
       size_t t = flat_until(in, m, j, axis);
-      if (moves_going(in, m, t) >= kMinPlanePieceMoves && moves_along(in, m, t, own_normal)) {
+      // (A move that goes nowhere lies in every plane: it neither makes a piece nor ends one.)
+      if (in.moves_going(m, t) >= kMinPlanePieceMoves && moves_along(in, m, t, own_normal)) {
         if (t > best_end) {
           best_end = t;
           best_axis = axis;

@@ -1589,13 +1589,15 @@ std::vector<FitResult> fit_chain(const Interpretation& in, const RunChain& chain
       for (uint32_t m = b; m < last; ++m) fixed[m].end = fixed[m + 1].start = std::nullopt;
       fixed[b].start = fixed[last].end = std::nullopt;
       if (!done[r]) continue;
+      // (A line that stands for one move that goes somewhere is that move: its joints are the input's.)
+      auto several = [&](const LineEnds& l) { return in.moves_going(chain.first_move + l.from, chain.first_move + l.to) > 1; };
       if (const auto& l = first_line[r]) {
         fixed[b].start = direction(at(l->to) - at(l->from));
-        fixed[b].fitted_start = fixed[b].start && l->to > l->from + 1;
+        fixed[b].fitted_start = fixed[b].start && several(*l);
       }
       if (const auto& l = last_line[r]) {
         fixed[last].end = direction(at(l->to) - at(l->from));
-        fixed[last].fitted_end = fixed[last].end && l->to > l->from + 1;
+        fixed[last].fitted_end = fixed[last].end && several(*l);
       }
     }
     for (uint32_t m = 0; m < chain.move_count; ++m)

@@ -86,6 +86,12 @@ struct Interpretation {
   /// Whether move `i` is a G1 that goes nowhere (every axis as before). A fit steps over
   /// such moves; a joint is named by the first move after it that goes somewhere.
   bool goes_nowhere(size_t i) const { return moves[i].kind == MoveKind::Line && moves[i].to == from(i); }
+  /// How many of the moves [i, t) go somewhere.
+  size_t moves_going(size_t i, size_t t) const {
+    size_t n = 0;
+    for (size_t k = i; k < t; ++k) n += !goes_nowhere(k);
+    return n;
+  }
   /// The move that names the joint at the start of move `i`: the first from `i` on that does
   /// not go nowhere (or the last move).
   size_t joint_move(size_t i) const {

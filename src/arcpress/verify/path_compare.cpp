@@ -98,7 +98,9 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
     // move of its own next.
     const bool output_stays = j + 1 < ib.moves.size() && same_point(ib.moves[j + 1].to, mb.to);
     while (!output_stays && is_feed(mb.kind) && k + 1 < ia.moves.size() && ia.goes_nowhere(k + 1)) ++k;
-    bool replaced = k > i;
+    // Replaced: it stands for several input moves (that go somewhere), so its joints are
+    // the fit's, not the input's own.
+    bool replaced = ia.moves_going(i, k + 1) > 1;
     if (is_feed(mb.kind) && mb.known) {
       ++r.moves_b;
       // The output move keeps the feed of every input move it stands for.
