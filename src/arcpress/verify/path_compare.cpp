@@ -94,10 +94,14 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
                                i < ia.moves.size() ? a.blocks[ia.moves[i].block].line : 0);
       return r;
     }
-    // Input moves after it that go nowhere belong to it too, unless the output has such a
-    // move of its own next.
-    const bool output_stays = j + 1 < ib.moves.size() && same_point(ib.moves[j + 1].to, mb.to);
-    while (!output_stays && is_feed(mb.kind) && k + 1 < ia.moves.size() && ia.goes_nowhere(k + 1)) ++k;
+    // Input moves after it that go nowhere belong to it too, less as many as the output has
+    // such moves of its own next (those written back as they were: the last ones).
+    if (is_feed(mb.kind)) {
+      size_t repeats_a = 0, repeats_b = 0;
+      while (k + 1 + repeats_a < ia.moves.size() && ia.goes_nowhere(k + 1 + repeats_a)) ++repeats_a;
+      while (j + 1 + repeats_b < ib.moves.size() && ib.goes_nowhere(j + 1 + repeats_b)) ++repeats_b;
+      if (repeats_a > repeats_b) k += repeats_a - repeats_b;
+    }
     // Replaced: it stands for several input moves (that go somewhere), so its joints are
     // the fit's, not the input's own.
     bool replaced = ia.moves_going(i, k + 1) > 1;
