@@ -1,9 +1,12 @@
 #include "arcpress/verify/segment_index.hpp"
 
-#include <CGAL/AABB_segment_primitive.h>
+#include <CGAL/AABB_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/Simple_cartesian.h>
+
+#include <boost/iterator/counting_iterator.hpp>
+#include <boost/property_map/property_map.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -14,9 +17,6 @@ namespace {
 using K = CGAL::Simple_cartesian<double>;
 using Point = K::Point_3;
 using Segment = K::Segment_3;
-using Iterator = std::vector<Segment>::const_iterator;
-using Primitive = CGAL::AABB_segment_primitive<K, Iterator>;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
 
 /// Zero-length segments are stretched by this much so the tree's projections stay defined;
 /// far below any tolerance a user can give (a length epsilon, not a tolerance).
@@ -24,26 +24,50 @@ constexpr double kPointAsSegmentMm = 1e-9;
 
 Vec3 vec(const Point& p) { return {p.x(), p.y(), p.z()}; }
 Point point(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+
+/// Segment i of the caller's end points, made when the tree asks for it: the tree holds
+/// only indices, so the points are stored once.
+struct SegmentMap {
+  using key_type = uint32_t;
+  using value_type = Segment;
+  using reference = Segment;
+  using category = boost::readable_property_map_tag;
+  const std::vector<Vec3>* ends = nullptr;
+  friend Segment get(const SegmentMap& m, uint32_t i) {
+    const Vec3 &a = (*m.ends)[2 * size_t(i)], &b = (*m.ends)[2 * size_t(i) + 1];
+    return {point(a), point((b - a).norm() < kPointAsSegmentMm ? Vec3(a + Vec3(kPointAsSegmentMm, 0, 0)) : b)};
+  }
+};
+/// Segment i's start, the point the tree reads off each primitive.
+struct StartMap {
+  using key_type = uint32_t;
+  using value_type = Point;
+  using reference = Point;
+  using category = boost::readable_property_map_tag;
+  const std::vector<Vec3>* ends = nullptr;
+  friend Point get(const StartMap& m, uint32_t i) { return point((*m.ends)[2 * size_t(i)]); }
+};
+using Primitive = CGAL::AABB_primitive<uint32_t, SegmentMap, StartMap, CGAL::Tag_true, CGAL::Tag_false>;
+using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
 }  // namespace
 
 struct SegmentIndex::Impl {
-  std::vector<Segment> segments;
+  const std::vector<Vec3>& ends;
+  uint32_t count = 0;
   Tree tree;  ///< built by build() or at the first query: a caller that never needs it pays nothing
+  explicit Impl(const std::vector<Vec3>& e) : ends(e), count(uint32_t(e.size() / 2)) {}
+  Segment segment(uint32_t i) const { return get(SegmentMap{&ends}, i); }
 };
 
-SegmentIndex::SegmentIndex(const std::vector<Vec3>& ends) : impl_(std::make_unique<Impl>()) {
-  impl_->segments.reserve(ends.size() / 2);
-  for (size_t i = 0; i + 1 < ends.size(); i += 2) {
-    Vec3 a = ends[i], b = ends[i + 1];
-    if ((b - a).norm() < kPointAsSegmentMm) b = a + Vec3(kPointAsSegmentMm, 0, 0);
-    impl_->segments.emplace_back(point(a), point(b));
-  }
-  if (!impl_->segments.empty()) impl_->tree.insert(impl_->segments.cbegin(), impl_->segments.cend());
+SegmentIndex::SegmentIndex(const std::vector<Vec3>& ends) : impl_(std::make_unique<Impl>(ends)) {
+  if (impl_->count > 0)
+    impl_->tree.insert(boost::counting_iterator<uint32_t>(0), boost::counting_iterator<uint32_t>(impl_->count),
+                       SegmentMap{&impl_->ends}, StartMap{&impl_->ends});
 }
 
 SegmentIndex::~SegmentIndex() = default;
 
-bool SegmentIndex::empty() const { return impl_->segments.empty(); }
+bool SegmentIndex::empty() const { return impl_->count == 0; }
 
 void SegmentIndex::build() const {
   if (!empty()) impl_->tree.build();
@@ -53,11 +77,12 @@ SegmentIndex::Nearest SegmentIndex::nearest(const Vec3& p, uint32_t hint) const 
   Nearest n;
   if (empty()) return n;
   // The hint's own nearest point bounds the search radius from the start.
-  Iterator it = impl_->segments.cbegin() + std::min<size_t>(hint, impl_->segments.size() - 1);
-  Vec3 a = vec(it->source()), d = vec(it->target()) - a;
+  const uint32_t h = std::min(hint, impl_->count - 1);
+  const Segment hs = impl_->segment(h);
+  Vec3 a = vec(hs.source()), d = vec(hs.target()) - a;
   Vec3 on = a + std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0) * d;
-  auto [cp, id] = impl_->tree.closest_point_and_primitive(point(p), std::make_pair(point(on), it));
-  n.segment = uint32_t(id - impl_->segments.cbegin());
+  auto [cp, id] = impl_->tree.closest_point_and_primitive(point(p), std::make_pair(point(on), h));
+  n.segment = id;
   n.point = vec(cp);
   n.distance_mm = (n.point - p).norm();
   return n;

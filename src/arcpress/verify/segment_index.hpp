@@ -18,7 +18,8 @@ class SegmentIndex {
   };
 
   /// Segments as consecutive pairs of `ends`: segment i runs from ends[2i] to ends[2i+1].
-  /// Zero-length segments are kept as points.
+  /// Zero-length segments are kept as points. The index reads `ends` where it lies (it
+  /// keeps no copy), so `ends` must outlive it, unchanged.
   explicit SegmentIndex(const std::vector<Vec3>& ends);
   ~SegmentIndex();
   SegmentIndex(const SegmentIndex&) = delete;
