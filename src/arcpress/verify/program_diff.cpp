@@ -17,19 +17,19 @@ namespace {
 
 Vec3 xyz(const AxisValues& v) { return {v[kX], v[kY], v[kZ]}; }
 
-/// One program's feed path as segments: segment s runs from ends[2s] to ends[2s+1],
-/// belongs to move move_of[s] and section section_of[s]; within a section the segments
-/// follow each other along the path.
+/// One program's feed path as segments: segment s runs from points[first[s]] to the point
+/// after it, belongs to move move_of[s] and section section_of[s]; within a section the
+/// segments follow each other along the path, each starting where the one before ends.
 struct Path {
-  std::vector<Vec3> ends;
-  std::vector<uint32_t> move_of, section_of;
+  std::vector<Vec3> points;
+  std::vector<uint32_t> first, move_of, section_of;
   std::vector<double> section_length_mm, section_e;  ///< per section
   std::vector<uint32_t> rapids;                      ///< move indices of known rapids
   size_t feed_moves = 0;
 
   size_t size() const { return move_of.size(); }
-  Vec3 a(size_t s) const { return ends[2 * s]; }
-  Vec3 b(size_t s) const { return ends[2 * s + 1]; }
+  Vec3 a(size_t s) const { return points[first[s]]; }
+  Vec3 b(size_t s) const { return points[first[s] + 1]; }
 };
 
 /// Longest piece of a path put into the index, mm.
@@ -55,6 +55,8 @@ Path path_of(const Interpretation& in, double chord_mm) {
     uint32_t sec = uint32_t(p.section_length_mm.size() - 1);
     p.section_e[sec] += m.to[kE] - in.from(i)[kE];
     Vec3 prev = xyz(in.from(i));
+    // A section's first segment starts a polyline of its own.
+    if (p.section_of.empty() || p.section_of.back() != sec) p.points.push_back(prev);
     pts.clear();
     move_path(in, i, chord_mm, pts);
     for (const Vec3& q : pts) {
@@ -64,8 +66,8 @@ Path path_of(const Interpretation& in, double chord_mm) {
       int pieces = std::max(1, int(std::ceil(len / kPieceMm)));
       for (int k = 1; k <= pieces; ++k) {
         Vec3 r = k == pieces ? q : Vec3(prev + (q - prev) * (double(k) / pieces));
-        p.ends.push_back(k == 1 ? prev : p.ends.back());
-        p.ends.push_back(r);
+        p.first.push_back(uint32_t(p.points.size() - 1));
+        p.points.push_back(r);
         p.move_of.push_back(uint32_t(i));
         p.section_of.push_back(sec);
       }
@@ -366,8 +368,8 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
   // floor a share may keep an upper bound instead of the exact distance, so per-move
   // deviations for plots can differ slightly with the count; the maximum and the places
   // cannot.)
-  SegmentIndex index_a(pa.ends), index_b(pb.ends);
-  if (!pa.ends.empty() && !pb.ends.empty()) {
+  SegmentIndex index_a(pa.points, pa.first), index_b(pb.points, pb.first);
+  if (pa.size() > 0 && pb.size() > 0) {
     struct Share {
       TopPlaces top;
       std::vector<double> deviation_of_b;
@@ -409,8 +411,8 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
         d.worst_feed = {0, at, a.blocks[ma.block].line, b.blocks[mb.block].line};
       }
     });
-  } else if (pa.ends.empty() != pb.ends.empty()) {
-    d.findings.push_back(fmt::format("only {} has feed moves", pa.ends.empty() ? "B" : "A"));
+  } else if ((pa.size() == 0) != (pb.size() == 0)) {
+    d.findings.push_back(fmt::format("only {} has feed moves", pa.size() == 0 ? "B" : "A"));
   }
   if (d.worst.size() > opt.top) d.worst.resize(opt.top);
 

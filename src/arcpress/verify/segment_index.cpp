@@ -25,16 +25,24 @@ constexpr double kPointAsSegmentMm = 1e-9;
 Vec3 vec(const Point& p) { return {p.x(), p.y(), p.z()}; }
 Point point(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
-/// Segment i of the caller's end points, made when the tree asks for it: the tree holds
-/// only indices, so the points are stored once.
+/// The caller's points and where each segment starts among them.
+struct Polylines {
+  const std::vector<Vec3>* points = nullptr;
+  const std::vector<uint32_t>* first = nullptr;
+  const Vec3& a(uint32_t i) const { return (*points)[(*first)[i]]; }
+  const Vec3& b(uint32_t i) const { return (*points)[(*first)[i] + 1]; }
+};
+
+/// Segment i, made when the tree asks for it: the tree holds only segment numbers, so the
+/// points are stored once, by the caller.
 struct SegmentMap {
   using key_type = uint32_t;
   using value_type = Segment;
   using reference = Segment;
   using category = boost::readable_property_map_tag;
-  const std::vector<Vec3>* ends = nullptr;
+  Polylines lines;
   friend Segment get(const SegmentMap& m, uint32_t i) {
-    const Vec3 &a = (*m.ends)[2 * size_t(i)], &b = (*m.ends)[2 * size_t(i) + 1];
+    const Vec3 &a = m.lines.a(i), &b = m.lines.b(i);
     return {point(a), point((b - a).norm() < kPointAsSegmentMm ? Vec3(a + Vec3(kPointAsSegmentMm, 0, 0)) : b)};
   }
 };
@@ -44,25 +52,27 @@ struct StartMap {
   using value_type = Point;
   using reference = Point;
   using category = boost::readable_property_map_tag;
-  const std::vector<Vec3>* ends = nullptr;
-  friend Point get(const StartMap& m, uint32_t i) { return point((*m.ends)[2 * size_t(i)]); }
+  Polylines lines;
+  friend Point get(const StartMap& m, uint32_t i) { return point(m.lines.a(i)); }
 };
 using Primitive = CGAL::AABB_primitive<uint32_t, SegmentMap, StartMap, CGAL::Tag_true, CGAL::Tag_false>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
 }  // namespace
 
 struct SegmentIndex::Impl {
-  const std::vector<Vec3>& ends;
+  Polylines lines;
   uint32_t count = 0;
   Tree tree;  ///< built by build() or at the first query: a caller that never needs it pays nothing
-  explicit Impl(const std::vector<Vec3>& e) : ends(e), count(uint32_t(e.size() / 2)) {}
-  Segment segment(uint32_t i) const { return get(SegmentMap{&ends}, i); }
+  Segment segment(uint32_t i) const { return get(SegmentMap{lines}, i); }
 };
 
-SegmentIndex::SegmentIndex(const std::vector<Vec3>& ends) : impl_(std::make_unique<Impl>(ends)) {
+SegmentIndex::SegmentIndex(const std::vector<Vec3>& points, const std::vector<uint32_t>& first)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->lines = Polylines{&points, &first};
+  impl_->count = uint32_t(first.size());
   if (impl_->count > 0)
     impl_->tree.insert(boost::counting_iterator<uint32_t>(0), boost::counting_iterator<uint32_t>(impl_->count),
-                       SegmentMap{&impl_->ends}, StartMap{&impl_->ends});
+                       SegmentMap{impl_->lines}, StartMap{impl_->lines});
 }
 
 SegmentIndex::~SegmentIndex() = default;

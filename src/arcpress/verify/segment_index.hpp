@@ -17,10 +17,10 @@ class SegmentIndex {
     Vec3 point{0, 0, 0};   ///< the closest point on that segment
   };
 
-  /// Segments as consecutive pairs of `ends`: segment i runs from ends[2i] to ends[2i+1].
-  /// Zero-length segments are kept as points. The index reads `ends` where it lies (it
-  /// keeps no copy), so `ends` must outlive it, unchanged.
-  explicit SegmentIndex(const std::vector<Vec3>& ends);
+  /// Segment i runs from points[first[i]] to points[first[i] + 1] (polylines share their
+  /// points). Zero-length segments are kept as points. The index reads both vectors where
+  /// they lie (it keeps no copy), so they must outlive it, unchanged.
+  SegmentIndex(const std::vector<Vec3>& points, const std::vector<uint32_t>& first);
   ~SegmentIndex();
   SegmentIndex(const SegmentIndex&) = delete;
   SegmentIndex& operator=(const SegmentIndex&) = delete;
