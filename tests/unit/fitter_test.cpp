@@ -210,6 +210,18 @@ TEST_CASE("moves that go nowhere are stepped over: they cut no curve, make no co
   FitOptions keep;
   keep.method = FitOptions::Method::Keep;
   CHECK(compress_text(text, keep).r.output == text);
+
+  // A repeat after a feed change starts the next run: the output move that stands for it is
+  // that run's first, at its feed (compress_text() requires the read-back to match).
+  auto half = arc_points(0, 0, 10, 0, 90, 1);
+  std::string two = program(std::vector<Pt>(half.begin(), half.begin() + 46));
+  std::string rest = "G1 F800\n" + fmt::format("G1 X{:.4f} Y{:.4f} Z0.0000\n", half[45].x, half[45].y);
+  for (size_t i = 46; i < half.size(); ++i) rest += fmt::format("G1 X{:.4f} Y{:.4f} Z0.0000\n", half[i].x, half[i].y);
+  two.insert(two.rfind("M2"), rest);
+  auto o2 = compress_text(two);
+  INFO(o2.r.output);
+  CHECK(o2.arcs == 2);
+  CHECK(o2.r.output.find("F800") != std::string::npos);
 }
 
 TEST_CASE("rounding the printed centres keeps smooth joints within the G1 angle", "[fit]") {

@@ -94,13 +94,15 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
                                i < ia.moves.size() ? a.blocks[ia.moves[i].block].line : 0);
       return r;
     }
-    // Input moves after it that go nowhere belong to it too, less as many as the output has
-    // such moves of its own next (those written back as they were: the last ones).
+    // Input moves after it that go nowhere at its feed belong to it too (a fit steps over
+    // them), less as many as the output has such moves of its own next (those written back
+    // as they were: the last ones). One at another feed starts the next run, whose first
+    // output move stands for it.
     if (is_feed(mb.kind)) {
       size_t repeats_a = 0, repeats_b = 0;
       while (k + 1 + repeats_a < ia.moves.size() && ia.goes_nowhere(k + 1 + repeats_a)) ++repeats_a;
       while (j + 1 + repeats_b < ib.moves.size() && ib.goes_nowhere(j + 1 + repeats_b)) ++repeats_b;
-      if (repeats_a > repeats_b) k += repeats_a - repeats_b;
+      for (size_t taken = 0; taken + repeats_b < repeats_a && ia.moves[k + 1].feed_mm_min == mb.feed_mm_min; ++taken) ++k;
     }
     // Replaced: it stands for several input moves (that go somewhere), so its joints are
     // the fit's, not the input's own.
