@@ -80,6 +80,7 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
   const double chord_mm = std::max(opt.tolerance_mm * 1e-3, 1e-6);
   size_t i = 0;  // next input move
   std::vector<Vec3> pts;
+  std::vector<size_t> move_of_point;  // the input move each of `pts` lies on (its end, for a vertex)
   long prev_j = -1;          // previous output feed move, for joints
   bool prev_replaced = false;
   for (size_t j = 0; j < ib.moves.size(); ++j) {
@@ -121,12 +122,16 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
       // The input stretch i..k as points in the output move's plane.
       pts.clear();
       pts.push_back(in_plane(ia.from(i), mb.plane));
+      move_of_point.assign(1, i);
       bool input_is_same_arc = !replaced && is_arc(ia.moves[i].kind) && is_arc(mb.kind) &&
                                ia.moves[i].kind == mb.kind &&
                                (ia.moves[i].center - mb.center).norm() <= kSamePointMm;
       for (size_t q = i; q <= k; ++q) {
         if (is_feed(ia.moves[q].kind)) ++r.moves_a;
-        if (!input_is_same_arc) append_path(ia, q, mb.plane, chord_mm, pts);
+        // (A repeat adds no point: the fit steps over it, and a vertex twice would read as
+        // the path turning back.)
+        if (!input_is_same_arc && !ia.goes_nowhere(q)) append_path(ia, q, mb.plane, chord_mm, pts);
+        move_of_point.resize(pts.size(), q);
       }
       Deviation d;
       if (input_is_same_arc) {
@@ -140,9 +145,10 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
       if (d.max_mm > r.max_deviation_mm) {
         r.max_deviation_mm = d.max_mm;
         r.worst_line_b = b.blocks[mb.block].line;
-        size_t q = std::min(k, i + (d.at_index > 0 ? d.at_index - 1 : 0));
-        r.worst_line_a = a.blocks[ia.moves[q].block].line;
-        r.worst_point = from_plane(pts[std::min(d.at_index, pts.size() - 1)], mb.plane);
+        // The input move the worst point lies on (a vertex: the move that ends there).
+        const size_t at = std::min(d.at_index, pts.size() - 1);
+        r.worst_line_a = a.blocks[ia.moves[move_of_point[at]].block].line;
+        r.worst_point = from_plane(pts[at], mb.plane);
       }
       // Tangency at the joint with the previous output feed move.
       // The input's vertices beside the joint, and one further out, past moves that go nowhere.
