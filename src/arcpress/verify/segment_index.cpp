@@ -33,28 +33,30 @@ struct Polylines {
   const Vec3& b(uint32_t i) const { return (*points)[(*first)[i] + 1]; }
 };
 
-/// Segment i, made when the tree asks for it: the tree holds only segment numbers, so the
-/// points are stored once, by the caller.
-struct SegmentMap {
+/// A readable property map from a segment number to what `Read` makes of it, read when the
+/// tree asks: the tree holds only segment numbers, so the points are stored once, by the caller.
+template <class Value, class Read>
+struct NumberMap {
   using key_type = uint32_t;
-  using value_type = Segment;
-  using reference = Segment;
+  using value_type = Value;
+  using reference = Value;
   using category = boost::readable_property_map_tag;
   Polylines lines;
-  friend Segment get(const SegmentMap& m, uint32_t i) {
-    const Vec3 &a = m.lines.a(i), &b = m.lines.b(i);
+  friend Value get(const NumberMap& m, uint32_t i) { return Read{}(m.lines, i); }
+};
+/// Segment i (a zero-length one a little longer, as a point).
+struct SegmentOf {
+  Segment operator()(const Polylines& l, uint32_t i) const {
+    const Vec3 &a = l.a(i), &b = l.b(i);
     return {point(a), point((b - a).norm() < kPointAsSegmentMm ? Vec3(a + Vec3(kPointAsSegmentMm, 0, 0)) : b)};
   }
 };
 /// Segment i's start, the point the tree reads off each primitive.
-struct StartMap {
-  using key_type = uint32_t;
-  using value_type = Point;
-  using reference = Point;
-  using category = boost::readable_property_map_tag;
-  Polylines lines;
-  friend Point get(const StartMap& m, uint32_t i) { return point(m.lines.a(i)); }
+struct StartOf {
+  Point operator()(const Polylines& l, uint32_t i) const { return point(l.a(i)); }
 };
+using SegmentMap = NumberMap<Segment, SegmentOf>;
+using StartMap = NumberMap<Point, StartOf>;
 using Primitive = CGAL::AABB_primitive<uint32_t, SegmentMap, StartMap, CGAL::Tag_true, CGAL::Tag_false>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
 }  // namespace
