@@ -755,7 +755,7 @@ TEST_CASE("programs made from random bytes keep every promise, in every plane, m
   // generator, so every run checks the same cases.
   std::mt19937 rng(20261123);
   std::uniform_int_distribution<int> byte(0, 255), length(4, 400);
-  for (int trial = 0; trial < 400; ++trial) {
+  for (int trial = 0; trial < 4000; ++trial) {
     std::vector<uint8_t> bytes(static_cast<size_t>(length(rng)));
     for (auto& b : bytes) b = static_cast<uint8_t>(byte(rng));
     test::RandomCase c = test::random_case(bytes);
