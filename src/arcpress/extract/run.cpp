@@ -48,10 +48,10 @@ void add_run(const Interpretation& in, size_t i, size_t j, Plane plane, uint32_t
 
 /// Splits the fittable moves [i, j) (one frame, plane and feed) into runs by the plane they
 /// lie in. The program's plane is kept wherever it can hold arcs. Where it climbs (its normal
-/// axis moves) over at least kMinPlanePieceMoves moves (that go somewhere) that all keep one other principal axis
-/// fixed, those moves lie flat in that other plane, whose arcs are the only ones that can
-/// follow them (their projection on the program's plane is a straight line): they become a
-/// run of their own in that plane. So a raster pass in XZ under G17 becomes G18 arcs rather
+/// axis moves) over at least kMinPlanePieceMoves moves that go somewhere and all keep one
+/// other principal axis fixed, those moves lie flat in that other plane, whose arcs are the
+/// only ones that can follow them (their projection on the program's plane is a straight
+/// line): they become a run of their own in that plane. So a raster pass in XZ under G17 becomes G18 arcs rather
 /// than lines. Where no axis stays fixed (a helix, a 3D surface path) the program's plane
 /// stays, with helical arcs or lines.
 void split_by_plane(const Interpretation& in, size_t i, size_t j, uint32_t min_moves, std::vector<Run>& runs) {

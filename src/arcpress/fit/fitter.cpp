@@ -168,10 +168,7 @@ class RunFitter {
     // Moves that go nowhere and stay (fixed ones, or those between two vertices that must
     // stay): the corner rule steps past them, as the verifier does.
     std::vector<uint8_t> nowhere(n_, 0);
-    for (uint32_t v = 0; v < n_; ++v) {
-      nowhere[v] = 1;
-      for (uint32_t k = at_[v]; k < at_[v + 1]; ++k) nowhere[v] = nowhere[v] && in.goes_nowhere(run.first_move + k);
-    }
+    for (uint32_t v = 0; v < n_; ++v) nowhere[v] = in.moves_going(run.first_move + at_[v], run.first_move + at_[v + 1]) == 0;
     // The same corner rule, with the same band, as the verifier uses to judge joints (with
     // spikes skipped when asked): first each vertex alone, then with its neighbours' corners.
     // A vertex's neighbours are the nearest vertices elsewhere, past spikes when skipped.

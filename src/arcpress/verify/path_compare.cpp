@@ -150,11 +150,11 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
         r.worst_line_a = a.blocks[ia.moves[move_of_point[at]].block].line;
         r.worst_point = from_plane(pts[at], mb.plane);
       }
-      // Tangency at the joint with the previous output feed move.
-      // The input's vertices beside the joint, and one further out, past moves that go nowhere.
-      const auto v_before = ia.vertex_beside(i, -1), v_after = ia.vertex_beside(i, +1);
+      // Tangency at the joint with the previous output feed move, judged by the input's
+      // vertices beside the joint, and one further out, past moves that go nowhere.
+      std::optional<size_t> v_before, v_after;
       if (prev_j == long(j) - 1 && prev_j >= 0 && (replaced || prev_replaced) && ib.moves[prev_j].plane == mb.plane &&
-          v_before && v_after) {
+          (v_before = ia.vertex_beside(i, -1)) && (v_after = ia.vertex_beside(i, +1))) {
         // The plane the joint was made in: where both moves were fitted, else the output's.
         Plane pl = mb.plane;
         if (!opt.fitted_plane.empty() && opt.fitted_plane[*v_before] == opt.fitted_plane[i]) pl = opt.fitted_plane[i];
