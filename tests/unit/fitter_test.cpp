@@ -316,6 +316,48 @@ TEST_CASE("under G17, a pass lying flat in XZ or YZ becomes G18 or G19 arcs and 
   }
 }
 
+TEST_CASE("under G17, a pass in XZ whose Y wanders by microns is still fitted in XZ, Y carried along each arc",
+          "[fit][plane]") {
+  // A half circle in XZ, as a post-processor's rotated frame prints it: Y steps by a micron
+  // either way. Its spread (2 µm) is within the normal axis's share of the band (0.6 of it),
+  // so the pass lies in XZ and G18 arcs carry Y along them, helically.
+  auto wander = [](double step_mm) {
+    std::vector<Pt> pts;
+    int k = 0;
+    for (auto& p : arc_points(10, 0, 10, 180, 0, 1)) pts.push_back({p.x, 3 + step_mm * ((k++ % 3) - 1), p.y});
+    return pts;
+  };
+  auto o = compress_text(program(wander(0.001)));
+  CHECK(o.arcs >= 1);
+  CHECK(o.arcs + o.lines <= 3);  // 181 moves before
+  CHECK(o.r.stats.plane_words_added == 2);
+  CHECK(o.r.output.find("G18\n") != std::string::npos);
+  CHECK(o.r.comparison.max_deviation_mm <= 0.01);
+  CHECK(o.r.check.findings.empty());
+  // Without helical motion Y cannot move inside an arc: only a fixed Y lies in XZ.
+  FitOptions flat;
+  flat.helical = false;
+  auto q = compress_text(program(wander(0.001)), flat);
+  CHECK(q.arcs == 0);
+  CHECK(q.r.stats.plane_words_added == 0);
+  CHECK(q.r.comparison.max_deviation_mm <= 0.01);
+  // A wander of 8 µm is more than the share carries (5.8 µm at a band of 0.01 mm).
+  auto w = compress_text(program(wander(0.004)));
+  CHECK(w.r.stats.plane_words_added == 0);
+  CHECK(w.r.comparison.max_deviation_mm <= 0.01);
+}
+
+TEST_CASE("a helix printed to 3 decimals stays one helical arc where Y stands still over its top", "[fit][plane]") {
+  // At 0.25° a step, five points around 90° all print Y6.000: a stretch flat in Y, but
+  // straight in XZ, so no plane of its own.
+  auto pts = arc_points(0, 0, 6, 0, 170, 0.25, 0, -2);
+  auto o = compress_text(program(pts, "G17", 3));
+  CHECK(o.arcs == 1);
+  CHECK(o.lines == 0);
+  CHECK(o.r.stats.plane_words_added == 0);
+  CHECK(o.r.comparison.max_deviation_mm <= 0.01);
+}
+
 TEST_CASE("arcs below the minimum radius or above the maximum become lines", "[fit]") {
   FitOptions f;
   f.tolerance_mm = 0.0005;
@@ -468,6 +510,31 @@ TEST_CASE("the default search does not wiggle: where its chain leaves a narrow p
     INFO("tolerance " << tol << ": " << d.arcs + d.lines << " blocks, the global method " << g.arcs + g.lines);
     CHECK(d.arcs + d.lines <= g.arcs + g.lines + 2);
     CHECK(d.r.forced_kinks == 0);
+  }
+}
+
+TEST_CASE("where no tangent chain gets past a hook but by S-bends all along, the tangent breaks at the hook",
+          "[fit][search]") {
+  // A pass over a dome (a circle of radius 14.97 mm) clipped to the floor at both ends, as
+  // CAM writes it: the first and last vertices lie 0.07 mm off the circle, and the path turns
+  // there by 10°, less than a corner. An arc over the first move can turn by no more than
+  // the band lets it bulge (1.7° short of the circle's direction), so every chain that keeps
+  // the tangent wiggles along the whole dome in one-move S-bends (73 blocks). Breaking the
+  // tangent at the hook leaves one arc for the dome.
+  std::vector<Pt> pts;
+  for (int k = 0; k <= 112; ++k) {
+    const double x = -11.2 + 0.2 * k;
+    pts.push_back({x, std::max(0.0, std::sqrt(std::max(0.0, 224 - x * x)) - 10), 0});
+  }
+  for (auto method : {FitOptions::Method::Arcs, FitOptions::Method::Greedy}) {
+    FitOptions f;
+    f.method = method;
+    auto o = compress_text(program(pts), f);
+    INFO((method == FitOptions::Method::Arcs ? "arcs: " : "greedy: ") << o.arcs + o.lines << " blocks");
+    CHECK(o.arcs + o.lines <= 5);
+    CHECK(o.r.forced_kinks >= 1);
+    CHECK(o.r.forced_kinks <= 2);
+    CHECK(o.r.comparison.max_deviation_mm <= 0.01);
   }
 }
 
@@ -678,12 +745,15 @@ TEST_CASE("every tangent break the verifier finds at a smooth joint is one the f
                         o.r.forced_kink_lines.begin(), o.r.forced_kink_lines.end(), std::back_inserter(left));
     return left;
   };
-  // Under G18, three moves lying flat in XY are fitted as a G17 run of their own (one line);
-  // the move after it climbs in Z and turns by 1.1° in XZ at the joint, which the line that
-  // replaced the three moves cannot follow.
+  // Under G18, six moves lying flat in XY with a corner between them are fitted as a G17 run
+  // of their own (two lines, each over three moves, written without a plane word); the move
+  // after it climbs in Z and turns by 1.1° in XZ at the joint, which the line that replaced
+  // the last three moves cannot follow.
   auto flat = compress_text(
-      "G21 G90 G18\nG0 X0 Y0 Z0\nG1 F1000\nG1 X0.1050 Y0.0007 Z0\nG1 X0.2100 Y0.0012 Z0\n"
-      "G1 X0.2150 Y0.0013 Z0\nG1 X0.2200 Y0.0013 Z0.0001\nM2\n");
+      "G21 G90 G18\nG0 X0 Y0 Z0\nG1 F1000\nG1 X0.1000 Y0.0000 Z0\nG1 X0.2000 Y0.0000 Z0\n"
+      "G1 X0.3000 Y0.0000 Z0\nG1 X0.3766 Y0.0643 Z0\nG1 X0.4532 Y0.1286 Z0\nG1 X0.5298 Y0.1928 Z0\n"
+      "G1 X0.9128 Y0.5142 Z0.0074\nM2\n");
+  CHECK(flat.lines == 2);
   CHECK(flat.r.comparison.smooth_joints_over_g1 == 1);
   CHECK(unreported(flat).empty());
   // With --spikes, the jag at line 5 is noise, which makes line 6 a corner for the fit; the

@@ -102,7 +102,15 @@ CompressResult compress(const std::string& name, std::string text, const Compres
   std::vector<Run> runs;
   std::vector<FitResult> fits;
   if (!opt.passthrough) {
-    runs = extract_runs(in);
+    // A plane's normal axis that wanders by less than the fitter carries along a primitive
+    // does not keep a stretch out of that plane.
+    FitOptions spread = opt.fit;
+    spread.helical = opt.fit.helical && opt.dialect.helical;
+    PlaneChoice choice;
+    choice.spread_mm = normal_axis_spread_mm(spread);
+    choice.band_mm = opt.fit.tolerance_mm;
+    choice.corner_angle_deg = opt.fit.corner_angle_deg;
+    runs = extract_runs(in, 2, choice);
     fits = fit_runs(in, runs, opt);
     for (size_t k = 0; k < runs.size(); ++k)
       for (uint32_t v : fits[k].forced_at)

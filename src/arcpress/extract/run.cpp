@@ -11,27 +11,65 @@ namespace {
 /// Fewest moves a stretch needs to be cut out of its run and fitted in another plane.
 constexpr size_t kMinPlanePieceMoves = 3;
 
-/// Whether two coordinates are the same position (floating noise of unit conversion, not
-/// the user's band: a piece that wanders along an axis by more does not lie flat in it).
-bool same_coordinate(double a, double b) { return std::abs(a - b) <= kLengthEpsMm * std::max(1.0, std::abs(a)); }
+/// How far apart two values of an axis may lie and still be one fixed coordinate: `spread_mm`
+/// (what the fitter carries along a plane's normal axis inside each primitive), and at least
+/// the floating noise of unit conversion, not the user's band.
+bool within_spread(double lo, double hi, double spread_mm) {
+  return hi - lo <= std::max(spread_mm, kLengthEpsMm * std::max({1.0, std::abs(lo), std::abs(hi)}));
+}
 
 /// The principal plane whose normal is `axis` (0 X, 1 Y, 2 Z).
 Plane plane_with_normal(int axis) { return axis == 2 ? Plane::XY : axis == 1 ? Plane::ZX : Plane::YZ; }
 
-/// The end of the longest stretch of moves from `i` (before `j`) that keep `axis` where the
-/// start of move `i` has it.
-size_t flat_until(const Interpretation& in, size_t i, size_t j, int axis) {
-  const double c = in.from(i)[axis];
+/// The end of the longest stretch of moves from `i` (before `j`) whose vertices keep `axis`
+/// within `spread_mm` of each other.
+size_t flat_until(const Interpretation& in, size_t i, size_t j, int axis, double spread_mm) {
+  double lo = in.from(i)[axis], hi = lo;
   size_t t = i;
-  while (t < j && same_coordinate(in.moves[t].to[axis], c)) ++t;
+  for (; t < j; ++t) {
+    const double v = in.moves[t].to[axis];
+    const double nlo = std::min(lo, v), nhi = std::max(hi, v);
+    if (!within_spread(nlo, nhi, spread_mm)) break;
+    lo = nlo;
+    hi = nhi;
+  }
   return t;
 }
 
-/// Whether any of the moves [i, t) changes `axis`.
-bool moves_along(const Interpretation& in, size_t i, size_t t, int axis) {
-  for (size_t k = i; k < t; ++k)
-    if (!same_coordinate(in.moves[k].to[axis], in.from(k)[axis])) return true;
+/// Whether the vertices of moves [i, t) spread along `axis` by more than `spread_mm`.
+bool moves_along(const Interpretation& in, size_t i, size_t t, int axis, double spread_mm) {
+  return flat_until(in, i, t, axis, spread_mm) < t;
+}
+
+/// Whether a vertex of moves [i, t) lies more than `band_mm` off the chord from the first to
+/// the last, seen in `plane`: whether arcs in that plane have a curve to follow there.
+bool curves_in(const Interpretation& in, size_t i, size_t t, Plane plane, double band_mm) {
+  const auto ax = axes_of(plane);
+  auto at = [&](const AxisValues& v) { return Vec2(v[ax.first], v[ax.second]); };
+  const Vec2 a = at(in.from(i)), b = at(in.moves[t - 1].to);
+  const Vec2 d = b - a;
+  const double len2 = d.squaredNorm();
+  for (size_t k = i; k + 1 < t; ++k) {
+    const Vec2 p = at(in.moves[k].to);
+    const double s = len2 > 0 ? std::clamp((p - a).dot(d) / len2, 0.0, 1.0) : 0.0;
+    if ((p - (a + s * d)).norm() > band_mm) return true;
+  }
   return false;
+}
+
+/// The first vertex k in (i, t) where the path has a corner (is_corner(), past moves that go
+/// nowhere), else t: the end of the smooth stretch of moves [i, t) from i.
+size_t smooth_until(const Interpretation& in, size_t i, size_t t, const PlaneChoice& choice) {
+  auto point = [&](size_t v) {
+    const auto& a = in.from(v);
+    return Vec3(a[kX], a[kY], a[kZ]);
+  };
+  for (size_t k = i + 1; k < t; ++k) {
+    if (in.goes_nowhere(k - 1)) continue;  // the vertex repeats the one before
+    const auto b = in.vertex_beside(k, -1), a = in.vertex_beside(k, +1);
+    if (b && a && is_corner(point(*b), point(k), point(*a), choice.band_mm, choice.corner_angle_deg)) return k;
+  }
+  return t;
 }
 
 void add_run(const Interpretation& in, size_t i, size_t j, Plane plane, uint32_t min_moves, std::vector<Run>& runs) {
@@ -48,37 +86,52 @@ void add_run(const Interpretation& in, size_t i, size_t j, Plane plane, uint32_t
 
 /// Splits the fittable moves [i, j) (one frame, plane and feed) into runs by the plane they
 /// lie in. The program's plane is kept wherever it can hold arcs. Where it climbs (its normal
-/// axis moves) over at least kMinPlanePieceMoves moves that go somewhere and all keep one
-/// other principal axis fixed, those moves lie flat in that other plane, whose arcs are the
-/// only ones that can follow them (their projection on the program's plane is a straight
-/// line): they become a run of their own in that plane. So a raster pass in XZ under G17 becomes G18 arcs rather
-/// than lines. Where no axis stays fixed (a helix, a 3D surface path) the program's plane
-/// stays, with helical arcs or lines.
-void split_by_plane(const Interpretation& in, size_t i, size_t j, uint32_t min_moves, std::vector<Run>& runs) {
+/// axis spreads by more than `spread_mm`) over at least kMinPlanePieceMoves moves that go
+/// somewhere and all keep one other principal axis within `spread_mm`, those moves lie flat
+/// in that other plane, whose arcs are the only ones that can follow them (their projection
+/// on the program's plane is a straight line): where they curve in it by more than `band_mm`,
+/// they become a run of their own in that plane. (A stretch of a helix where one axis is
+/// about still, over its top, is straight in that plane too, and stays in the helix.)
+/// So a raster pass in XZ under G17 becomes G18 arcs rather than lines, also where the
+/// program's digits or a transform make its Y wander by a few microns. (Seed 004's PCA plane
+/// test comes to this for the principal planes, the only ones G2/G3 have: the spread along
+/// an axis is what decides, and it is measured exactly.) Where no axis stays fixed (a helix,
+/// a 3D surface path) the program's plane stays, with helical arcs or lines.
+void split_by_plane(const Interpretation& in, size_t i, size_t j, uint32_t min_moves, const PlaneChoice& choice,
+                    std::vector<Run>& runs) {
+  const double spread_mm = choice.spread_mm;
   const Plane own = in.moves[i].plane;
   const int own_normal = axes_of(own).normal;
-  if (!moves_along(in, i, j, own_normal)) {  // flat in the program's plane: the common case
+  if (!moves_along(in, i, j, own_normal, spread_mm)) {  // flat in the program's plane: the common case
     add_run(in, i, j, own, min_moves, runs);
     return;
   }
   size_t piece = i;  // start of the stretch left in the program's plane
   // Per axis, the first start worth trying: a stretch [m, t) that is no piece because it is
-  // too short or flat in the program's plane makes every start in (m, t) fail the same way.
+  // too short or flat in the program's plane makes every start in (m, t) fail the same way;
+  // one straight in the other plane leaves its later parts about as straight.
   size_t blocked[3] = {i, i, i};
   for (size_t m = i; m < j; ++m) {
     size_t best_end = m;
     int best_axis = -1;
     for (int axis = 0; axis < 3; ++axis) {
       if (axis == own_normal || m < blocked[axis]) continue;
-      size_t t = flat_until(in, m, j, axis);
       // (A move that goes nowhere lies in every plane: it neither makes a piece nor ends one.)
-      if (in.moves_going(m, t) >= kMinPlanePieceMoves && moves_along(in, m, t, own_normal)) {
-        if (t > best_end) {
-          best_end = t;
-          best_axis = axis;
-        }
-      } else {
-        blocked[axis] = t;
+      auto piece_to = [&](size_t t) {
+        return in.moves_going(m, t) >= kMinPlanePieceMoves && moves_along(in, m, t, own_normal, spread_mm) &&
+               curves_in(in, m, t, plane_with_normal(axis), choice.band_mm);
+      };
+      // Where the axis keeps its very value, the piece runs as far as that, corners and all
+      // (a plunge into a raster pass belongs to it); where it only stays within the spread,
+      // the piece also ends at a corner (microns of wander around a plunge are chance).
+      const size_t exact = flat_until(in, m, j, axis, 0);
+      const size_t near = smooth_until(in, m, flat_until(in, m, j, axis, spread_mm), choice);
+      const size_t t = near > exact && piece_to(near) ? near : piece_to(exact) ? exact : m;
+      if (t == m) {
+        blocked[axis] = std::min(exact, near);
+      } else if (t > best_end) {
+        best_end = t;
+        best_axis = axis;
       }
     }
     if (best_axis < 0) continue;
@@ -92,7 +145,7 @@ void split_by_plane(const Interpretation& in, size_t i, size_t j, uint32_t min_m
 
 }  // namespace
 
-std::vector<Run> extract_runs(const Interpretation& in, uint32_t min_moves) {
+std::vector<Run> extract_runs(const Interpretation& in, uint32_t min_moves, const PlaneChoice& choice) {
   std::vector<Run> runs;
   const auto& mv = in.moves;
   size_t i = 0;
@@ -106,7 +159,7 @@ std::vector<Run> extract_runs(const Interpretation& in, uint32_t min_moves) {
            mv[j].frame == mv[i].frame && mv[j].plane == mv[i].plane && mv[j].feed_mm_min == mv[i].feed_mm_min)
       ++j;
     // The first move must also follow its predecessor directly, or its start is not its block's.
-    split_by_plane(in, i, j, min_moves, runs);
+    split_by_plane(in, i, j, min_moves, choice, runs);
     i = j;
   }
   return runs;

@@ -28,8 +28,21 @@ struct Run {
   }
 };
 
+/// How extract_runs() chooses the plane of a stretch.
+struct PlaneChoice {
+  /// A principal axis whose values over a stretch spread by no more than this (mm; what the
+  /// fitter carries along a plane's normal axis inside a primitive) is fixed there.
+  double spread_mm = 0;
+  /// A stretch takes another plane than the program's only where it curves in that plane
+  /// by more than this (mm; the fit's tolerance); one whose axis is not fixed exactly, only
+  /// within the spread, also ends at a corner (is_corner() with this band and
+  /// `corner_angle_deg`).
+  double band_mm = 0;
+  double corner_angle_deg = 30;
+};
+
 /// Finds all runs of at least `min_moves` fittable moves.
-std::vector<Run> extract_runs(const Interpretation& in, uint32_t min_moves = 2);
+std::vector<Run> extract_runs(const Interpretation& in, uint32_t min_moves = 2, const PlaneChoice& choice = {});
 
 /// Runs that follow one another along the path and are fitted together, so that the joints
 /// between them are tangent where the path is smooth: moves first_move .. first_move +

@@ -38,6 +38,8 @@ constexpr uint32_t kLoweMinMoves = 2;
 /// The default search's chain is searched again layer by layer (as the global method's) when
 /// this many arcs in a row each turn the other way from the one before.
 constexpr int kWiggleArcs = 4;
+/// Primitives a forced kink must save, at the least, where a chain wiggles (see untangle()).
+constexpr size_t kKinkWorth = 4;
 /// Candidates per primitive whose next step is looked at before choosing.
 constexpr int kLookahead = 6;
 /// Splits of a stretch into two primitives checked exactly per start tangent when merging.
@@ -321,6 +323,7 @@ class RunFitter {
           forced = 0;
         }
       }
+      if ((search || o_.method == FitOptions::Method::Greedy) && wiggles(chain)) untangle(a, limit, chain, forced);
       out.insert(out.end(), chain.begin(), chain.end());
       a = limit;
     }
@@ -328,19 +331,70 @@ class RunFitter {
     return out;
   }
 
-  /// Whether `chain` wiggles: several arcs in a row, each turning the other way from the one
-  /// before, as a chain does that left a narrow place (plum's inner tips) with a tangent it
-  /// can only bring back to the path by S-bends, all tangent, all inside the band, and many.
-  bool wiggles(const std::vector<Chosen>& chain) const {
+  /// A chain that still wiggles may be paying with S-bends, all the way along, for one joint
+  /// the path cannot pass tangentially: a hook, where the input turns at a vertex by more
+  /// than a primitive ending there can follow within the band (a pass clipped to the floor it
+  /// meets), so every chain that keeps the tangent leaves that vertex heading off the path.
+  /// The tangent breaks instead at one of the joints where the first wiggle starts, or the
+  /// joint before, when that at least halves the primitives after the joint and saves
+  /// kKinkWorth of them for each kink it adds; the break is a forced kink.
+  void untangle(uint32_t a, uint32_t limit, std::vector<Chosen>& chain, size_t& forced) const {
+    const size_t first = wiggle_start(chain);
+    std::vector<Chosen> best;
+    size_t best_forced = forced;
+    // Each forced kink counts as kKinkWorth primitives.
+    size_t best_cost = chain.size() + kKinkWorth * forced;
+    for (size_t k = std::max<size_t>(first, 2) - 1; k <= first + 1 && k < chain.size(); ++k) {
+      const uint32_t v = chain[k - 1].prim.end_vertex;  // the joint at the start of primitive k
+      if (chain[k].kinked || hard_[v]) continue;
+      size_t rest_forced = 0;
+      GreedyWalk greedy(*this, v, limit);
+      greedy.tangent.reset();
+      std::vector<Chosen> rest;
+      if (o_.method == FitOptions::Method::Greedy) {
+        greedy.finish();
+        rest = std::move(greedy.chain);
+        rest_forced = greedy.kinks();
+      } else {
+        rest = beam_stretch(v, limit, greedy, rest_forced);
+      }
+      if (rest.empty()) continue;
+      const size_t after = chain.size() - k;
+      if (2 * rest.size() > after || rest.size() + kKinkWorth > after) continue;
+      rest.front().kinked = true;
+      std::vector<Chosen> made(chain.begin(), chain.begin() + static_cast<long>(k));
+      made.insert(made.end(), rest.begin(), rest.end());
+      if (o_.merge && o_.method != FitOptions::Method::Greedy) tighten_between_kinks(a, made);
+      size_t made_forced = 0;
+      for (const Chosen& c : made) made_forced += c.kinked;
+      if (made.size() + kKinkWorth * made_forced < best_cost) {
+        best_cost = made.size() + kKinkWorth * made_forced;
+        best.swap(made);
+        best_forced = made_forced;
+      }
+    }
+    if (best.empty()) return;
+    chain.swap(best);
+    forced = best_forced;
+  }
+
+  /// The index of the first primitive of the first wiggle in `chain` (see wiggles()), or
+  /// its size when none.
+  size_t wiggle_start(const std::vector<Chosen>& chain) const {
     int run = 0;
     for (size_t i = 1; i < chain.size(); ++i) {
       const Primitive &p = chain[i].prim, &before = chain[i - 1].prim;
       const bool back = p.kind == Primitive::Kind::Arc && before.kind == Primitive::Kind::Arc && p.ccw != before.ccw;
       run = back ? run + 1 : 0;
-      if (run >= kWiggleArcs) return true;
+      if (run >= kWiggleArcs) return i - static_cast<size_t>(run);
     }
-    return false;
+    return chain.size();
   }
+
+  /// Whether `chain` wiggles: several arcs in a row, each turning the other way from the one
+  /// before, as a chain does that left a narrow place (plum's inner tips) with a tangent it
+  /// can only bring back to the path by S-bends, all tangent, all inside the band, and many.
+  bool wiggles(const std::vector<Chosen>& chain) const { return wiggle_start(chain) < chain.size(); }
 
   /// Whether the joint at vertex v, after a move that is fixed or not, is one the fit made:
   /// between two moves left as they are it is the input's own, unless one side is a line
@@ -1524,6 +1578,12 @@ class RunFitter {
 };
 
 }  // namespace
+
+double normal_axis_spread_mm(const FitOptions& o) {
+  // A vertex and the height carried between two vertices of the stretch both lie within its
+  // spread, so the height check of make_arc() holds at every vertex.
+  return o.helical ? o.tolerance_mm * (1.0 - kRoundingReserve) * kHeightShare : 0.0;
+}
 
 std::vector<FitResult> fit_chain(const Interpretation& in, const RunChain& chain, std::span<const Run> runs,
                                  const std::function<FitOptions(const Run&)>& options_for) {

@@ -10,6 +10,11 @@
 
 namespace arcpress {
 
+/// The most (mm) a plane's normal axis may spread over a stretch for every primitive fitted
+/// there to carry it, linearly along the primitive, inside the normal-axis share of the band:
+/// that share with helical motion allowed (`o.helical`), else 0 (a fixed coordinate only).
+double normal_axis_spread_mm(const FitOptions& o);
+
 /// Fits the runs of `chain` (out of `runs`, as chain_runs() grouped them) together: one result
 /// per run of the chain, in order. Lone moves and input arcs of the chain stay as they are,
 /// and the joints with them and between runs are tangent where the path is smooth. Runs in
