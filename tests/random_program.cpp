@@ -37,6 +37,9 @@ RandomCase random_case(std::span<const uint8_t> bytes) {
   const double step_mm = steps_mm[form & 3];
   const int decimals = (form >> 2) & 1 ? 3 : 4;
   const bool smooth = (form >> 5) & 1, flat = (form >> 6) & 1, extrudes = (form >> 7) & 1;
+  // A flat path whose height wanders by up to 0.35 of the band either way, as a rotated
+  // frame or a digitiser prints it: sometimes within what a helical arc carries, sometimes not.
+  const bool wander = flat && (target & 0x40);
   std::string& s = c.text;
   s = fmt::format("G21 G90 {}{}\nG0 X0 Y0 Z0\nG1 F1000\n", planes[(form >> 3) & 3], extrudes ? " M83" : "");
   double x = 0, y = 0, z = 0, hx = 1, hy = 0;
@@ -59,6 +62,7 @@ RandomCase random_case(std::span<const uint8_t> bytes) {
       y += b / 128.0 * step_mm * 10;
       if (!flat) z += h / 128.0 * step_mm;
     }
+    if (wander) z = ((h & 7) - 3.5) / 3.5 * 0.35 * f.tolerance_mm;
     // Now and then a block that is no move: runs end there, and are fitted as one chain.
     if ((h & 0x3f) == 0x21) s += "(note)\n";
     if ((h & 0x3f) == 0x22) s += fmt::format("G1 F{}\n", 500 + (i % 7) * 100);

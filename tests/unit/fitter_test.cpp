@@ -358,6 +358,24 @@ TEST_CASE("a helix printed to 3 decimals stays one helical arc where Y stands st
   CHECK(o.r.comparison.max_deviation_mm <= 0.01);
 }
 
+TEST_CASE("a plunge written in steps along the plane's normal becomes one line", "[fit][plane]") {
+  // Under G17 the steps have no direction in XY; the fitter offers lines over them, which the
+  // exact check measures in 3D. The moves before and after run diagonally, so no other plane
+  // takes the plunge.
+  auto o = compress_text(
+      "G21 G90 G17\nG0 X0 Y0 Z5\nG1 F500\nG1 X10 Y10 Z5\nG1 Z4\nG1 Z3\nG1 Z2\nG1 Z1\nG1 X20 Y0 Z1\n"
+      "G1 X25 Y10 Z1\nM2\n");
+  CHECK(o.r.output.find("Z4") == std::string::npos);
+  CHECK(o.r.output.find("Z2") == std::string::npos);
+  CHECK(o.r.output.find("Z1\n") != std::string::npos);
+  CHECK(o.r.comparison.max_deviation_mm <= 0.01);
+  CHECK(o.r.stats.plane_words_added == 0);
+  // A plunge that turns back (down, then up) is no line: its steps stay.
+  auto back = compress_text("G21 G90 G17\nG0 X0 Y0 Z5\nG1 F500\nG1 X10 Y10 Z5\nG1 Z4\nG1 Z3\nG1 Z4.5\nG1 X20 Y0 Z4.5\nM2\n");
+  CHECK(back.r.output.find("Z3\n") != std::string::npos);
+  CHECK(back.r.comparison.max_deviation_mm <= 0.01);
+}
+
 TEST_CASE("arcs below the minimum radius or above the maximum become lines", "[fit]") {
   FitOptions f;
   f.tolerance_mm = 0.0005;

@@ -492,8 +492,11 @@ class RunFitter {
       const Vec2 u = q(e) - qa;
       const double uu = u.squaredNorm();
       if (uu <= kLengthEpsMm * kLengthEpsMm) {
-        if (!flat) continue;
-        break;  // back at the start: a full circle is not a single primitive here
+        if (flat) break;  // back at the start: a full circle is not a single primitive here
+        // Straight above or below the start (a plunge written in steps): no direction in
+        // the plane, so only a line can end here, which the exact check measures in 3D.
+        sink(Candidate{e, 0.0, true});
+        continue;
       }
       // The tangent-chord angle alpha (sweep = 2 alpha), as the pseudo-angle of |alpha|.
       const double ut = u.dot(T), un = u.dot(N);
@@ -697,7 +700,7 @@ class RunFitter {
     Chosen lite;
     lite.prim.end_vertex = c.e;
     Vec2 chord = q(c.e) - q(a);
-    lite.end_tangent = c.line ? Vec2(chord.normalized()) : reflected_end(a, T, c.e);
+    lite.end_tangent = !c.line ? reflected_end(a, T, c.e) : chord.norm() > 0 ? Vec2(chord.normalized()) : T;
     return lite;
   }
 
@@ -1484,6 +1487,9 @@ class RunFitter {
     Vec2 chord = q(a + 1) - q(a);
     if (chord.norm() > kLengthEpsMm) out.push_back(chord.normalized());
     if (auto t = input_tangent(a, stretch_start_, limit)) out.push_back(*t);
+    // Where the path leaves `a` along the plane's normal (a plunge), it has no direction in
+    // the plane: any will do for the lines that follow it.
+    if (out.empty()) out.push_back(Vec2(1, 0));
   }
 
   /// Whether the chain arrives at `a` with a tangent it must follow: the start of a stretch
