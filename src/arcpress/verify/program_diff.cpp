@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <limits>
 #include <cctype>
 #include <cmath>
 #include <tuple>
@@ -24,6 +25,9 @@ struct Path {
   std::vector<Vec3> points;
   std::vector<uint32_t> first, move_of, section_of;
   std::vector<double> section_length_mm, section_e;  ///< per section
+  /// Per section, how far floating rounding can carry its E sum (mm): E is a running
+  /// position, so each move's E is the difference of two numbers as large as that.
+  std::vector<double> section_e_rounding_mm;
   std::vector<uint32_t> rapids;                      ///< move indices of known rapids
   size_t feed_moves = 0;
 
@@ -49,11 +53,14 @@ Path path_of(const Interpretation& in, double chord_mm) {
     if (!in_section) {
       p.section_length_mm.push_back(0);
       p.section_e.push_back(0);
+      p.section_e_rounding_mm.push_back(0);
       in_section = true;
     }
     ++p.feed_moves;
     uint32_t sec = uint32_t(p.section_length_mm.size() - 1);
     p.section_e[sec] += m.to[kE] - in.from(i)[kE];
+    p.section_e_rounding_mm[sec] +=
+        4 * std::numeric_limits<double>::epsilon() * std::max(std::abs(m.to[kE]), std::abs(in.from(i)[kE]));
     Vec3 prev = xyz(in.from(i));
     // A section's first segment starts a polyline of its own.
     if (p.section_of.empty() || p.section_of.back() != sec) p.points.push_back(prev);
@@ -433,16 +440,19 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
   }
 
   // Extrusion per section.
+  constexpr double kExtrusionMm = 1e-4;  // E printed with 5 decimals: sums agree far closer
+  bool extrusion_differs = false;
   for (size_t k = 0; k < std::min(pa.section_e.size(), pb.section_e.size()); ++k) {
     double ea = pa.section_e[k], eb = pb.section_e[k];
     d.max_extrusion_difference_mm = std::max(d.max_extrusion_difference_mm, std::abs(ea - eb));
+    extrusion_differs = extrusion_differs || std::abs(ea - eb) > kExtrusionMm + pa.section_e_rounding_mm[k] +
+                                                                    pb.section_e_rounding_mm[k];
     double la = pa.section_length_mm[k], lb = pb.section_length_mm[k];
     if (la > 0 && lb > 0 && std::abs(ea) > 0)
       d.max_extrusion_per_mm_difference_pct =
           std::max(d.max_extrusion_per_mm_difference_pct, 100.0 * std::abs(eb / lb - ea / la) / std::abs(ea / la));
   }
-  constexpr double kExtrusionMm = 1e-4;  // E printed with 5 decimals: sums agree far closer
-  if (d.max_extrusion_difference_mm > kExtrusionMm)
+  if (extrusion_differs)
     d.findings.push_back(fmt::format("extrusion per section differs by up to {:.5f} mm of E", d.max_extrusion_difference_mm));
   constexpr double kFeedPct = 0.01;
   if (d.max_feed_difference_pct > kFeedPct)
