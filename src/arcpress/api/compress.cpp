@@ -104,10 +104,10 @@ CompressResult compress(const std::string& name, std::string text, const Compres
   if (!opt.passthrough) {
     // A plane's normal axis that wanders by less than the fitter carries along a primitive
     // does not keep a stretch out of that plane.
-    FitOptions spread = opt.fit;
-    spread.helical = opt.fit.helical && opt.dialect.helical;
+    FitOptions target = opt.fit;
+    target.helical = opt.fit.helical && opt.dialect.helical;
     PlaneChoice choice;
-    choice.spread_mm = normal_axis_spread_mm(spread);
+    choice.spread_mm = normal_axis_spread_mm(target);
     choice.band_mm = opt.fit.tolerance_mm;
     choice.corner_angle_deg = opt.fit.corner_angle_deg;
     runs = extract_runs(in, 2, choice);

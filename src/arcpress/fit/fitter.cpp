@@ -335,8 +335,8 @@ class RunFitter {
   /// the path cannot pass tangentially: a hook, where the input turns at a vertex by more
   /// than a primitive ending there can follow within the band (a pass clipped to the floor it
   /// meets), so every chain that keeps the tangent leaves that vertex heading off the path.
-  /// The tangent breaks instead at one of the joints where the first wiggle starts, or the
-  /// joint before, when that at least halves the primitives after the joint and saves
+  /// The tangent breaks instead at the joint where the first wiggle starts, or at the one
+  /// before or after it, when that at least halves the primitives after the joint and saves
   /// kKinkWorth of them for each kink it adds; the break is a forced kink.
   void untangle(uint32_t a, uint32_t limit, std::vector<Chosen>& chain, size_t& forced) const {
     const size_t first = wiggle_start(chain);

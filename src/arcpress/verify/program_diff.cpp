@@ -3,9 +3,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <limits>
 #include <cctype>
 #include <cmath>
+#include <limits>
 #include <tuple>
 
 #include "arcpress/core/deviation.hpp"
