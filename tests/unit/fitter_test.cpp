@@ -531,6 +531,37 @@ TEST_CASE("the default search does not wiggle: where its chain leaves a narrow p
   }
 }
 
+TEST_CASE("a rounded rectangle in G1 moves becomes its four lines and four fillet arcs", "[fit][search]") {
+  // 20 × 10 mm, fillets of 1 mm, moves of 0.2 mm on the sides and 16 per fillet, printed to
+  // 3 decimals as CAM writes a pocket wall. The longest line along a side overshoots into
+  // the fillet by a vertex, within the band, and leaves a tangent no single arc follows:
+  // the chain must stop each side where the fillet begins.
+  std::vector<Pt> pts;
+  auto side = [&](double x0, double y0, double x1, double y1, int n) {
+    for (int k = 0; k < n; ++k) pts.push_back({x0 + (x1 - x0) * k / n, y0 + (y1 - y0) * k / n, 0});
+  };
+  auto fillet = [&](double cx, double cy, double from_deg) {
+    for (int k = 0; k < 16; ++k) {
+      const double a = deg_to_rad(from_deg + 90.0 * k / 16);
+      pts.push_back({cx + std::cos(a), cy + std::sin(a), 0});
+    }
+  };
+  side(1, 0, 19, 0, 90);
+  fillet(19, 1, -90);
+  side(20, 1, 20, 9, 40);
+  fillet(19, 9, 0);
+  side(19, 10, 1, 10, 90);
+  fillet(1, 9, 90);
+  side(0, 9, 0, 1, 40);
+  fillet(1, 1, 180);
+  pts.push_back({1, 0, 0});
+  auto o = compress_text(program(pts, "G17", 3));
+  CHECK(o.lines == 4);
+  CHECK(o.arcs == 4);
+  CHECK(o.r.forced_kinks == 0);
+  CHECK(o.r.comparison.max_deviation_mm <= 0.01);
+}
+
 TEST_CASE("where no tangent chain gets past a hook but by S-bends all along, the tangent breaks at the hook",
           "[fit][search]") {
   // A pass over a dome (a circle of radius 14.97 mm) clipped to the floor at both ends, as
