@@ -145,6 +145,13 @@ int run_compress(const CompressArgs& a) {
                  "  smooth joints  {} forced by the band or the digits to change tangent (others not measured)\n",
                  r.forced_kinks);
     }
+    // Where the tangent had to break: the input lines of the first few such joints.
+    if (const auto& at = r.forced_kink_lines; !at.empty()) {
+      constexpr size_t kShown = 10;
+      const std::vector<uint32_t> first(at.begin(), at.begin() + static_cast<long>(std::min(at.size(), kShown)));
+      fmt::print(stderr, "  forced at      input line{} {}{}\n", at.size() > 1 ? "s" : "", fmt::join(first, ", "),
+                 at.size() > kShown ? fmt::format(", ... ({} in all)", at.size()) : std::string());
+    }
   }
   return kExitOk;
 }

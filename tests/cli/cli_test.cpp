@@ -1,8 +1,11 @@
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <sstream>
+#include <string>
 
 #include "support.hpp"
 
@@ -123,6 +126,35 @@ TEST_CASE("the stats flag reports counts on standard error", "[cli]") {
   CHECK(c.exit_code == 0);
   CHECK(c.out == kProgram);
   CHECK(c.err.find("runs           1 with 4 G1 moves") != std::string::npos);
+}
+
+TEST_CASE("the stats name the input lines where the band forced the tangent to break", "[cli]") {
+  // A pass over a dome clipped to the floor at both ends: the tangent breaks at the hooks.
+  std::string dome = "G21 G90 G17\nG0 X-11.2 Y0 Z0\nG1 F800\n";
+  for (int k = 0; k <= 112; ++k) {
+    const double x = -11.2 + 0.2 * k;
+    dome += fmt::format("G1 X{:.4f} Y{:.4f}\n", x, std::max(0.0, std::sqrt(std::max(0.0, 224 - x * x)) - 10));
+  }
+  dome += "M2\n";
+  auto c = run_arcpress("--stats", dome);
+  REQUIRE(c.exit_code == 0);
+  const size_t at = c.err.find("  forced at      input line");
+  REQUIRE(at != std::string::npos);
+  // Each named line is a G1 of the input.
+  std::istringstream named(c.err.substr(c.err.find_first_of("0123456789", at)));
+  int line = 0;
+  int count = 0;
+  while (named >> line) {
+    std::istringstream text(dome);
+    std::string l;
+    for (int k = 0; k < line; ++k) std::getline(text, l);
+    CHECK(l.rfind("G1 X", 0) == 0);
+    ++count;
+    if (named.peek() == ',') named.ignore();
+  }
+  CHECK(count >= 1);
+  auto kept = run_arcpress("--stats --method keep", dome);
+  CHECK(kept.err.find("forced at") == std::string::npos);
 }
 
 TEST_CASE("diff passes a compressed program within the band and fails it outside", "[cli][diff]") {
