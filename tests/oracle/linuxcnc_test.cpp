@@ -166,19 +166,20 @@ TEST_CASE("LinuxCNC's rs274 accepts every compressed CNC corpus program and read
   CHECK(arcs > 1000);
 }
 
-TEST_CASE("LinuxCNC's rs274 reads the G18 and G19 arcs of a raster finishing program within the band",
-          "[oracle][linuxcnc][plane]") {
-  RS274_OR_SKIP();
-  // Parallel finishing over a dome (sphere of radius 15 mm, its top 5 mm above the floor),
-  // under G17: passes along X at fixed Y, then passes along Y at fixed X, 0.2 mm steps,
-  // coordinates printed to 4 decimals as CAM systems print them.
+namespace {
+
+/// Parallel finishing over a dome (sphere of radius 15 mm, its top 5 mm above the floor),
+/// under G17: passes along X at fixed Y, then passes along Y at fixed X, 0.2 mm steps,
+/// coordinates printed to 4 decimals as CAM systems print them. The fixed coordinate steps
+/// by `wander_mm` either way from move to move (a rotated frame's rounding), or stays.
+std::string dome_raster(double wander_mm) {
   std::string g = "G21 G90 G17 G64\nG0 X-20 Y-6 Z5\nG1 Z0 F800\n";
   auto height = [](double u, double v) { return std::max(0.0, std::sqrt(std::max(0.0, 225 - u * u - v * v)) - 10); };
   // Six passes to and fro along X (along_x) or Y, the other coordinate fixed per pass.
   auto passes = [&](bool along_x) {
     for (int pass = 0; pass < 6; ++pass) {
-      double fixed = -5 + 2 * pass;
       for (int k = 0; k <= 200; ++k) {
+        double fixed = -5 + 2 * pass + wander_mm * ((k % 3) - 1);
         double u = (pass % 2 ? 20.0 : -20.0) + (pass % 2 ? -0.2 : 0.2) * k;
         double x = along_x ? u : fixed, y = along_x ? fixed : u;
         g += fmt::format("G1 X{:.4f} Y{:.4f} Z{:.4f}\n", x, y, height(x, y));
@@ -189,8 +190,13 @@ TEST_CASE("LinuxCNC's rs274 reads the G18 and G19 arcs of a raster finishing pro
   g += "G0 Z5\nG0 X-6 Y-20\nG1 Z0\n";
   passes(false);
   g += "G0 Z5\nG2 X21 Y-20 I8 J0\nM2\n";
+  return g;
+}
 
-  auto dir = rs274_folder("rs274-planes");
+/// Compresses `g` (dome_raster()) for LinuxCNC and checks that rs274 reads both programs, the
+/// compressed one in G18 and G19 as well as G17, and the paths within the band.
+void check_raster_planes(const std::string& g, const std::string& tag) {
+  auto dir = rs274_folder(tag);
   test::write_file(dir / "raster.ngc", g);
   Rs274 original = run_rs274(dir, dir / "raster.ngc");
   REQUIRE(original.exit_code == 0);
@@ -216,6 +222,22 @@ TEST_CASE("LinuxCNC's rs274 reads the G18 and G19 arcs of a raster finishing pro
   INFO(c.mismatch);
   CHECK(c.matched);
   CHECK(c.max_deviation_mm <= r.band_mm + 0.00015);
+}
+
+}  // namespace
+
+TEST_CASE("LinuxCNC's rs274 reads the G18 and G19 arcs of a raster finishing program within the band",
+          "[oracle][linuxcnc][plane]") {
+  RS274_OR_SKIP();
+  check_raster_planes(dome_raster(0), "rs274-planes");
+}
+
+TEST_CASE("LinuxCNC's rs274 reads G18 and G19 arcs that carry a pass's wandering coordinate helically",
+          "[oracle][linuxcnc][plane]") {
+  RS274_OR_SKIP();
+  // The fixed coordinate of each pass steps by a micron either way: within what a helical
+  // arc carries, so the passes are still fitted in XZ and YZ.
+  check_raster_planes(dome_raster(0.001), "rs274-planes-wander");
 }
 
 TEST_CASE("LinuxCNC's rs274 takes arcs that turn the A axis as they go, ending each at the input's A",
