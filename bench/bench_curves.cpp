@@ -1,6 +1,7 @@
 // Xu 2021's test curves (Table 2), sampled as the paper does, fitted at three tolerances:
 // segments out, measured deviation, largest tangent change at smooth joints, time per curve.
-// Then the fitter's throughput on the corpus runs. Figures only; nothing here is a test.
+// Then contours of the kind CAM writes, against the lines and arcs that drew them, and the
+// fitter's throughput on the corpus runs. Figures only; nothing here is a test.
 // Usage: bench_curves [REPEATS]
 #include <fmt/format.h>
 
@@ -101,6 +102,74 @@ const std::vector<Vec2> kBspline2 = {{0, 10}, {1, 8},   {4, 7.5}, {5, 10}, {6, 1
                                      {12, 11}, {12, -1}, {6, 4.3}, {4, 10}, {2, 8},  {1, 7.5}, {0, 0},
                                      {3, 0},  {5, 2.7}, {8, 7},   {10, 7}, {11, 3}, {7.3, -1}, {9.3, -2}};
 
+/// A CAM contour drawn from lines and arcs, sampled into G1 moves: what a CAM system writes
+/// when it may not write arcs. `drawn` is how many lines and arcs drew it.
+struct Shape {
+  const char* name;
+  std::vector<Vec2> pts;
+  size_t drawn = 0;
+  int decimals = 3;
+
+  /// A line to `to` in `moves` moves.
+  Shape& line(const Vec2& to, int moves) {
+    const Vec2 from = pts.back();
+    for (int k = 1; k <= moves; ++k) pts.push_back(from + (to - from) * (double(k) / moves));
+    ++drawn;
+    return *this;
+  }
+  /// An arc about `centre` turning by `turn_deg` (> 0 counter-clockwise) in `moves` moves.
+  Shape& arc(const Vec2& centre, double turn_deg, int moves) {
+    const Vec2 r = pts.back() - centre;
+    for (int k = 1; k <= moves; ++k) {
+      const double a = deg_to_rad(turn_deg) * k / moves;
+      pts.push_back(centre + Vec2(r.x() * std::cos(a) - r.y() * std::sin(a), r.x() * std::sin(a) + r.y() * std::cos(a)));
+    }
+    ++drawn;
+    return *this;
+  }
+  std::string text() const {
+    std::string s = fmt::format("G21 G90 G17\nG0 X{:.{}f} Y{:.{}f} Z0\nG1 F1000\n", pts[0].x(), decimals, pts[0].y(), decimals);
+    for (size_t i = 1; i < pts.size(); ++i) s += fmt::format("G1 X{:.{}f} Y{:.{}f}\n", pts[i].x(), decimals, pts[i].y(), decimals);
+    return s + "M2\n";
+  }
+};
+
+/// Contours of the kind CAM writes, for the search's choices beyond Xu's curves.
+std::vector<Shape> cam_shapes() {
+  std::vector<Shape> out;
+  auto rounded = [](const char* name, double w, double h, double r, double step_mm, int fillet_moves, int decimals) {
+    Shape s{name, {{r, 0}}};
+    s.decimals = decimals;
+    auto moves = [&](double len) { return std::max(1, int(std::lround(len / step_mm))); };
+    s.line({w - r, 0}, moves(w - 2 * r)).arc({w - r, r}, 90, fillet_moves);
+    s.line({w, h - r}, moves(h - 2 * r)).arc({w - r, h - r}, 90, fillet_moves);
+    s.line({r, h}, moves(w - 2 * r)).arc({r, h - r}, 90, fillet_moves);
+    s.line({0, r}, moves(h - 2 * r)).arc({r, r}, 90, fillet_moves);
+    return s;
+  };
+  out.push_back(rounded("rounded rectangle", 20, 10, 1, 0.2, 16, 3));
+  out.push_back(rounded("fine rounded rectangle", 10, 5, 0.5, 0.05, 20, 4));
+  Shape slot{"slot", {{0, 0}}};
+  slot.line({30, 0}, 60).arc({30, 5}, 180, 40).line({0, 10}, 60).arc({0, 5}, 180, 40);
+  out.push_back(slot);
+  Shape s_curve{"S-curve", {{-10, 0}}};
+  s_curve.line({0, 0}, 20).arc({0, 10}, 90, 50).arc({20, 10}, -90, 50).line({30, 20}, 20);
+  out.push_back(s_curve);
+  Shape cam{"cam profile", {{20, 0}}};
+  cam.arc({0, 0}, 90, 60).arc({0, 15}, 90, 30).arc({15, 15}, 90, 60).arc({15, 0}, 90, 30);
+  out.push_back(cam);
+  // A pass over a dome clipped to the floor at both ends: a hook of 10° at each clip.
+  Shape dome{"dome pass, clipped", {}};
+  dome.decimals = 4;
+  for (int k = 0; k <= 112; ++k) {
+    const double x = -11.2 + 0.2 * k;
+    dome.pts.push_back({x, std::max(0.0, std::sqrt(std::max(0.0, 224 - x * x)) - 10)});
+  }
+  dome.drawn = 3;  // the dome's arc and, at a forced kink each, the two clipped ends
+  out.push_back(dome);
+  return out;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -177,6 +246,24 @@ int main(int argc, char** argv) {
                  global_ms, g.stats.lines_out + g.stats.arcs_out,
                  seed(st), seed(lw));
     }
+  }
+
+  // CAM contours: blocks (and forced kinks) per method against the lines and arcs that drew them.
+  fmt::print("\nCAM contours in G1 moves at 0.01 mm: blocks/forced kinks; 'drawn': the lines and arcs that drew them\n");
+  fmt::print("{:<24} {:>6} {:>6} {:>9} {:>9} {:>9} {:>10}\n", "contour", "moves", "drawn", "arcs", "global", "greedy",
+             "max dev");
+  for (const Shape& shape : cam_shapes()) {
+    auto run = [&](FitOptions::Method m) {
+      CompressOptions opt;
+      opt.fit.method = m;
+      DiagnosticSink sink;
+      return compress(shape.name, shape.text(), opt, sink);
+    };
+    const CompressResult d = run(FitOptions::Method::Arcs), gl = run(FitOptions::Method::Global),
+                         gr = run(FitOptions::Method::Greedy);
+    auto cell = [](const CompressResult& r) { return fmt::format("{}/{}", r.stats.lines_out + r.stats.arcs_out, r.forced_kinks); };
+    fmt::print("{:<24} {:>6} {:>6} {:>9} {:>9} {:>9} {:>10.6f}\n", shape.name, shape.pts.size() - 1, shape.drawn, cell(d),
+               cell(gl), cell(gr), d.comparison.max_deviation_mm);
   }
 
   // Throughput on the corpus: whole pipeline without verification, per input point of the runs.
