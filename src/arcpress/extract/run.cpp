@@ -57,18 +57,25 @@ bool curves_in(const Interpretation& in, size_t i, size_t t, Plane plane, double
   return false;
 }
 
-/// The first vertex k in (i, t) where the path has a corner (is_corner(), past moves that go
-/// nowhere), else t: the end of the smooth stretch of moves [i, t) from i.
-size_t smooth_until(const Interpretation& in, size_t i, size_t t, const PlaneChoice& choice) {
-  auto point = [&](size_t v) {
+/// Whether the path has a corner at vertex k (the start of move k): is_corner() in the plane
+/// of move k, with the vertices beside it past moves that go nowhere; so where the feed path
+/// ends on either side.
+bool corner_at(const Interpretation& in, size_t k, double band_mm, double corner_angle_deg) {
+  const Plane pl = in.moves[std::min(k, in.moves.size() - 1)].plane;
+  auto point = [&](size_t v) {  // vertex v in the plane's coordinates, as the verifier reads it
     const auto& a = in.from(v);
-    return Vec3(a[kX], a[kY], a[kZ]);
+    const auto ax = axes_of(pl);
+    return Vec3(a[ax.first], a[ax.second], a[ax.normal]);
   };
-  for (size_t k = i + 1; k < t; ++k) {
-    if (in.goes_nowhere(k - 1)) continue;  // the vertex repeats the one before
-    const auto b = in.vertex_beside(k, -1), a = in.vertex_beside(k, +1);
-    if (b && a && is_corner(point(*b), point(k), point(*a), choice.band_mm, choice.corner_angle_deg)) return k;
-  }
+  const auto b = in.vertex_beside(k, -1), a = in.vertex_beside(k, +1);
+  return !b || !a || is_corner(point(*b), point(k), point(*a), band_mm, corner_angle_deg);
+}
+
+/// The first vertex k in (i, t) where the path has a corner (corner_at()), else t: the end of
+/// the smooth stretch of moves [i, t) from i.
+size_t smooth_until(const Interpretation& in, size_t i, size_t t, const PlaneChoice& choice) {
+  for (size_t k = i + 1; k < t; ++k)
+    if (!in.goes_nowhere(k - 1) && corner_at(in, k, choice.band_mm, choice.corner_angle_deg)) return k;
   return t;
 }
 
@@ -171,11 +178,6 @@ std::vector<RunChain> chain_runs(const Interpretation& in, const std::vector<Run
   std::vector<int32_t> run_of(mv.size(), -1);
   for (size_t r = 0; r < runs.size(); ++r)
     for (uint32_t k = 0; k < runs[r].move_count; ++k) run_of[runs[r].first_move + k] = int32_t(r);
-  auto point = [&](size_t i, Plane pl) {  // start of move i in the plane's coordinates
-    const auto& v = in.from(i);
-    const auto ax = axes_of(pl);
-    return Vec3(v[ax.first], v[ax.second], v[ax.normal]);
-  };
   std::vector<RunChain> chains;
   RunChain cur;
   bool open = false;
@@ -192,13 +194,9 @@ std::vector<RunChain> chain_runs(const Interpretation& in, const std::vector<Run
     if (open) {
       const Move& prev = mv[k - 1];
       const bool same_piece = r >= 0 && run_of[k - 1] == r;
-      // The corner rule at the joint, with the vertices beside it past moves that go nowhere.
-      auto corner = [&] {
-        const auto b = in.vertex_beside(k, -1), a = in.vertex_beside(k, +1);
-        return !b || !a || is_corner(point(*b, mv[k].plane), point(k, mv[k].plane), point(*a, mv[k].plane), band_mm,
-                                     corner_angle_deg);
-      };
-      if (prev.frame != mv[k].frame || prev.plane != mv[k].plane || (!same_piece && corner())) close();
+      if (prev.frame != mv[k].frame || prev.plane != mv[k].plane ||
+          (!same_piece && corner_at(in, k, band_mm, corner_angle_deg)))
+        close();
     }
     if (!open) {
       cur = {uint32_t(k), 0, r >= 0 ? uint32_t(r) : uint32_t(0), 0};
