@@ -36,8 +36,11 @@ constexpr double kTurnShare = 0.45;
 /// unless they leave the band.
 constexpr uint32_t kLoweMinMoves = 2;
 /// The default search's chain is searched again layer by layer (as the global method's) when
-/// this many arcs in a row each turn the other way from the one before.
+/// it wiggles: at this many joints in a row between arcs, the curvature swings back the other
+/// way from the joint before, by a turn the other way or by a change of more than
+/// kWiggleCurvatureShare of the larger curvature (untangle() looks at the turns alone).
 constexpr int kWiggleArcs = 4;
+constexpr double kWiggleCurvatureShare = 2.0 / 3.0;
 /// Primitives a forced kink must save, at the least, where a chain wiggles (see untangle()).
 constexpr size_t kKinkWorth = 4;
 /// Candidates per primitive whose next step is looked at before choosing.
@@ -135,6 +138,7 @@ class RunFitter {
     full_left_ = Turn(2 * kTurnShare * g1);
     full_right_ = Turn(-2 * kTurnShare * g1);
     g1_cone_ = Cone(g1);
+    same_tangent_cone_ = Cone(g1 / 32);
     // (The margin keeps the largest turn the searches make from failing by rounding.)
     joint_cone_ = Cone(kJointShare * g1 + 1e-9);
     on_course_cone_ = Cone(kOnCourseRad);
@@ -315,7 +319,7 @@ class RunFitter {
       // chain when, merged too, it has fewer kinks, or as few and fewer primitives. The
       // default method does so where its chain wiggles.
       if ((o_.method == FitOptions::Method::Global && chain.size() > 1) ||
-          (o_.method == FitOptions::Method::Arcs && wiggles(chain))) {
+          (o_.method == FitOptions::Method::Arcs && wiggles(chain, Wiggle::Swings))) {
         auto g = layered_chain(a, limit);
         if (!g.empty() && o_.merge) tighten(a, g, in_tangent_);
         if (!g.empty() && std::pair(size_t(0), g.size()) < std::pair(forced, chain.size())) {
@@ -323,7 +327,8 @@ class RunFitter {
           forced = 0;
         }
       }
-      if ((search || o_.method == FitOptions::Method::Greedy) && wiggles(chain)) untangle(a, limit, chain, forced);
+      if ((search || o_.method == FitOptions::Method::Greedy) && wiggles(chain, Wiggle::SBends))
+        untangle(a, limit, chain, forced);
       out.insert(out.end(), chain.begin(), chain.end());
       a = limit;
     }
@@ -339,7 +344,7 @@ class RunFitter {
   /// before or after it, when that at least halves the primitives after the joint and saves
   /// kKinkWorth of them for each kink it adds; the break is a forced kink.
   void untangle(uint32_t a, uint32_t limit, std::vector<Chosen>& chain, size_t& forced) const {
-    const size_t first = wiggle_start(chain);
+    const size_t first = wiggle_start(chain, Wiggle::SBends);
     std::vector<Chosen> best;
     size_t best_forced = forced;
     // Each forced kink counts as kKinkWorth primitives.
@@ -378,23 +383,38 @@ class RunFitter {
     forced = best_forced;
   }
 
-  /// The index of the first primitive of the first wiggle in `chain` (see wiggles()), or
-  /// its size when none.
-  size_t wiggle_start(const std::vector<Chosen>& chain) const {
-    int run = 0;
+  /// What counts as the curvature swinging back at a joint between two arcs: only a turn the
+  /// other way (an S-bend), or also a change of more than kWiggleCurvatureShare of the
+  /// larger curvature.
+  enum class Wiggle { SBends, Swings };
+
+  /// The index of the first primitive of the first wiggle of kind `kind` in `chain` (see
+  /// wiggles()), or its size when none.
+  size_t wiggle_start(const std::vector<Chosen>& chain, Wiggle kind) const {
+    auto curvature = [](const Primitive& p) { return (p.ccw ? 1 : -1) / p.radius_mm; };  // 1/mm, signed
+    int run = 0;   // swings in a row, up to joint i
+    int last = 0;  // the swing at the joint before: +1 up, -1 down, 0 none
     for (size_t i = 1; i < chain.size(); ++i) {
       const Primitive &p = chain[i].prim, &before = chain[i - 1].prim;
-      const bool back = p.kind == Primitive::Kind::Arc && before.kind == Primitive::Kind::Arc && p.ccw != before.ccw;
-      run = back ? run + 1 : 0;
+      int swing = 0;
+      if (p.kind == Primitive::Kind::Arc && before.kind == Primitive::Kind::Arc) {
+        const double k = curvature(p), kb = curvature(before);
+        const bool jumps = std::abs(k - kb) > kWiggleCurvatureShare * std::max(std::abs(k), std::abs(kb));
+        if (p.ccw != before.ccw || (kind == Wiggle::Swings && jumps)) swing = k > kb ? 1 : -1;
+      }
+      run = swing == 0 ? 0 : swing == -last ? run + 1 : 1;
+      last = swing;
       if (run >= kWiggleArcs) return i - static_cast<size_t>(run);
     }
     return chain.size();
   }
 
-  /// Whether `chain` wiggles: several arcs in a row, each turning the other way from the one
-  /// before, as a chain does that left a narrow place (plum's inner tips) with a tangent it
-  /// can only bring back to the path by S-bends, all tangent, all inside the band, and many.
-  bool wiggles(const std::vector<Chosen>& chain) const { return wiggle_start(chain) < chain.size(); }
+  /// Whether `chain` wiggles: several arcs in a row, each bending the other way from the one
+  /// before (S-bends, or with Swings also tight and wide arcs in turn), as a chain does that
+  /// left a narrow place (plum's inner tips) with a tangent it can only bring back to the
+  /// path by such bends, all tangent, all inside the band, and many. A hook (untangle())
+  /// leaves S-bends.
+  bool wiggles(const std::vector<Chosen>& chain, Wiggle kind) const { return wiggle_start(chain, kind) < chain.size(); }
 
   /// Whether the joint at vertex v, after a move that is fixed or not, is one the fit made:
   /// between two moves left as they are it is the input's own, unless one side is a line
@@ -697,6 +717,20 @@ class RunFitter {
     const size_t step = std::max<size_t>(1, n / (2 * want));
     for (size_t i = n; i > 0 && out.size() < want; i = i > step ? i - step : 0) out.push_back(all[i - 1]);
     if (next_to_longest && step > 1 && n >= 2) out.push_back(all[n - 2]);
+    // Where those two end heading off the input by more than a joint can turn back (an arc
+    // run on past the point where its fillet meets a straight side, which the band allows
+    // for sqrt(2·R·band): 18 moves of 0.05 mm on a radius of 40 mm), also the longest that
+    // ends heading along the input, if it lies before the next one taken.
+    auto along = [&](size_t i) {
+      const uint32_t e = all[i].e;
+      return heading_[e] && joint_cone_.holds(*heading_[e], unchecked(a, T, all[i]).end_tangent);
+    };
+    if (next_to_longest && step > 2 && !along(n - 1) && !along(n - 2))
+      for (size_t i = n - 2; i-- > n - step;)
+        if (along(i)) {
+          out.push_back(all[i]);
+          break;
+        }
   }
 
   /// What candidate `c` from `a` along `T` would be, for scoring before the exact check: its
@@ -1258,6 +1292,7 @@ class RunFitter {
     std::vector<uint32_t> order;          // beam_chain()
     std::vector<Candidate> beam_out;      // beam_chain()
     std::vector<std::pair<uint32_t, long>> seen;  // beam_chain()
+    std::vector<std::pair<uint32_t, Vec2>> expanded;  // beam_chain()
   };
   static Scratch& thread_scratch() {
     thread_local Scratch s;
@@ -1267,8 +1302,8 @@ class RunFitter {
   /// The G1 chain from `a` to `limit` with the fewest primitives a beam search finds. Layer k
   /// holds the chains of k primitives, at most `beam_width` of them, those reaching furthest
   /// with distinct end tangents; each is extended along its end tangent and along it turned
-  /// by the whole joint allowance (kJointShare of the G1 angle) each way: the chains' own
-  /// spread of tangents covers the turns between. The first chain reaching `limit`
+  /// by half and all of the joint allowance (kJointShare of the G1 angle) each way: the
+  /// chains' own spread of tangents covers the arcs' turns between. The first chain reaching `limit`
   /// wins. The tangent at `a` is free, so the roots are a fan of start tangents read off the
   /// input. The greedy chain (read off `greedy` up to its first kink, or chosen again when
   /// null) is always kept. When no chain goes on tangentially, the one reaching furthest is
@@ -1288,6 +1323,7 @@ class RunFitter {
     std::vector<uint32_t>& order = s_.order;
     std::vector<Candidate>& out = s_.beam_out;
     std::vector<std::pair<uint32_t, long>>& seen = s_.seen;
+    std::vector<std::pair<uint32_t, Vec2>>& expanded = s_.expanded;
     int furthest = -1;
     int guide = -1;  // the node the greedy chain would be at: the beam never does worse
     size_t step = 0;
@@ -1311,11 +1347,19 @@ class RunFitter {
         }
       }
       ++step;
+      // Each chain goes on along its end tangent or turned by half or all of the joint
+      // allowance either way: a line's chord lies within a quarter of the G1 angle of the
+      // tangent scanned, so whole turns alone would offer no line whose chord lies between. A
+      // tangent another chain at the same vertex follows already is not followed twice.
+      expanded.clear();
       for (int i : layer) {
         const Node nd = nodes[i];
-        for (const Turn* turn : {(const Turn*)nullptr, &full_left_, &full_right_}) {
+        for (const Turn* turn : {(const Turn*)nullptr, &full_left_, &full_right_, &half_left_, &half_right_}) {
           if (turn && nd.parent < 0) break;
           const Vec2 T = turn ? (*turn)(nd.T) : nd.T;
+          auto same = [&](const auto& x) { return x.first == nd.v && same_tangent_cone_.holds(x.second, T); };
+          if (std::any_of(expanded.begin(), expanded.end(), same)) continue;
+          expanded.push_back({nd.v, T});
           pick(nd.v, T, limit, o_.beam_branch, out, true);
           for (const Candidate& cd : out) {
             if (cd.e >= limit) {
@@ -1572,6 +1616,7 @@ class RunFitter {
   std::array<Turn, 4> root_turns_;   // roots(): 0.3 and 0.6 of it each way
   std::array<Turn, 8> start_turns_;  // start_tangents(): 0.5, 1, 2 and 4 degrees each way
   Cone g1_cone_;                  // the G1 angle: a joint within it is smooth
+  Cone same_tangent_cone_;         // 1/32 of it: two tangents a search need not both follow
   Cone joint_cone_;               // kJointShare of it: the turn the fitter may make at a joint
   Cone on_course_cone_;           // kOnCourseRad: a primitive ending along the input
   Cone turn_cone_, turn_line_cone_, two_turns_line_cone_;  // tighten(): one turn, plus a line's, two plus a line's
