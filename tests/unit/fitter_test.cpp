@@ -562,6 +562,75 @@ TEST_CASE("a rounded rectangle in G1 moves becomes its four lines and four fille
   CHECK(o.r.comparison.max_deviation_mm <= 0.01);
 }
 
+namespace {
+/// A path that starts heading along +X and, in turn, goes straight for each `{0, length}`
+/// and turns by `sweep_deg` on a circle of `radius` for each `{radius, sweep_deg}` (sweep
+/// positive to the left), each piece joined tangentially to the one before: straight pieces
+/// in moves of `move_mm`, arcs in chords whose middle lies `chord_error_mm` off the circle
+/// (or `move_mm` long, where shorter), as CAM writes a contour.
+std::vector<Pt> drawn_contour(const std::vector<std::pair<double, double>>& pieces, double move_mm,
+                              double chord_error_mm = 0.001) {
+  std::vector<Pt> pts{{0, 0, 0}};
+  double heading = 0;
+  for (const auto& [radius, amount] : pieces) {
+    const Pt at = pts.back();
+    if (radius == 0) {
+      const int n = std::max(1, int(std::ceil(amount / move_mm)));
+      for (int k = 1; k <= n; ++k)
+        pts.push_back({at.x + std::cos(heading) * amount * k / n, at.y + std::sin(heading) * amount * k / n, 0});
+      continue;
+    }
+    const double side = amount > 0 ? 1 : -1, sweep = deg_to_rad(std::abs(amount));
+    const double cx = at.x - std::sin(heading) * radius * side, cy = at.y + std::cos(heading) * radius * side;
+    const double a0 = std::atan2(at.y - cy, at.x - cx);
+    const double step = std::min(2 * std::acos(1 - chord_error_mm / radius), move_mm / radius);
+    const int n = std::max(1, int(std::ceil(sweep / step)));
+    for (int k = 1; k <= n; ++k) {
+      const double a = a0 + side * sweep * k / n;
+      pts.push_back({cx + radius * std::cos(a), cy + radius * std::sin(a), 0});
+    }
+    heading += side * sweep;
+  }
+  return pts;
+}
+}  // namespace
+
+TEST_CASE("a straight side, a fillet and a straight side written in fine moves come out as a line, an arc and "
+          "a line", "[fit][search]") {
+  // Printed to 3 decimals. The longest arc runs on past the fillet's end along the straight
+  // side, within the band, for up to sqrt(2·R·band) (0.88 mm, 18 moves of 0.05 mm, at
+  // R = 40 mm), ending off the side's direction by more than a joint may turn back: the
+  // chain must end the arc where the fillet ends, and a line follow it.
+  for (double radius : {2.0, 5.0, 10.0, 20.0, 40.0})
+    for (double move : {0.05, 0.1, 0.2}) {
+      auto o = compress_text(program(drawn_contour({{0, 20}, {radius, 90}, {0, 20}}, move), "G17", 3));
+      INFO("fillet radius " << radius << " mm, moves of " << move << " mm");
+      CHECK(o.lines == 2);
+      CHECK(o.arcs == 1);
+      CHECK(o.r.forced_kinks == 0);
+      CHECK(o.r.comparison.max_deviation_mm <= 0.01);
+    }
+}
+
+TEST_CASE("two tangent arcs of different radii written in fine moves come out as two arcs", "[fit][search]") {
+  // Where the curvature jumps, the input's direction read through both sides at once leans
+  // towards the tighter arc; read from each side apart it is each arc's own. One case still
+  // takes three (the global method's too): 40 then 2 mm the same way in 0.05 mm moves, where
+  // the printed digits tilt the input's direction at the joint by 0.3°, so that the end a
+  // move before it looks the better aligned, and the 2 mm arc cannot follow from there.
+  for (auto [r1, r2] : {std::pair(5.0, 20.0), std::pair(2.0, 40.0), std::pair(40.0, 2.0), std::pair(10.0, 12.0)})
+    for (double turn : {1.0, -1.0})
+      for (double move : {0.05, 0.2}) {
+        auto o = compress_text(program(drawn_contour({{r1, 90}, {r2, 90 * turn}}, move), "G17", 3));
+        INFO("radii " << r1 << " then " << r2 << (turn > 0 ? " mm, same way" : " mm, turning back") << ", moves of "
+                      << move << " mm");
+        const bool known = r1 == 40 && turn > 0 && move == 0.05;
+        CHECK(o.arcs + o.lines <= (known ? 3u : 2u));
+        CHECK(o.r.forced_kinks == 0);
+        CHECK(o.r.comparison.max_deviation_mm <= 0.01);
+      }
+}
+
 TEST_CASE("where no tangent chain gets past a hook but by S-bends all along, the tangent breaks at the hook",
           "[fit][search]") {
   // A pass over a dome (a circle of radius 14.97 mm) clipped to the floor at both ends, as

@@ -745,11 +745,15 @@ class RunFitter {
       const uint32_t e = all[i].e;
       return heading_[e] ? 1 - heading_[e]->dot(unchecked(a, T, all[i]).end_tangent) : 2.0;
     };
-    const double along = 1 - std::cos(kJointShare * deg_to_rad(o_.g1_angle_deg));
+    // (Closer by more than a quarter of the joint's turn, which the printed digits can tilt
+    // the input's direction by: past a straight side's end, along a side whose every vertex
+    // heads exactly along it, the walk would go on into the side.)
+    const double joint = kJointShare * deg_to_rad(o_.g1_angle_deg);
+    const double along = 1 - std::cos(joint), closer = 1 - std::cos(joint / 4);
     if (next_to_longest && step > 2 && misses(n - 1) > along && misses(n - 2) > along)
       for (size_t i = n - 2; i-- > n - step;)
         if (misses(i) <= along) {
-          while (i > n - step && misses(i - 1) < misses(i)) --i;
+          while (i > n - step && misses(i - 1) < misses(i) - closer) --i;
           out.push_back(all[i]);
           break;
         }
