@@ -6,12 +6,14 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iterator>
+#include <random>
 #include <thread>
 #include <vector>
 
@@ -170,6 +172,41 @@ std::vector<Shape> cam_shapes() {
   return out;
 }
 
+/// A contour drawn at random from `seed`, as CAM writes one: 3 to 12 pieces, each a line of
+/// 1-20 mm or an arc of 0.5-30 mm radius (log-uniform) turning 15-170° either way, joined
+/// tangentially or, one time in seven, at a corner of 40-120°; lines in moves of at most
+/// 0.1, 0.5 or 2 mm, arcs in chords whose middle lies 0.001, 0.002 or 0.005 mm off the
+/// circle (and no longer than the lines' moves), printed to 3 or 4 decimals.
+Shape random_contour(unsigned seed) {
+  std::mt19937 gen(seed);
+  auto uniform = [&](double lo, double hi) { return lo + (hi - lo) * (double(gen()) / 4294967296.0); };
+  auto pick = [&](std::initializer_list<double> xs) { return *(xs.begin() + gen() % xs.size()); };
+  Shape s{"random", {{0, 0}}};
+  s.decimals = gen() % 3 == 0 ? 4 : 3;
+  const double chord_error = pick({0.001, 0.002, 0.005}), move = pick({0.1, 0.5, 2.0});
+  double heading = uniform(0, 2 * kPi);
+  bool last_line = false;
+  const int pieces = 3 + int(gen() % 10);
+  for (int i = 0; i < pieces; ++i) {
+    if (i > 0 && gen() % 7 == 0) heading += (gen() % 2 ? 1 : -1) * deg_to_rad(uniform(40, 120));
+    const Vec2 at = s.pts.back();
+    if (!last_line && gen() % 5 < 2) {
+      const double len = uniform(1, 20);
+      s.line(at + len * Vec2(std::cos(heading), std::sin(heading)), std::max(1, int(std::ceil(len / move))));
+      last_line = true;
+      continue;
+    }
+    const double radius = std::exp(uniform(std::log(0.5), std::log(30.0)));
+    const double turn = uniform(15, 170) * (gen() % 2 ? 1 : -1);
+    const Vec2 centre = at + radius * (turn > 0 ? 1 : -1) * Vec2(-std::sin(heading), std::cos(heading));
+    const double step = std::min(2 * std::acos(1 - chord_error / radius), move / radius);
+    s.arc(centre, turn, std::max(1, int(std::ceil(deg_to_rad(std::abs(turn)) / step))));
+    heading += deg_to_rad(turn);
+    last_line = false;
+  }
+  return s;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -264,6 +301,42 @@ int main(int argc, char** argv) {
     auto cell = [](const CompressResult& r) { return fmt::format("{}/{}", r.stats.lines_out + r.stats.arcs_out, r.forced_kinks); };
     fmt::print("{:<24} {:>6} {:>6} {:>9} {:>9} {:>9} {:>10.6f}\n", shape.name, shape.pts.size() - 1, shape.drawn, cell(d),
                cell(gl), cell(gr), d.comparison.max_deviation_mm);
+  }
+
+  // Random CAM contours: how often, and by how much, each method needs more blocks than drew
+  // the contour (two arcs the same way with close radii may also come out as one).
+  {
+    const unsigned count = 200;
+    struct Sum {
+      size_t blocks = 0, over = 0, most = 0, kinks = 0;
+    };
+    std::array<Sum, 3> sums;
+    size_t moves = 0, drawn = 0;
+    double worst_dev = 0;
+    for (unsigned seed = 1; seed <= count; ++seed) {
+      const Shape shape = random_contour(seed);
+      moves += shape.pts.size() - 1;
+      drawn += shape.drawn;
+      const std::array methods{FitOptions::Method::Arcs, FitOptions::Method::Global, FitOptions::Method::Greedy};
+      for (size_t m = 0; m < methods.size(); ++m) {
+        CompressOptions opt;
+        opt.fit.method = methods[m];
+        DiagnosticSink sink;
+        const CompressResult r = compress("random contour", shape.text(), opt, sink);
+        const size_t blocks = r.stats.lines_out + r.stats.arcs_out;
+        sums[m].blocks += blocks;
+        sums[m].kinks += r.forced_kinks;
+        sums[m].over += blocks > shape.drawn;
+        sums[m].most = std::max(sums[m].most, blocks > shape.drawn ? blocks - shape.drawn : 0);
+        worst_dev = std::max(worst_dev, r.comparison.max_deviation_mm);
+      }
+    }
+    auto cell = [](const Sum& x) { return fmt::format("{}/{}", x.blocks, x.kinks); };
+    auto over = [&](const Sum& x) { return fmt::format("{} (+{})", x.over, x.most); };
+    fmt::print("{:<24} {:>6} {:>6} {:>9} {:>9} {:>9} {:>10.6f}\n", fmt::format("{} random contours", count), moves,
+               drawn, cell(sums[0]), cell(sums[1]), cell(sums[2]), worst_dev);
+    fmt::print("{:<24} {:>6} {:>6} {:>9} {:>9} {:>9}\n", "  contours over drawn", "", "", over(sums[0]), over(sums[1]),
+               over(sums[2]));
   }
 
   // Throughput on the corpus: whole pipeline without verification, per input point of the runs.

@@ -36,11 +36,11 @@ constexpr double kTurnShare = 0.45;
 /// unless they leave the band.
 constexpr uint32_t kLoweMinMoves = 2;
 /// The default search's chain is searched again layer by layer (as the global method's) when
-/// it wiggles: at this many joints in a row between arcs, the curvature swings back the other
-/// way from the joint before, by a turn the other way or by a change of more than
-/// kWiggleCurvatureShare of the larger curvature (untangle() looks at the turns alone).
+/// this many arcs in a row each turn the other way from the one before.
 constexpr int kWiggleArcs = 4;
-constexpr double kWiggleCurvatureShare = 2.0 / 3.0;
+/// How far ahead (mm) the input must run straight for the beam to offer lines along tangents
+/// turned by half the joint allowance (beam_chain()).
+constexpr double kStraightAheadMm = 1.0;
 /// Primitives a forced kink must save, at the least, where a chain wiggles (see untangle()).
 constexpr size_t kKinkWorth = 4;
 /// Candidates per primitive whose next step is looked at before choosing.
@@ -320,7 +320,7 @@ class RunFitter {
       // chain when, merged too, it has fewer kinks, or as few and fewer primitives. The
       // default method does so where its chain wiggles.
       if ((o_.method == FitOptions::Method::Global && chain.size() > 1) ||
-          (o_.method == FitOptions::Method::Arcs && wiggles(chain, Wiggle::Swings))) {
+          (o_.method == FitOptions::Method::Arcs && wiggles(chain))) {
         auto g = layered_chain(a, limit);
         if (!g.empty() && o_.merge) tighten(a, g, in_tangent_);
         if (!g.empty() && std::pair(size_t(0), g.size()) < std::pair(forced, chain.size())) {
@@ -328,8 +328,7 @@ class RunFitter {
           forced = 0;
         }
       }
-      if ((search || o_.method == FitOptions::Method::Greedy) && wiggles(chain, Wiggle::SBends))
-        untangle(a, limit, chain, forced);
+      if ((search || o_.method == FitOptions::Method::Greedy) && wiggles(chain)) untangle(a, limit, chain, forced);
       out.insert(out.end(), chain.begin(), chain.end());
       a = limit;
     }
@@ -345,7 +344,7 @@ class RunFitter {
   /// before or after it, when that at least halves the primitives after the joint and saves
   /// kKinkWorth of them for each kink it adds; the break is a forced kink.
   void untangle(uint32_t a, uint32_t limit, std::vector<Chosen>& chain, size_t& forced) const {
-    const size_t first = wiggle_start(chain, Wiggle::SBends);
+    const size_t first = wiggle_start(chain);
     std::vector<Chosen> best;
     size_t best_forced = forced;
     // Each forced kink counts as kKinkWorth primitives.
@@ -384,38 +383,23 @@ class RunFitter {
     forced = best_forced;
   }
 
-  /// What counts as the curvature swinging back at a joint between two arcs: only a turn the
-  /// other way (an S-bend), or also a change of more than kWiggleCurvatureShare of the
-  /// larger curvature.
-  enum class Wiggle { SBends, Swings };
-
-  /// The index of the first primitive of the first wiggle of kind `kind` in `chain` (see
-  /// wiggles()), or its size when none.
-  size_t wiggle_start(const std::vector<Chosen>& chain, Wiggle kind) const {
-    auto curvature = [](const Primitive& p) { return (p.ccw ? 1 : -1) / p.radius_mm; };  // 1/mm, signed
-    int run = 0;   // swings in a row, up to joint i
-    int last = 0;  // the swing at the joint before: +1 up, -1 down, 0 none
+  /// The index of the first primitive of the first wiggle in `chain` (see wiggles()), or
+  /// its size when none.
+  size_t wiggle_start(const std::vector<Chosen>& chain) const {
+    int run = 0;
     for (size_t i = 1; i < chain.size(); ++i) {
       const Primitive &p = chain[i].prim, &before = chain[i - 1].prim;
-      int swing = 0;
-      if (p.kind == Primitive::Kind::Arc && before.kind == Primitive::Kind::Arc) {
-        const double k = curvature(p), kb = curvature(before);
-        const bool jumps = std::abs(k - kb) > kWiggleCurvatureShare * std::max(std::abs(k), std::abs(kb));
-        if (p.ccw != before.ccw || (kind == Wiggle::Swings && jumps)) swing = k > kb ? 1 : -1;
-      }
-      run = swing == 0 ? 0 : swing == -last ? run + 1 : 1;
-      last = swing;
+      const bool back = p.kind == Primitive::Kind::Arc && before.kind == Primitive::Kind::Arc && p.ccw != before.ccw;
+      run = back ? run + 1 : 0;
       if (run >= kWiggleArcs) return i - static_cast<size_t>(run);
     }
     return chain.size();
   }
 
-  /// Whether `chain` wiggles: several arcs in a row, each bending the other way from the one
-  /// before (S-bends, or with Swings also tight and wide arcs in turn), as a chain does that
-  /// left a narrow place (plum's inner tips) with a tangent it can only bring back to the
-  /// path by such bends, all tangent, all inside the band, and many. A hook (untangle())
-  /// leaves S-bends.
-  bool wiggles(const std::vector<Chosen>& chain, Wiggle kind) const { return wiggle_start(chain, kind) < chain.size(); }
+  /// Whether `chain` wiggles: several arcs in a row, each turning the other way from the one
+  /// before, as a chain does that left a narrow place (plum's inner tips) with a tangent it
+  /// can only bring back to the path by S-bends, all tangent, all inside the band, and many.
+  bool wiggles(const std::vector<Chosen>& chain) const { return wiggle_start(chain) < chain.size(); }
 
   /// Whether the joint at vertex v, after a move that is fixed or not, is one the fit made:
   /// between two moves left as they are it is the input's own, unless one side is a line
@@ -1373,15 +1357,18 @@ class RunFitter {
         }
       }
       ++step;
-      // Each chain goes on along its end tangent or turned by half or all of the joint
-      // allowance either way: a line's chord lies within a quarter of the G1 angle of the
-      // tangent scanned, so whole turns alone would offer no line whose chord lies between. A
-      // tangent another chain at the same vertex follows already is not followed twice.
+      // Each chain goes on along its end tangent or turned by all of the joint allowance
+      // either way, and where the input runs straight ahead by half of it too: a line's chord
+      // lies within a quarter of the G1 angle of the tangent scanned, so whole turns alone
+      // would offer no line whose chord lies between. A tangent another chain at the same
+      // vertex follows already is not followed twice.
       expanded.clear();
       for (int i : layer) {
         const Node nd = nodes[i];
+        const bool straight = straight_ahead(nd.v, limit);
         for (const Turn* turn : {(const Turn*)nullptr, &full_left_, &full_right_, &half_left_, &half_right_}) {
           if (turn && nd.parent < 0) break;
+          if ((turn == &half_left_ || turn == &half_right_) && !straight) break;
           const Vec2 T = turn ? (*turn)(nd.T) : nd.T;
           auto same = [&](const auto& x) { return x.first == nd.v && same_tangent_cone_.holds(x.second, T); };
           if (std::any_of(expanded.begin(), expanded.end(), same)) continue;
@@ -1447,6 +1434,19 @@ class RunFitter {
       layer.swap(next);
     }
     return furthest < 0 ? std::vector<Chosen>{} : chain_to(nodes, furthest);
+  }
+
+  /// Whether the input runs straight from vertex v for kStraightAheadMm (or to `limit`): every
+  /// vertex up to there within the band of the chord there.
+  bool straight_ahead(uint32_t v, uint32_t limit) const {
+    uint32_t e = v + 1;
+    while (e < limit && (q(e) - q(v)).norm() < kStraightAheadMm) ++e;
+    const Vec2 chord = q(e) - q(v);
+    const double len = chord.norm();
+    if (len <= kLengthEpsMm) return false;
+    for (uint32_t m = v + 1; m < e; ++m)
+      if (std::abs(cross2(chord, q(m) - q(v))) > eps_ * len) return false;
+    return true;
   }
 
   /// Candidate `cd` from node `nd` along `T` (its tangent, or that turned at the joint),
