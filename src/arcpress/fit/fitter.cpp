@@ -618,9 +618,6 @@ class RunFitter {
     return reach;
   }
 
-  /// The input's own direction at vertex e: tangent at e of the circle through e-w, e, e+w,
-  /// with w wide enough (0.1 mm each side) that 4-decimal rounding does not steer it.
-  /// Nothing at the ends of the stretch [lo, hi].
   /// The input's own direction at vertex e, from each side apart: the mean of the tangents
   /// at e of the circles through e and two vertices behind it, and through e and two ahead
   /// (0.1 mm apart or more). Where the curvature jumps (a fillet meeting a straight side),
@@ -639,6 +636,10 @@ class RunFitter {
     }
     return input_tangent(e, lo, hi);
   }
+
+  /// The input's own direction at vertex e: tangent at e of the circle through e-w, e, e+w,
+  /// with w wide enough (0.1 mm each side) that 4-decimal rounding does not steer it.
+  /// Nothing at the ends of the stretch [lo, hi].
   std::optional<Vec2> input_tangent(uint32_t e, uint32_t lo, uint32_t hi) const {
     if (e <= lo || e >= hi) return std::nullopt;
     uint32_t w = 1;
@@ -1312,8 +1313,9 @@ class RunFitter {
   /// The G1 chain from `a` to `limit` with the fewest primitives a beam search finds. Layer k
   /// holds the chains of k primitives, at most `beam_width` of them, those reaching furthest
   /// with distinct end tangents; each is extended along its end tangent and along it turned
-  /// by half and all of the joint allowance (kJointShare of the G1 angle) each way: the
-  /// chains' own spread of tangents covers the arcs' turns between. The first chain reaching `limit`
+  /// by the whole joint allowance (kJointShare of the G1 angle) each way, and by half of it
+  /// where the input runs straight ahead (for lines): the chains' own spread of tangents
+  /// covers the arcs' turns between. The first chain reaching `limit`
   /// wins. The tangent at `a` is free, so the roots are a fan of start tangents read off the
   /// input. The greedy chain (read off `greedy` up to its first kink, or chosen again when
   /// null) is always kept. When no chain goes on tangentially, the one reaching furthest is
@@ -1637,10 +1639,10 @@ class RunFitter {
   std::vector<uint32_t> soft_upto_;  // soft vertices before each vertex (prefix count)
   // The input's direction at each vertex inside the stretch: sided_tangent() for the
   // searches; the greedy chain, which never goes back on a choice, keeps input_tangent() (with
-  // the sided one it loses its way after plum's inner tips: 1 525 blocks for 48 at 0.005 mm).
+  // the sided one it loses its way after plum's inner tips: 1 525 blocks for 71 at 0.005 mm).
   std::vector<std::optional<Vec2>> heading_;
   Scratch& s_ = thread_scratch();
-  Turn half_left_, half_right_;   // kTurnShare of the G1 angle each way: the greedy step's first turns
+  Turn half_left_, half_right_;   // kTurnShare of the G1 angle each way: the greedy step's first turns, the beam's for lines
   Turn full_left_, full_right_;   // twice that, the whole joint allowance: its largest, and the searches' turn
   std::array<Turn, 4> root_turns_;   // roots(): 0.3 and 0.6 of it each way
   std::array<Turn, 8> start_turns_;  // start_tangents(): 0.5, 1, 2 and 4 degrees each way
