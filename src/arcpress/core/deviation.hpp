@@ -10,6 +10,14 @@
 
 namespace arcpress {
 
+/// Share of the band by which reading a whole program back may misread a distance: the
+/// verifier (and `arcpress diff`) follows each arc by chords within half of it, and ends its
+/// search for the largest distance within the other half. The emitter holds what it prints
+/// this much inside the band, so that reading the output back never finds it outside (an
+/// R-form arc printed to 3 decimals came out 0.99994 of the band, and `arcpress diff` read
+/// it at 1.0009).
+inline constexpr double kReadingShare = 2e-3;
+
 /// A circular (possibly helical) arc in plane coordinates.
 struct ArcGeom {
   Vec2 center{0, 0};

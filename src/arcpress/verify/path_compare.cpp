@@ -77,7 +77,7 @@ double angle_deg(const Vec2& a, const Vec2& b) {
 PathComparison compare_paths(const Program& a, const Interpretation& ia, const Program& b,
                              const Interpretation& ib, const CompareOptions& opt) {
   PathComparison r;
-  const double chord_mm = std::max(opt.tolerance_mm * 1e-3, 1e-6);
+  const double chord_mm = std::max(opt.tolerance_mm * kReadingShare / 2, 1e-6);
   size_t i = 0;  // next input move
   std::vector<Vec3> pts;
   std::vector<size_t> move_of_point;  // the input move each of `pts` lies on (its end, for a vertex)

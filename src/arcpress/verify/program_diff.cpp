@@ -350,8 +350,8 @@ void compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, cons
 ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Program& b, const Interpretation& ib,
                           const DiffOptions& opt) {
   ProgramDiff d;
-  d.arc_chord_mm = std::max(opt.tolerance_mm * 1e-3, 1e-7);
-  const double precision_mm = opt.tolerance_mm * 1e-3;
+  d.arc_chord_mm = std::max(opt.tolerance_mm * kReadingShare / 2, 1e-7);
+  const double precision_mm = opt.tolerance_mm * kReadingShare / 2;
   Path pa = path_of(ia, d.arc_chord_mm), pb = path_of(ib, d.arc_chord_mm);
   auto summary = [](const Program& p, const Path& path) {
     ProgramSummary s;
