@@ -432,7 +432,7 @@ class Emitter {
       if (std::atan2(std::abs(cross2(printed, fitted)), printed.dot(fitted)) > tangent_slack_rad_) return false;
     }
     // The controller ends on the printed end point: a spiral or a jump of at most dr. (Held
-    // inside the band by what reading the program back may over-read.)
+    // inside the band by what reading the program back may misread, kReadingShare.)
     const double band_mm = opt_.band_mm * (1 - kReadingShare);
     Deviation dev = arc_deviation(pts_, g, band_mm);
     return dev.ordered && dev.max_mm + dr <= band_mm;

@@ -141,6 +141,8 @@ class RunFitter {
     same_tangent_cone_ = Cone(g1 / 32);
     // (The margin keeps the largest turn the searches make from failing by rounding.)
     joint_cone_ = Cone(kJointShare * g1 + 1e-9);
+    joint_miss_ = 1 - std::cos(kJointShare * g1);
+    closer_miss_ = 1 - std::cos(kJointShare * g1 / 4);
     on_course_cone_ = Cone(kOnCourseRad);
     turn_cone_ = Cone(kTurnShare * g1);
     turn_line_cone_ = Cone(kTurnShare * g1 + line_kink_);
@@ -730,15 +732,10 @@ class RunFitter {
       const uint32_t e = all[i].e;
       return heading_[e] ? 1 - heading_[e]->dot(unchecked(a, T, all[i]).end_tangent) : 2.0;
     };
-    // (Closer by more than a quarter of the joint's turn, which the printed digits can tilt
-    // the input's direction by: past a straight side's end, along a side whose every vertex
-    // heads exactly along it, the walk would go on into the side.)
-    const double joint = kJointShare * deg_to_rad(o_.g1_angle_deg);
-    const double along = 1 - std::cos(joint), closer = 1 - std::cos(joint / 4);
-    if (next_to_longest && step > 2 && misses(n - 1) > along && misses(n - 2) > along)
+    if (next_to_longest && step > 2 && misses(n - 1) > joint_miss_ && misses(n - 2) > joint_miss_)
       for (size_t i = n - 2; i-- > n - step;)
-        if (misses(i) <= along) {
-          while (i > n - step && misses(i - 1) < misses(i) - closer) --i;
+        if (misses(i) <= joint_miss_) {
+          while (i > n - step && misses(i - 1) < misses(i) - closer_miss_) --i;
           out.push_back(all[i]);
           break;
         }
@@ -1367,7 +1364,7 @@ class RunFitter {
       expanded.clear();
       for (int i : layer) {
         const Node nd = nodes[i];
-        const bool straight = straight_ahead(nd.v, limit);
+        const bool straight = nd.parent >= 0 && straight_ahead(nd.v, limit);  // (roots take no turns)
         for (const Turn* turn : {(const Turn*)nullptr, &full_left_, &full_right_, &half_left_, &half_right_}) {
           if (turn && nd.parent < 0) break;
           if ((turn == &half_left_ || turn == &half_right_) && !straight) break;
@@ -1649,6 +1646,10 @@ class RunFitter {
   Cone g1_cone_;                  // the G1 angle: a joint within it is smooth
   Cone same_tangent_cone_;         // 1/32 of it: two tangents a search need not both follow
   Cone joint_cone_;               // kJointShare of it: the turn the fitter may make at a joint
+  // pick(): 1 - cos of that turn, and of a quarter of it (closer by more than the printed
+  // digits can tilt the input's direction: past a straight side's end, along a side whose
+  // every vertex heads exactly along it, the walk back would go on into the side).
+  double joint_miss_ = 0, closer_miss_ = 0;
   Cone on_course_cone_;           // kOnCourseRad: a primitive ending along the input
   Cone turn_cone_, turn_line_cone_, two_turns_line_cone_;  // tighten(): one turn, plus a line's, two plus a line's
   std::vector<FixedMove> fixed_;  // per move
