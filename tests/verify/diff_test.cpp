@@ -68,6 +68,24 @@ TEST_CASE("an arc replaced by its chord differs by the arc's sagitta", "[diff]")
   CHECK(d.worst[0].line_b == 3);
 }
 
+TEST_CASE("arcs are measured as arcs, not as chords: concentric arcs lie apart by their radii's difference",
+          "[diff]") {
+  // Half turns of radius 10 and 10.003 mm about the origin are 0.003 mm apart everywhere, both
+  // ways; chords of either would read up to their sagitta more or less.
+  std::string a = "G21 G90 G17\nG0 X10 Y0 Z0\nG3 X-10 Y0 I-10 J0 F100\nM2\n";
+  std::string b = "G21 G90 G17\nG0 X10.003 Y0 Z0\nG3 X-10.003 Y0 I-10.003 J0 F100\nM2\n";
+  for (double tol : {0.01, 0.1}) {
+    INFO("band " << tol << " mm");
+    CHECK(diff_of(a, b, tol).max_deviation_mm == Approx(0.003).margin(1e-9));
+    CHECK(diff_of(b, a, tol).max_deviation_mm == Approx(0.003).margin(1e-9));
+  }
+  // The same half turn written as one block and as three: nothing apart.
+  std::string thirds = "G21 G90 G17\nG0 X10 Y0 Z0\nG3 X5 Y8.6602540378 I-10 J0 F100\n"
+                       "G3 X-5 Y8.6602540378 I-5 J-8.6602540378\nG3 X-10 Y0 I5 J-8.6602540378\nM2\n";
+  CHECK(diff_of(a, thirds).max_deviation_mm < 1e-9);
+  CHECK(diff_of(thirds, a).max_deviation_mm < 1e-9);
+}
+
 TEST_CASE("a bulge between the samples of either path is not missed", "[diff]") {
   // B takes a long straight line where A makes a detour in the middle: A's vertices are all
   // on B's line except one; B's vertices are all on A's path.

@@ -40,7 +40,7 @@ std::string diff_text(const ProgramDiff& d, const DiffNames& n, double tol) {
   for (auto [name, s] : {std::pair{n.a, d.a}, std::pair{n.b, d.b}})
     t += fmt::format("{}: {} blocks, {} bytes, {} feed moves in {} sections, {} rapids, {:.3f} mm of feed path\n", name,
                      s.blocks, s.bytes, s.feed_moves, s.sections, s.rapids, s.path_mm);
-  t += fmt::format("max deviation {:.6f} mm (band {} mm; arcs measured to {:.1e} mm)\n", d.max_deviation_mm, tol,
+  t += fmt::format("max deviation {:.6f} mm (band {} mm; measured to {:.1e} mm)\n", d.max_deviation_mm, tol,
                    d.arc_chord_mm);
   for (size_t k = 0; k < d.worst.size(); ++k) {
     const DiffPlace& p = d.worst[k];

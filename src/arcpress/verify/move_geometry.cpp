@@ -49,4 +49,92 @@ void move_path(const Interpretation& in, size_t i, double chord_mm, std::vector<
   out.push_back(m.xyz());  // the end point exactly as read
 }
 
+namespace {
+
+Vec3 from_plane(const Vec2& v, double height, Plane pl) {
+  auto a = axes_of(pl);
+  Vec3 r;
+  r[a.first] = v.x();
+  r[a.second] = v.y();
+  r[a.normal] = height;
+  return r;
+}
+
+/// `p` about the arc's centre, seen along the plane's normal.
+Vec2 about_center(const FlatArc& arc, const Vec3& p) {
+  auto a = axes_of(arc.plane);
+  return {p[a.first] - arc.center[a.first], p[a.second] - arc.center[a.second]};
+}
+
+}  // namespace
+
+std::optional<FlatArc> arc_pieces(const Interpretation& in, size_t i, double max_sagitta_mm, double max_sweep_rad,
+                                  double max_piece_mm, std::vector<Vec3>& out, bool& straight_end) {
+  const Move& m = in.moves[i];
+  straight_end = false;
+  if (!is_arc(m.kind) || m.turns > 1) return std::nullopt;
+  const ArcGeom g = arc_of_move(in, i);
+  const double r = g.radius_mm;
+  if (g.h1 != g.h0 || !(r > kLengthEpsMm) || !std::isfinite(r)) return std::nullopt;
+  double step = std::min(max_sweep_rad, 2 * std::acos(std::clamp(1 - max_sagitta_mm / r, -1.0, 1.0)));
+  step = std::min(step, 2 * std::asin(std::min(1.0, max_piece_mm / (2 * r))));
+  const size_t n = std::clamp<size_t>(size_t(std::ceil(std::abs(g.sweep) / std::max(step, 1e-9))), 1, 1000000);
+  for (size_t k = 1; k <= n; ++k) {
+    const Vec3 q = g.point_at(double(k) / double(n));
+    out.push_back(from_plane(q.head<2>(), g.h0, m.plane));
+  }
+  if (!(out.back() == m.xyz())) {
+    out.push_back(m.xyz());
+    straight_end = true;
+  }
+  return FlatArc{m.plane, from_plane(g.center, g.h0, m.plane), r, m.kind == MoveKind::ArcCCW};
+}
+
+bool in_wedge(const FlatArc& arc, const Vec3& a, const Vec3& b, const Vec3& p) {
+  const Vec2 A = about_center(arc, a), B = about_center(arc, b), V = about_center(arc, p);
+  const double sign = arc.ccw ? 1.0 : -1.0;
+  return sign * cross2(A, V) >= 0 && sign * cross2(V, B) >= 0 && V.dot(A + B) >= 0;
+}
+
+Vec3 nearest_on_piece(const FlatArc& arc, const Vec3& a, const Vec3& b, const Vec3& p) {
+  const Vec2 V = about_center(arc, p);
+  const double len = V.norm();
+  if (len > 0 && in_wedge(arc, a, b, p)) {
+    auto ax = axes_of(arc.plane);
+    const Vec2 c(arc.center[ax.first], arc.center[ax.second]);
+    return from_plane(c + V * (arc.radius_mm / len), arc.center[ax.normal], arc.plane);
+  }
+  // Off the wedge the in-plane distance grows with the angle from p's own: an end is nearest.
+  return (p - a).squaredNorm() <= (p - b).squaredNorm() ? a : b;
+}
+
+Vec3 point_on_piece(const FlatArc& arc, const Vec3& a, const Vec3& b, double t) {
+  const Vec2 A = about_center(arc, a), B = about_center(arc, b);
+  const double sweep = std::atan2(cross2(A, B), A.dot(B)) * t;
+  const double len = A.norm();
+  const Vec2 u = len > 0 ? Vec2(A / len) : Vec2(1, 0);
+  const Vec2 turned(u.x() * std::cos(sweep) - u.y() * std::sin(sweep), u.x() * std::sin(sweep) + u.y() * std::cos(sweep));
+  auto ax = axes_of(arc.plane);
+  const Vec2 c(arc.center[ax.first], arc.center[ax.second]);
+  return from_plane(c + arc.radius_mm * turned, arc.center[ax.normal], arc.plane);
+}
+
+std::optional<double> segment_to_piece_bound(const FlatArc& arc, const Vec3& a, const Vec3& b, const Vec3& p0,
+                                             const Vec3& p1) {
+  if (!in_wedge(arc, a, b, p0) || !in_wedge(arc, a, b, p1)) return std::nullopt;
+  const Vec2 v0 = about_center(arc, p0), v1 = about_center(arc, p1), d = v1 - v0;
+  const double len2 = d.squaredNorm();
+  const Vec2 foot = len2 > 0 ? Vec2(v0 + std::clamp(-v0.dot(d) / len2, 0.0, 1.0) * d) : v0;
+  const double r = arc.radius_mm;
+  const double radial = std::max({v0.norm() - r, v1.norm() - r, r - foot.norm(), 0.0});
+  const int normal = axes_of(arc.plane).normal;
+  const double height = std::max(std::abs(p0[normal] - arc.center[normal]), std::abs(p1[normal] - arc.center[normal]));
+  return std::hypot(radial, height);
+}
+
+double piece_sagitta_mm(const FlatArc& arc, const Vec3& a, const Vec3& b) {
+  const double half = (about_center(arc, b) - about_center(arc, a)).norm() / 2, r = arc.radius_mm;
+  return r - std::sqrt(std::max(0.0, r * r - half * half));
+}
+
 }  // namespace arcpress

@@ -1,6 +1,8 @@
 #pragma once
 // The path of one interpreted move, shared by the verifiers and the plot: an arc as an
-// ArcGeom in its plane, and any move as points along it.
+// ArcGeom in its plane, any move as points along it, and a flat arc as pieces whose
+// distance to a point is measured exactly.
+#include <optional>
 #include <vector>
 
 #include "arcpress/core/deviation.hpp"
@@ -15,5 +17,47 @@ ArcGeom arc_of_move(const Interpretation& in, size_t i);
 /// Appends the points of move i after its start, in XYZ: the end point for lines, chords of
 /// sagitta at most `chord_mm` for arcs (an even count, so the arc's middle is a point).
 void move_path(const Interpretation& in, size_t i, double chord_mm, std::vector<Vec3>& out);
+
+/// An arc that keeps its plane's normal axis still, for measuring exactly against pieces of
+/// it: centre and height in XYZ (the normal axis's coordinate is the height), radius from
+/// the start point, turning counter-clockwise about the plane's normal or not.
+struct FlatArc {
+  Plane plane = Plane::XY;
+  Vec3 center{0, 0, 0};
+  double radius_mm = 0;
+  bool ccw = true;
+};
+
+/// Move i as pieces of a flat arc, when it is one (an arc whose normal axis does not move,
+/// of one turn at most): appends the points after its start, each on the circle, the pieces
+/// between them sweeping at most `max_sweep_rad`, no longer than `max_piece_mm`, lying no
+/// farther than `max_sagitta_mm` from their chords, then the end point exactly as read
+/// (a last straight step where rounding left it off the circle: `straight_end` is set).
+/// Returns the arc, or nothing (and appends nothing) for other moves.
+std::optional<FlatArc> arc_pieces(const Interpretation& in, size_t i, double max_sagitta_mm, double max_sweep_rad,
+                                  double max_piece_mm, std::vector<Vec3>& out, bool& straight_end);
+
+/// The point nearest `p` on the piece of `arc` from `a` to `b` (both on the circle, the
+/// piece less than half a turn, in the arc's direction): exact.
+Vec3 nearest_on_piece(const FlatArc& arc, const Vec3& a, const Vec3& b, const Vec3& p);
+
+/// Whether `p` lies in the wedge of the piece from `a` to `b` about the arc's centre (seen
+/// along the normal), where its nearest point on the circle lies on the piece.
+bool in_wedge(const FlatArc& arc, const Vec3& a, const Vec3& b, const Vec3& p);
+
+/// The point of the piece from `a` to `b` a fraction `t` of its sweep from `a`.
+Vec3 point_on_piece(const FlatArc& arc, const Vec3& a, const Vec3& b, double t);
+
+/// An upper bound of the distance to the piece from `a` to `b` of every point of the segment
+/// from `p0` to `p1`, when both ends lie in the piece's wedge (then so does the segment, the
+/// wedge being convex, and each of its points is as far from the piece as from the circle):
+/// in the plane |ρ - r|, with ρ the distance from the centre, convex along the segment, so
+/// largest at an end and smallest at the foot from the centre; along the normal, largest at
+/// an end. Exact for a segment in the arc's plane. Nothing when an end lies outside.
+std::optional<double> segment_to_piece_bound(const FlatArc& arc, const Vec3& a, const Vec3& b, const Vec3& p0,
+                                             const Vec3& p1);
+
+/// How far the piece from `a` to `b` lies from its chord at most (its sagitta), mm.
+double piece_sagitta_mm(const FlatArc& arc, const Vec3& a, const Vec3& b);
 
 }  // namespace arcpress

@@ -20,10 +20,19 @@ Vec3 xyz(const AxisValues& v) { return {v[kX], v[kY], v[kZ]}; }
 
 /// One program's feed path as segments: segment s runs from points[first[s]] to the point
 /// after it, belongs to move move_of[s] and section section_of[s]; within a section the
-/// segments follow each other along the path, each starting where the one before ends.
+/// segments follow each other along the path, each starting where the one before ends. A
+/// flat arc is kept as pieces of itself (arc_of[s] names its arc) and measured exactly; other
+/// arcs (helices, several turns) as chords.
 struct Path {
+  static constexpr int32_t kStraight = -1, kClosingStep = -2;
   std::vector<Vec3> points;
   std::vector<uint32_t> first, move_of, section_of;
+  /// Per segment: the arc it is a piece of, or kStraight, or kClosingStep: the step from a
+  /// flat arc's last piece to its end point as read, where rounding left that off the circle
+  /// (far shorter than the band, and of no direction of its own).
+  std::vector<int32_t> arc_of;
+  std::vector<FlatArc> arcs;
+  double max_sagitta_mm = 0;    ///< the farthest any piece lies from its chord
   std::vector<double> section_length_mm, section_e;  ///< per section
   /// Per section, how far floating rounding can carry its E sum (mm): E is a running
   /// position, so each move's E is the difference of two numbers as large as that.
@@ -34,12 +43,32 @@ struct Path {
   size_t size() const { return move_of.size(); }
   Vec3 a(size_t s) const { return points[first[s]]; }
   Vec3 b(size_t s) const { return points[first[s] + 1]; }
+  bool curved(size_t s) const { return arc_of[s] >= 0; }
+  const FlatArc& arc(size_t s) const { return arcs[size_t(arc_of[s])]; }
+  /// The point of segment (or piece) s nearest p.
+  Vec3 nearest(size_t s, const Vec3& p) const {
+    const Vec3 a0 = a(s);
+    if (curved(s)) return nearest_on_piece(arc(s), a0, b(s), p);
+    const Vec3 d = b(s) - a0;
+    const double len2 = d.squaredNorm();
+    return len2 > 0 ? Vec3(a0 + std::clamp((p - a0).dot(d) / len2, 0.0, 1.0) * d) : a0;
+  }
+  /// The middle of segment (or piece) s.
+  Vec3 middle(size_t s) const { return curved(s) ? point_on_piece(arc(s), a(s), b(s), 0.5) : Vec3((a(s) + b(s)) / 2); }
+  /// How far piece s lies from its chord (0 for a segment).
+  double sagitta(size_t s) const { return curved(s) ? piece_sagitta_mm(arc(s), a(s), b(s)) : 0.0; }
 };
 
 /// Longest piece of a path put into the index, mm.
 constexpr double kPieceMm = 10.0;
+/// Largest sweep of a flat arc's piece: its chord runs within half of it of the arc's
+/// direction, as the feed pairing's direction tests read it.
+constexpr double kPieceSweepRad = 5 * kPi / 180;
+/// How far a piece may lie from its chord, as a share of the band: the spatial tree finds
+/// pieces by their chords, so its searches reach this much further.
+constexpr double kPieceSagittaShare = 0.5;
 
-Path path_of(const Interpretation& in, double chord_mm) {
+Path path_of(const Interpretation& in, double chord_mm, double tolerance_mm) {
   Path p;
   std::vector<Vec3> pts;
   bool in_section = false;
@@ -65,18 +94,30 @@ Path path_of(const Interpretation& in, double chord_mm) {
     // A section's first segment starts a polyline of its own.
     if (p.section_of.empty() || p.section_of.back() != sec) p.points.push_back(prev);
     pts.clear();
-    move_path(in, i, chord_mm, pts);
-    for (const Vec3& q : pts) {
-      // Long segments are cut into pieces: an AABB over a long diagonal box is hit by
-      // nearly every query (travel moves across a printed layer).
+    bool straight_end = false;
+    const std::optional<FlatArc> arc =
+        arc_pieces(in, i, tolerance_mm * kPieceSagittaShare, kPieceSweepRad, kPieceMm, pts, straight_end);
+    if (arc) p.arcs.push_back(*arc);
+    if (!arc) move_path(in, i, chord_mm, pts);
+    for (size_t k = 0; k < pts.size(); ++k) {
+      const Vec3& q = pts[k];
+      const bool piece = arc && !(straight_end && k + 1 == pts.size());
       double len = (q - prev).norm();
-      int pieces = std::max(1, int(std::ceil(len / kPieceMm)));
-      for (int k = 1; k <= pieces; ++k) {
-        Vec3 r = k == pieces ? q : Vec3(prev + (q - prev) * (double(k) / pieces));
+      if (piece) {
+        p.max_sagitta_mm = std::max(p.max_sagitta_mm, piece_sagitta_mm(*arc, prev, q));
+        len = 2 * arc->radius_mm * std::asin(std::min(1.0, len / (2 * arc->radius_mm)));  // along the arc
+      }
+      // Long segments are cut into pieces: an AABB over a long diagonal box is hit by
+      // nearly every query (travel moves across a printed layer). (An arc's pieces are cut
+      // short enough already.)
+      int pieces = piece ? 1 : std::max(1, int(std::ceil(len / kPieceMm)));
+      for (int c = 1; c <= pieces; ++c) {
+        Vec3 r = c == pieces ? q : Vec3(prev + (q - prev) * (double(c) / pieces));
         p.first.push_back(uint32_t(p.points.size() - 1));
         p.points.push_back(r);
         p.move_of.push_back(uint32_t(i));
         p.section_of.push_back(sec);
+        p.arc_of.push_back(piece ? int32_t(p.arcs.size() - 1) : arc ? Path::kClosingStep : Path::kStraight);
       }
       p.section_length_mm[sec] += len;
       prev = q;
@@ -217,9 +258,7 @@ class Directed {
   }
 
   SegmentIndex::Nearest on_segment(const Vec3& p, uint32_t s) const {
-    Vec3 a = to_.a(s), d = to_.b(s) - a;
-    double len2 = d.squaredNorm();
-    Vec3 q = len2 > 0 ? Vec3(a + std::clamp((p - a).dot(d) / len2, 0.0, 1.0) * d) : a;
+    const Vec3 q = to_.nearest(s, p);
     return {(q - p).norm(), s, q};
   }
 
@@ -246,34 +285,54 @@ class Directed {
     return best;
   }
 
+  /// Splits `from`'s segment (or piece of an arc) s between p0 and p1 at its middle while
+  /// the bound on the distance along it could still beat the maximum.
   template <class Visit>
   void refine(size_t s, const Vec3& p0, const SegmentIndex::Nearest& n0, const Vec3& p1,
               const SegmentIndex::Nearest& n1, int depth, Visit& visit) {
-    double bound = chain_bound(p0, n0, p1, n1);
+    const bool curved = from_.curved(s);
+    double stray = 0, length = (p1 - p0).norm();
+    if (curved) {
+      const double r = from_.arc(s).radius_mm;
+      stray = piece_sagitta_mm(from_.arc(s), p0, p1);
+      length = 2 * r * std::asin(std::min(1.0, length / (2 * r)));
+    }
+    double bound = chain_bound(p0, n0, p1, n1, stray, length);
     if (bound <= top_.max() + precision_mm_ || depth > 40 || (p1 - p0).norm() <= precision_mm_) return;
-    Vec3 m = (p0 + p1) / 2;
+    Vec3 m = curved ? point_on_piece(from_.arc(s), p0, p1, 0.5) : Vec3((p0 + p1) / 2);
     SegmentIndex::Nearest nm = locate(m, n0.segment);
     visit(s, nm, m);
     refine(s, p0, n0, m, nm, depth + 1, visit);
     refine(s, m, nm, p1, n1, depth + 1, visit);
   }
 
-  /// Upper bound of the distance to `to_` along p0 -> p1: pair p0 -> p1 with the walk along
-  /// `to_`'s path between their nearest points (both in one section); the pairing is linear
-  /// between the walk's vertices, so the largest gap is at one of them. Unpaired: Lipschitz.
+  /// Upper bound of the distance to `to_` along `from`'s path from p0 to p1, which runs
+  /// `length_mm` and strays from the chord p0 -> p1 by `stray_mm` at most (a piece of an arc):
+  /// pair the chord with the walk along `to_`'s path between their nearest points (both in one
+  /// section); the pairing is linear between the walk's vertices, so the largest gap is at
+  /// one of them, and where the walk follows an arc's pieces it strays from its chords by no
+  /// more than their sagittas. Unpaired: Lipschitz.
   double chain_bound(const Vec3& p0, const SegmentIndex::Nearest& n0, const Vec3& p1,
-                     const SegmentIndex::Nearest& n1) const {
-    double lipschitz = (n0.distance_mm + n1.distance_mm + (p1 - p0).norm()) / 2;
+                     const SegmentIndex::Nearest& n1, double stray_mm, double length_mm) const {
+    double lipschitz = (n0.distance_mm + n1.distance_mm + length_mm) / 2;
     uint32_t i = n0.segment, j = n1.segment;
     if (to_.section_of[i] != to_.section_of[j]) return lipschitz;
-    if (i == j) return std::max(n0.distance_mm, n1.distance_mm);
+    if (i == j) {
+      // Distance to a segment is convex along p0 -> p1; to a piece of an arc it is bounded
+      // where both ends face the piece.
+      if (!to_.curved(i)) return std::min(std::max(n0.distance_mm, n1.distance_mm) + stray_mm, lipschitz);
+      const auto bound = segment_to_piece_bound(to_.arc(i), to_.a(i), to_.b(i), p0, p1);
+      return bound ? std::min(*bound + stray_mm, lipschitz) : lipschitz;
+    }
     if ((i < j ? j - i : i - j) > kMaxChain) return lipschitz;
     walk_.clear();
     walk_.push_back(n0.point);
+    double stray = 0;
     if (i < j)
       for (uint32_t k = i; k < j; ++k) walk_.push_back(to_.b(k));
     else
       for (uint32_t k = i; k > j; --k) walk_.push_back(to_.a(k));
+    for (uint32_t k = std::min(i, j); k <= std::max(i, j); ++k) stray = std::max(stray, to_.sagitta(k));
     walk_.push_back(n1.point);
     double total = 0;
     for (size_t k = 1; k < walk_.size(); ++k) total += (walk_[k] - walk_[k - 1]).norm();
@@ -283,7 +342,7 @@ class Directed {
       double t = total > 0 ? run / total : 0.5;
       bound = std::max(bound, (p0 + t * (p1 - p0) - walk_[k]).norm());
     }
-    return std::min(bound, lipschitz);
+    return std::min(bound + stray + stray_mm, lipschitz);
   }
 
   static constexpr uint32_t kMaxChain = 4096;
@@ -325,11 +384,12 @@ void compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, cons
   size_t cursor = 0;
   for (size_t sb = 0; sb < pb.size(); ++sb) {
     Vec3 db = pb.b(sb) - pb.a(sb);
-    if (db.norm() <= kLengthEpsMm) continue;
-    Vec3 mid = (pb.a(sb) + pb.b(sb)) / 2;
+    // (An arc's closing step is measured with the arc's pieces, which carry its feed.)
+    if (db.norm() <= kLengthEpsMm || pb.arc_of[sb] == Path::kClosingStep) continue;
+    Vec3 mid = pb.middle(sb);
     size_t found = pa.size();
     for (size_t k = cursor; k < std::min(pa.size(), cursor + kWindow); ++k)
-      if (point_segment_distance(mid, pa.a(k), pa.b(k)) <= tolerance_mm && cosine(k, db) >= along) {
+      if ((pa.nearest(k, mid) - mid).norm() <= tolerance_mm && cosine(k, db) >= along) {
         found = k;
         break;
       }
@@ -352,7 +412,7 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
   ProgramDiff d;
   d.arc_chord_mm = std::max(opt.tolerance_mm * kReadingShare / 2, 1e-7);
   const double precision_mm = opt.tolerance_mm * kReadingShare / 2;
-  Path pa = path_of(ia, d.arc_chord_mm), pb = path_of(ib, d.arc_chord_mm);
+  Path pa = path_of(ia, d.arc_chord_mm, opt.tolerance_mm), pb = path_of(ib, d.arc_chord_mm, opt.tolerance_mm);
   auto summary = [](const Program& p, const Path& path) {
     ProgramSummary s;
     s.blocks = p.blocks.size();
@@ -375,7 +435,12 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
   // floor a share may keep an upper bound instead of the exact distance, so per-move
   // deviations for plots can differ slightly with the count; the maximum and the places
   // cannot.)
-  SegmentIndex index_a(pa.points, pa.first), index_b(pb.points, pb.first);
+  auto pieces = [](const Path& p) {
+    return p.arcs.empty() ? SegmentIndex::NearestOnPiece{}
+                          : SegmentIndex::NearestOnPiece([&p](const Vec3& q, uint32_t s) { return p.nearest(s, q); });
+  };
+  SegmentIndex index_a(pa.points, pa.first, pieces(pa), pa.max_sagitta_mm),
+      index_b(pb.points, pb.first, pieces(pb), pb.max_sagitta_mm);
   if (pa.size() > 0 && pb.size() > 0) {
     struct Share {
       TopPlaces top;

@@ -5,13 +5,18 @@
 // the path, and extrusion per section.
 //
 // Distance is two-sided: every point of A's path to B's and of B's to A's. Each path is cut
-// into segments (arcs into chords whose sagitta is at most `arc_chord_mm`, far below the
-// tolerance) held in an AABB tree. Along each segment of the other path, the distance
-// function is 1-Lipschitz; a stretch whose two ends have their nearest point on the same
-// segment cannot be farther inside than at its ends (distance to a segment is convex), and
-// any other stretch is split until its Lipschitz bound cannot beat the maximum found. So
-// no bulge between samples is missed; lines are measured exactly and arcs to within
-// `arc_chord_mm`.
+// into segments held in an AABB tree: lines as they are, an arc that keeps its plane's
+// normal axis still into pieces of itself (a few degrees each, within half the band of their
+// chords, by which the tree's searches reach further), measured exactly, and any other arc
+// (a helix, several turns) into chords whose sagitta is at most `arc_chord_mm`, far below the
+// tolerance. Along each segment or piece of the other path the distance function is
+// 1-Lipschitz. A straight stretch whose two ends have their nearest point on the same segment
+// is no farther anywhere than at its ends (distance to a segment is convex); with both ends
+// facing the same piece of an arc, no farther than its largest distance off that circle
+// (the distance from the centre is convex along it). A stretch along a piece of an arc is
+// bounded through its chord, plus its sagitta. A stretch whose bound could still beat the
+// maximum found is split, down to `arc_chord_mm`. So no bulge between samples is missed;
+// lines and flat arcs are measured exactly to that precision, helices to within their chords.
 //
 // Speed: the two paths usually run side by side in the same order, so each point is first
 // measured against the stretch of the other path around the previous answer; the AABB tree
@@ -71,7 +76,9 @@ struct ProgramDiff {
   std::vector<std::string> findings;
   /// Per B move (index into B's moves): its largest distance to A's path, for plots.
   std::vector<double> deviation_of_b;
-  double arc_chord_mm = 0;  ///< the chord sagitta used for arcs (the measure's precision there)
+  /// The measure's precision: where its search stops, and the sagitta of the chords that
+  /// helices are followed by.
+  double arc_chord_mm = 0;
 
   bool same(double tolerance_mm) const {
     return max_deviation_mm <= tolerance_mm && max_rapid_mm <= tolerance_mm && findings.empty();

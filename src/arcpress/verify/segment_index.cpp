@@ -64,6 +64,8 @@ using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
 struct SegmentIndex::Impl {
   Polylines lines;
   uint32_t count = 0;
+  NearestOnPiece on_piece;  ///< empty: the segments are the path
+  double slack_mm = 0;
   Tree tree;  ///< built by build() or at the first query: a caller that never needs it pays nothing
   Segment segment(uint32_t i) const { return get(SegmentMap{lines}, i); }
 };
@@ -75,6 +77,13 @@ SegmentIndex::SegmentIndex(const std::vector<Vec3>& points, const std::vector<ui
   if (impl_->count > 0)
     impl_->tree.insert(boost::counting_iterator<uint32_t>(0), boost::counting_iterator<uint32_t>(impl_->count),
                        SegmentMap{impl_->lines}, StartMap{impl_->lines});
+}
+
+SegmentIndex::SegmentIndex(const std::vector<Vec3>& points, const std::vector<uint32_t>& first,
+                           NearestOnPiece on_piece, double slack_mm)
+    : SegmentIndex(points, first) {
+  impl_->on_piece = std::move(on_piece);
+  impl_->slack_mm = slack_mm;
 }
 
 SegmentIndex::~SegmentIndex() = default;
@@ -97,6 +106,23 @@ SegmentIndex::Nearest SegmentIndex::nearest(const Vec3& p, uint32_t hint) const 
   n.segment = id;
   n.point = vec(cp);
   n.distance_mm = (n.point - p).norm();
+  if (!impl_->on_piece) return n;
+  // Pieces: the nearest chord's piece, then every piece whose chord comes within the slack
+  // of beating it (a piece lies within the slack of its chord), each measured itself.
+  auto offer = [&](uint32_t i) {
+    const Vec3 q = impl_->on_piece(p, i);
+    const double dist = (q - p).norm();
+    if (dist < n.distance_mm || (dist == n.distance_mm && i < n.segment)) n = {dist, i, q};
+  };
+  n.distance_mm = HUGE_VAL;
+  offer(id);
+  offer(h);
+  const double reach = n.distance_mm + impl_->slack_mm;
+  const K::Iso_cuboid_3 box(point(p - Vec3(reach, reach, reach)), point(p + Vec3(reach, reach, reach)));
+  thread_local std::vector<uint32_t> near;
+  near.clear();
+  impl_->tree.all_intersected_primitives(box, std::back_inserter(near));
+  for (uint32_t i : near) offer(i);
   return n;
 }
 

@@ -1,7 +1,10 @@
 #pragma once
 // Nearest-segment queries over a path: CGAL's AABB tree over 3D segments, behind a small
-// interface so the CGAL headers are compiled in one place.
+// interface so the CGAL headers are compiled in one place. A segment may stand for a curved
+// piece (an arc's) that lies within a known distance of it: the tree finds the candidates by
+// their chords, and the piece's own distance decides.
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -21,6 +24,12 @@ class SegmentIndex {
   /// points). Zero-length segments are kept as points. The index reads both vectors where
   /// they lie (it keeps no copy), so they must outlive it, unchanged.
   SegmentIndex(const std::vector<Vec3>& points, const std::vector<uint32_t>& first);
+  /// The point of piece i nearest p (exact). Pieces lie within `slack_mm` of their segments.
+  using NearestOnPiece = std::function<Vec3(const Vec3& p, uint32_t i)>;
+  /// As above, where segments stand for pieces: `on_piece` measures them, and none lies
+  /// farther than `slack_mm` (mm) from its segment.
+  SegmentIndex(const std::vector<Vec3>& points, const std::vector<uint32_t>& first, NearestOnPiece on_piece,
+               double slack_mm);
   ~SegmentIndex();
   SegmentIndex(const SegmentIndex&) = delete;
   SegmentIndex& operator=(const SegmentIndex&) = delete;
@@ -28,8 +37,9 @@ class SegmentIndex {
   bool empty() const;
   /// Builds the tree now rather than at the first query (for building two at once).
   void build() const;
-  /// The nearest segment to p. The search starts from segment `hint`'s distance, so it is
-  /// fast when the hint is near p (e.g. the answer of the previous query along a path).
+  /// The nearest segment (or piece) to p. The search starts from segment `hint`'s distance,
+  /// so it is fast when the hint is near p (e.g. the answer of the previous query along a
+  /// path).
   Nearest nearest(const Vec3& p, uint32_t hint) const;
 
  private:
