@@ -1514,8 +1514,11 @@ class RunFitter {
           if (turn && states[i].parent < 0) break;
           const uint32_t v = states[i].v;
           const Vec2 T = turn ? (*turn)(states[i].T) : states[i].T;
-          scan(v, T, limit, cand);
-          for (size_t k = cand.size(); k-- > 0 && cand[k].e >= front;) {  // furthest first
+          cand.clear();  // only the ends at or beyond the front are taken
+          scan_ends(v, T, limit, [&](const Candidate& c) {
+            if (c.e >= front) cand.push_back(c);
+          });
+          for (size_t k = cand.size(); k-- > 0;) {  // furthest first
             const Candidate& c = cand[k];
             const uint32_t group = std::max<uint32_t>(1, std::max(advance, next_front - front) / kLayerGroups);
             const Vec2 end = unchecked(v, T, c).end_tangent;
