@@ -24,10 +24,10 @@ class SegmentIndex {
   /// points). Zero-length segments are kept as points. The index reads both vectors where
   /// they lie (it keeps no copy), so they must outlive it, unchanged.
   SegmentIndex(const std::vector<Vec3>& points, const std::vector<uint32_t>& first);
-  /// The point of piece i nearest p (exact). Pieces lie within `slack_mm` of their segments.
+  /// The point of piece i nearest p, exactly.
   using NearestOnPiece = std::function<Vec3(const Vec3& p, uint32_t i)>;
-  /// As above, where segments stand for pieces: `on_piece` measures them, and none lies
-  /// farther than `slack_mm` (mm) from its segment.
+  /// As above, where the segments stand for pieces (of arcs): `on_piece` measures them, and
+  /// none lies farther than `slack_mm` (mm) from its segment. Empty `on_piece`: segments.
   SegmentIndex(const std::vector<Vec3>& points, const std::vector<uint32_t>& first, NearestOnPiece on_piece,
                double slack_mm);
   ~SegmentIndex();
