@@ -54,12 +54,15 @@ bool is_corner_beside_corner(const Vec3* z, const Vec3& a, const Vec3& b, const 
   return false;
 }
 
+Vec3 nearest_on_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 d = b - a;
+  const double len2 = d.squaredNorm();
+  if (len2 <= kLengthEpsMm * kLengthEpsMm) return a;
+  return a + std::clamp((p - a).dot(d) / len2, 0.0, 1.0) * d;
+}
+
 double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
-  Vec3 d = b - a;
-  double len2 = d.squaredNorm();
-  if (len2 <= kLengthEpsMm * kLengthEpsMm) return (p - a).norm();
-  double t = std::clamp((p - a).dot(d) / len2, 0.0, 1.0);
-  return (p - (a + t * d)).norm();
+  return (p - nearest_on_segment(p, a, b)).norm();
 }
 
 Deviation line_deviation(std::span<const Vec3> pts, double stop_above_mm) {

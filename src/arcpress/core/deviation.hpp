@@ -11,8 +11,8 @@
 namespace arcpress {
 
 /// Share of the band by which reading a whole program back may misread a distance: the
-/// verifier (and `arcpress diff`) follows each arc by chords within half of it, and ends its
-/// search for the largest distance within the other half. The emitter holds what it prints
+/// verifier (and `arcpress diff`) follows each helix by chords within half of it (flat arcs
+/// it measures as arcs), and ends its search for the largest distance within the other half. The emitter holds what it prints
 /// this much inside the band, so that reading the output back never finds it outside (an
 /// R-form arc printed to 3 decimals came out 0.99994 of the band, and `arcpress diff` read
 /// it at 1.0009).
@@ -69,6 +69,8 @@ bool is_corner(const Vec3& a, const Vec3& b, const Vec3& c, double band_mm, doub
 bool is_corner_beside_corner(const Vec3* z, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3* d,
                              bool a_is_corner, bool c_is_corner, double band_mm);
 
+/// The point of the segment a-b nearest p (a, for a segment shorter than kLengthEpsMm).
+Vec3 nearest_on_segment(const Vec3& p, const Vec3& a, const Vec3& b);
 /// Distance from point p to the segment a-b.
 double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b);
 

@@ -59,5 +59,19 @@ inline Vec2 project(const Vec3& v, Plane p) {
   auto a = axes_of(p);
   return {v[a.first], v[a.second]};
 }
+/// XYZ point `v` in plane coordinates (first, second, normal).
+inline Vec3 in_plane(const Vec3& v, Plane p) {
+  auto a = axes_of(p);
+  return {v[a.first], v[a.second], v[a.normal]};
+}
+/// Plane coordinates (first, second, normal) `v` back in XYZ.
+inline Vec3 from_plane(const Vec3& v, Plane p) {
+  auto a = axes_of(p);
+  Vec3 r;
+  r[a.first] = v.x();
+  r[a.second] = v.y();
+  r[a.normal] = v.z();
+  return r;
+}
 
 }  // namespace arcpress

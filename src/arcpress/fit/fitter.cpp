@@ -1311,11 +1311,11 @@ class RunFitter {
 
   /// The G1 chain from `a` to `limit` with the fewest primitives a beam search finds. Layer k
   /// holds the chains of k primitives, at most `beam_width` of them, those reaching furthest
-  /// (in the next step, or with this one) with distinct end tangents; each is extended along its end tangent and along it turned
-  /// by the whole joint allowance (kJointShare of the G1 angle) each way, and by half of it
-  /// where the input runs straight ahead (for lines): the chains' own spread of tangents
-  /// covers the arcs' turns between. The first chain reaching `limit`
-  /// wins. The tangent at `a` is free, so the roots are a fan of start tangents read off the
+  /// (in the next step, or with this one) with distinct end tangents; each is extended along
+  /// its end tangent and along it turned by the whole joint allowance (kJointShare of the G1
+  /// angle) each way, and by half of it where the input runs straight ahead (for lines): the
+  /// chains' own spread of tangents covers the arcs' turns between. The first chain reaching
+  /// `limit` wins. The tangent at `a` is free, so the roots are a fan of start tangents read off the
   /// input. The greedy chain (read off `greedy` up to its first kink, or chosen again when
   /// null) is always kept. When no chain goes on tangentially, the one reaching furthest is
   /// returned (empty when none leaves `a`), and the caller takes a kink there.

@@ -33,32 +33,19 @@ void move_path(const Interpretation& in, size_t i, double chord_mm, std::vector<
     out.push_back(m.xyz());
     return;
   }
-  auto ax = axes_of(m.plane);
   ArcGeom g = arc_of_move(in, i);
   double r = std::max(g.radius_mm, kLengthEpsMm);
   double step = 2 * std::acos(std::clamp(1 - chord_mm / r, -1.0, 1.0));
   size_t n = std::clamp<size_t>(size_t(std::ceil(std::abs(g.sweep) / std::max(step, 1e-6))), 1, 200000);
   if (n % 2) ++n;
-  for (size_t k = 1; k < n; ++k) {
-    Vec3 p = g.point_at(double(k) / double(n)), q;
-    q[ax.first] = p.x();
-    q[ax.second] = p.y();
-    q[ax.normal] = p.z();
-    out.push_back(q);
-  }
+  for (size_t k = 1; k < n; ++k) out.push_back(from_plane(g.point_at(double(k) / double(n)), m.plane));
   out.push_back(m.xyz());  // the end point exactly as read
 }
 
 namespace {
 
-Vec3 from_plane(const Vec2& v, double height, Plane pl) {
-  auto a = axes_of(pl);
-  Vec3 r;
-  r[a.first] = v.x();
-  r[a.second] = v.y();
-  r[a.normal] = height;
-  return r;
-}
+/// A point of an arc's plane at `height` along its normal, in XYZ.
+Vec3 from_plane(const Vec2& v, double height, Plane pl) { return from_plane(Vec3(v.x(), v.y(), height), pl); }
 
 /// `p` about the arc's centre, seen along the plane's normal.
 Vec2 about_center(const FlatArc& arc, const Vec3& p) {
@@ -79,10 +66,7 @@ std::optional<FlatArc> arc_pieces(const Interpretation& in, size_t i, double max
   double step = std::min(max_sweep_rad, 2 * std::acos(std::clamp(1 - max_sagitta_mm / r, -1.0, 1.0)));
   step = std::min(step, 2 * std::asin(std::min(1.0, max_piece_mm / (2 * r))));
   const size_t n = std::clamp<size_t>(size_t(std::ceil(std::abs(g.sweep) / std::max(step, 1e-9))), 1, 1000000);
-  for (size_t k = 1; k <= n; ++k) {
-    const Vec3 q = g.point_at(double(k) / double(n));
-    out.push_back(from_plane(q.head<2>(), g.h0, m.plane));
-  }
+  for (size_t k = 1; k <= n; ++k) out.push_back(from_plane(g.point_at(double(k) / double(n)), m.plane));
   if (!(out.back() == m.xyz())) {
     out.push_back(m.xyz());
     straight_end = true;

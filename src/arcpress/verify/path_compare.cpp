@@ -28,18 +28,6 @@ Vec3 in_plane(const AxisValues& v, Plane pl) {
   auto a = axes_of(pl);
   return {v[a.first], v[a.second], v[a.normal]};
 }
-Vec3 in_plane(const Vec3& v, Plane pl) {
-  auto a = axes_of(pl);
-  return {v[a.first], v[a.second], v[a.normal]};
-}
-Vec3 from_plane(const Vec3& v, Plane pl) {
-  auto a = axes_of(pl);
-  Vec3 r;
-  r[a.first] = v.x();
-  r[a.second] = v.y();
-  r[a.normal] = v.z();
-  return r;
-}
 
 /// Appends the path of move i to `pts`, in `pl` coordinates.
 void append_path(const Interpretation& in, size_t i, Plane pl, double chord_mm, std::vector<Vec3>& pts) {

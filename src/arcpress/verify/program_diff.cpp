@@ -47,11 +47,7 @@ struct Path {
   const FlatArc& arc(size_t s) const { return arcs[size_t(arc_of[s])]; }
   /// The point of segment (or piece) s nearest p.
   Vec3 nearest(size_t s, const Vec3& p) const {
-    const Vec3 a0 = a(s);
-    if (curved(s)) return nearest_on_piece(arc(s), a0, b(s), p);
-    const Vec3 d = b(s) - a0;
-    const double len2 = d.squaredNorm();
-    return len2 > 0 ? Vec3(a0 + std::clamp((p - a0).dot(d) / len2, 0.0, 1.0) * d) : a0;
+    return curved(s) ? nearest_on_piece(arc(s), a(s), b(s), p) : nearest_on_segment(p, a(s), b(s));
   }
   /// The middle of segment (or piece) s.
   Vec3 middle(size_t s) const { return curved(s) ? point_on_piece(arc(s), a(s), b(s), 0.5) : Vec3((a(s) + b(s)) / 2); }

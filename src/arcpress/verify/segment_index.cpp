@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "arcpress/core/deviation.hpp"
+
 namespace arcpress {
 
 namespace {
@@ -100,8 +102,7 @@ SegmentIndex::Nearest SegmentIndex::nearest(const Vec3& p, uint32_t hint) const 
   // The hint's own nearest point bounds the search radius from the start.
   const uint32_t h = std::min(hint, impl_->count - 1);
   const Segment hs = impl_->segment(h);
-  Vec3 a = vec(hs.source()), d = vec(hs.target()) - a;
-  Vec3 on = a + std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0) * d;
+  const Vec3 on = nearest_on_segment(p, vec(hs.source()), vec(hs.target()));
   auto [cp, id] = impl_->tree.closest_point_and_primitive(point(p), std::make_pair(point(on), h));
   n.segment = id;
   n.point = vec(cp);
