@@ -1281,6 +1281,13 @@ class RunFitter {
     Score sc;
   };
 
+  /// A chain a beam layer keeps: its end vertex and tangent, and the tangent's bin once needed.
+  struct SeenEnd {
+    uint32_t v;
+    Vec2 T;
+    std::optional<long> bin;
+  };
+
   /// Buffers the searches reuse from call to call, and from run to run on one thread, so
   /// that once warm they allocate nothing. Each belongs to one function; none of those
   /// calls itself, and none calls another that uses the same buffer.
@@ -1299,9 +1306,9 @@ class RunFitter {
     std::vector<Node> nodes;              // beam_chain()
     std::vector<int> layer, next;         // beam_chain()
     std::vector<Made> made;               // beam_chain()
-    std::vector<uint32_t> order;          // beam_chain()
     std::vector<Candidate> beam_out;      // beam_chain()
-    std::vector<std::pair<uint32_t, long>> seen;  // beam_chain()
+    std::vector<SeenEnd> seen;            // beam_chain()
+    std::vector<std::pair<uint64_t, uint64_t>> keys;  // beam_chain()
     std::vector<std::pair<uint32_t, Vec2>> expanded;  // beam_chain()
   };
   static Scratch& thread_scratch() {
@@ -1331,9 +1338,9 @@ class RunFitter {
     const size_t width = o_.beam_width;
     // Candidates are scored first and checked exactly only when the beam keeps them.
     std::vector<Made>& made = s_.made;
-    std::vector<uint32_t>& order = s_.order;
     std::vector<Candidate>& out = s_.beam_out;
-    std::vector<std::pair<uint32_t, long>>& seen = s_.seen;
+    std::vector<SeenEnd>& seen = s_.seen;
+    std::vector<std::pair<uint64_t, uint64_t>>& keys = s_.keys;
     std::vector<std::pair<uint32_t, Vec2>>& expanded = s_.expanded;
     int furthest = -1;
     int guide = -1;  // the node the greedy chain would be at: the beam never does worse
@@ -1406,39 +1413,46 @@ class RunFitter {
       } else {
         guide = -2;
       }
-      auto keep_best = [&](size_t count, auto better) {
-        // Taken best first, ties in the order made, from a heap of indices: a layer keeps
-        // few of its candidates, so most are never put in order.
-        auto after = [&](uint32_t x, uint32_t y) { return better(made[y], made[x]) || (!better(made[x], made[y]) && x > y); };
-        order.resize(made.size());
-        for (uint32_t k = 0; k < order.size(); ++k) order[k] = k;
-        std::make_heap(order.begin(), order.end(), after);
-        for (auto end = order.end(); end != order.begin() && next.size() < count; --end) {
-          std::pop_heap(order.begin(), end, after);
-          Made& m = made[*(end - 1)];
-          if (m.from < 0) continue;  // failed its exact check, or kept already
-          uint32_t e = m.c.prim.end_vertex;
-          long bin = std::lround(std::atan2(m.c.end_tangent.y(), m.c.end_tangent.x()) / bin_rad);
-          std::pair<uint32_t, long> key{e, bin};
-          if (std::find(seen.begin(), seen.end(), key) != seen.end()) continue;
+      // A layer keeps few of its candidates, so most are never put in order: each ranking
+      // packs its keys into integers and takes them best first from a heap, ties in the order
+      // made. A tangent's bin is worked out only when another kept chain ends at its vertex.
+      auto bin_of = [&](const Vec2& t) { return std::lround(std::atan2(t.y(), t.x()) / bin_rad); };
+      auto keep_best = [&](size_t count, auto key) {
+        keys.clear();
+        for (uint32_t k = 0; k < made.size(); ++k)
+          if (made[k].from >= 0) {  // not yet kept, nor failed its exact check
+            auto [hi, lo] = key(made[k].sc);
+            keys.push_back({hi, (uint64_t(lo) << 32) | (UINT32_MAX - k)});
+          }
+        std::make_heap(keys.begin(), keys.end());
+        for (auto end = keys.end(); end != keys.begin() && next.size() < count; --end) {
+          std::pop_heap(keys.begin(), end);
+          Made& m = made[UINT32_MAX - uint32_t((end - 1)->second)];
+          const uint32_t e = m.c.prim.end_vertex;
+          std::optional<long> bin;
+          bool taken = false;
+          for (SeenEnd& s : seen) {
+            if (s.v != e) continue;
+            if (!bin) bin = bin_of(m.c.end_tangent);
+            if (!s.bin) s.bin = bin_of(s.T);
+            if ((taken = *s.bin == *bin)) break;
+          }
+          if (taken) continue;
           auto c = made_from(nodes[m.from], m.T, m.cand);
           const int from = m.from;
           m.from = -1;
           if (!c) continue;
-          seen.push_back(key);
+          seen.push_back({e, m.c.end_tangent, bin});
           nodes.push_back({*c, from, e, c->end_tangent});
           int id = static_cast<int>(nodes.size()) - 1;
           if (furthest < 0 || nodes[furthest].v < e) furthest = id;
           next.push_back(id);
         }
       };
-      keep_best(width / 2, [](const Made& x, const Made& y) {
-        return std::pair(x.sc.reach, x.sc.end) > std::pair(y.sc.reach, y.sc.end);
-      });
-      keep_best(width / 2 + kFurthestEnds, [](const Made& x, const Made& y) {
-        return std::pair(x.sc.end, x.sc.reach) > std::pair(y.sc.end, y.sc.reach);
-      });
-      keep_best(width, [](const Made& x, const Made& y) { return x.sc > y.sc; });
+      using Key = std::pair<uint64_t, uint32_t>;
+      keep_best(width / 2, [](const Score& x) { return Key{(uint64_t(x.reach) << 32) | x.end, 0}; });
+      keep_best(width / 2 + kFurthestEnds, [](const Score& x) { return Key{(uint64_t(x.end) << 32) | x.reach, 0}; });
+      keep_best(width, [](const Score& x) { return Key{(uint64_t(x.on_course) << 32) | x.reach, x.end}; });
       layer.swap(next);
     }
     return furthest < 0 ? std::vector<Chosen>{} : chain_to(nodes, furthest);
