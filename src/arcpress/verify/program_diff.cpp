@@ -444,8 +444,6 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
     };
     const size_t workers = worker_count(opt.threads, std::min(pa.size(), pb.size()));
     std::vector<Share> shares(workers, Share{TopPlaces(opt.top), std::vector<double>(ib.moves.size(), 0.0)});
-    if (workers > 1)  // every share asks both trees: build them at once first
-      run_workers(2, [&](size_t w) { (w == 0 ? index_b : index_a).build(); });
     auto measure = [&](size_t w) {
       Share& sh = shares[w];
       auto note = [&](uint32_t move_a, uint32_t move_b, double dist, const Vec3& at) {

@@ -5,9 +5,9 @@
 // the path, and extrusion per section.
 //
 // Distance is two-sided: every point of A's path to B's and of B's to A's. Each path is cut
-// into segments held in an AABB tree: lines as they are, an arc that keeps its plane's
+// into segments held in a spatial index: lines as they are, an arc that keeps its plane's
 // normal axis still into pieces of itself (a few degrees each, within half the band of their
-// chords, by which the tree's searches reach further), measured exactly, and any other arc
+// chords, by which the index's searches reach further), measured exactly, and any other arc
 // (a helix, several turns) into chords whose sagitta is at most `arc_chord_mm`, far below the
 // tolerance. Along each segment or piece of the other path the distance function is
 // 1-Lipschitz. A straight stretch whose two ends have their nearest point on the same segment
@@ -19,10 +19,13 @@
 // lines and flat arcs are measured exactly to that precision, helices to within their chords.
 //
 // Speed: the two paths usually run side by side in the same order, so each point is first
-// measured against the stretch of the other path around the previous answer; the AABB tree
-// is asked (and built) only for points where that could change the maximum or the worst
-// places. The maximum and the listed places are exact either way. With several threads,
-// each measures a share of both paths and the shares' worst places are merged.
+// measured against the stretch of the other path around the previous answer; the spatial
+// index (a linear scan over boxes of consecutive segments, then the AABB tree once the
+// scans have cost what building it would) is asked only for points where that could
+// change the maximum or the worst places. The maximum is exact either way; the other listed
+// places are measured at the points the search visits, which reach between a path's
+// vertices only while they could beat the maximum. With several threads, each measures a
+// share of both paths and the shares' worst places are merged.
 #include <cstdint>
 #include <string>
 #include <vector>

@@ -9,7 +9,9 @@
 #include <boost/property_map/property_map.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <mutex>
 
 #include "arcpress/core/deviation.hpp"
 
@@ -61,24 +63,82 @@ using SegmentMap = NumberMap<Segment, SegmentOf>;
 using StartMap = NumberMap<Point, StartOf>;
 using Primitive = CGAL::AABB_primitive<uint32_t, SegmentMap, StartMap, CGAL::Tag_true, CGAL::Tag_false>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
+
+/// Consecutive segments a linear scan takes together, behind their common bounding box.
+constexpr uint32_t kChunkSegments = 32;
+/// Chunk boxes a linear scan visits, per segment of the path, before the tree pays for
+/// itself: building it costs about as much as visiting this many boxes per segment.
+constexpr uint64_t kScanBudgetPerSegment = 64;
+
+struct Box {
+  Vec3 lo, hi;
+  double squared_distance(const Vec3& p) const {
+    const Vec3 d = (lo - p).cwiseMax(p - hi).cwiseMax(Vec3::Zero());
+    return d.squaredNorm();
+  }
+};
 }  // namespace
 
+/// Queries go first to a linear scan over boxes of consecutive segments (built in one pass:
+/// a path's segments follow each other, so the boxes are tight), and to CGAL's tree once
+/// the scans have done as much work as building it would: a self-check whose walks along
+/// the path find almost every nearest point asks the index a few dozen times, and a tree
+/// over hundreds of thousands of segments would take most of its time.
 struct SegmentIndex::Impl {
   Polylines lines;
   uint32_t count = 0;
   NearestOnPiece on_piece;  ///< empty: the segments are the path
   double slack_mm = 0;
-  Tree tree;  ///< built by build() or at the first query: a caller that never needs it pays nothing
+  std::vector<Box> chunks;
+  std::atomic<uint64_t> scanned{0};  ///< chunk boxes the linear scans have visited
+  std::once_flag built;
+  std::atomic<bool> tree_ready{false};
+  Tree tree;
   Segment segment(uint32_t i) const { return get(SegmentMap{lines}, i); }
+
+  /// Whether queries go to the tree now (building it, once, when the scans reach the budget).
+  bool use_tree() {
+    if (tree_ready.load(std::memory_order_acquire)) return true;
+    if (scanned.load(std::memory_order_relaxed) < kScanBudgetPerSegment * count) return false;
+    std::call_once(built, [&] {
+      tree.insert(boost::counting_iterator<uint32_t>(0), boost::counting_iterator<uint32_t>(count), SegmentMap{lines},
+                  StartMap{lines});
+      tree.build();
+      tree_ready.store(true, std::memory_order_release);
+    });
+    return true;
+  }
+
+  /// Calls visit(i, nearest point, distance) for every segment within `reach_mm` (mm) of p,
+  /// by a scan over the chunks; `visit` may narrow the reach as it goes.
+  template <class Visit>
+  void scan(const Vec3& p, const double& reach_mm, Visit&& visit) {
+    scanned.fetch_add(chunks.size(), std::memory_order_relaxed);
+    for (uint32_t c = 0; c < chunks.size(); ++c) {
+      if (chunks[c].squared_distance(p) > reach_mm * reach_mm) continue;
+      const uint32_t end = std::min(count, (c + 1) * kChunkSegments);
+      for (uint32_t i = c * kChunkSegments; i < end; ++i) {
+        const Vec3 q = nearest_on_segment(p, lines.a(i), lines.b(i));
+        const double dist = (q - p).norm();
+        if (dist <= reach_mm) visit(i, q, dist);
+      }
+    }
+  }
 };
 
 SegmentIndex::SegmentIndex(const std::vector<Vec3>& points, const std::vector<uint32_t>& first)
     : impl_(std::make_unique<Impl>()) {
-  impl_->lines = Polylines{&points, &first};
-  impl_->count = uint32_t(first.size());
-  if (impl_->count > 0)
-    impl_->tree.insert(boost::counting_iterator<uint32_t>(0), boost::counting_iterator<uint32_t>(impl_->count),
-                       SegmentMap{impl_->lines}, StartMap{impl_->lines});
+  Impl& m = *impl_;
+  m.lines = Polylines{&points, &first};
+  m.count = uint32_t(first.size());
+  for (uint32_t i = 0; i < m.count; ++i) {
+    if (i % kChunkSegments == 0) m.chunks.push_back({m.lines.a(i), m.lines.a(i)});
+    Box& box = m.chunks.back();
+    for (const Vec3& v : {m.lines.a(i), m.lines.b(i)}) {
+      box.lo = box.lo.cwiseMin(v);
+      box.hi = box.hi.cwiseMax(v);
+    }
+  }
 }
 
 SegmentIndex::SegmentIndex(const std::vector<Vec3>& points, const std::vector<uint32_t>& first,
@@ -92,37 +152,48 @@ SegmentIndex::~SegmentIndex() = default;
 
 bool SegmentIndex::empty() const { return impl_->count == 0; }
 
-void SegmentIndex::build() const {
-  if (!empty()) impl_->tree.build();
-}
-
 SegmentIndex::Nearest SegmentIndex::nearest(const Vec3& p, uint32_t hint) const {
   Nearest n;
   if (empty()) return n;
+  Impl& m = *impl_;
   // The hint's own nearest point bounds the search radius from the start.
-  const uint32_t h = std::min(hint, impl_->count - 1);
-  const Segment hs = impl_->segment(h);
-  const Vec3 on = nearest_on_segment(p, vec(hs.source()), vec(hs.target()));
-  auto [cp, id] = impl_->tree.closest_point_and_primitive(point(p), std::make_pair(point(on), h));
-  n.segment = id;
-  n.point = vec(cp);
-  n.distance_mm = (n.point - p).norm();
-  if (!impl_->on_piece) return n;
+  const uint32_t h = std::min(hint, m.count - 1);
+  const bool tree = m.use_tree();
+  if (tree) {
+    const Segment hs = m.segment(h);
+    const Vec3 on = nearest_on_segment(p, vec(hs.source()), vec(hs.target()));
+    auto [cp, id] = m.tree.closest_point_and_primitive(point(p), std::make_pair(point(on), h));
+    n = {0, id, vec(cp)};
+    n.distance_mm = (n.point - p).norm();
+  } else {
+    n.point = nearest_on_segment(p, m.lines.a(h), m.lines.b(h));
+    n.segment = h;
+    n.distance_mm = (n.point - p).norm();
+    m.scan(p, n.distance_mm, [&](uint32_t i, const Vec3& q, double dist) {
+      if (dist < n.distance_mm) n = {dist, i, q};  // ties: the hint, as the tree keeps it, then the first
+    });
+  }
+  if (!m.on_piece) return n;
   // Pieces: the nearest chord's piece, then every piece whose chord comes within the slack
   // of beating it (a piece lies within the slack of its chord), each measured itself.
   auto offer = [&](uint32_t i) {
-    const Vec3 q = impl_->on_piece(p, i);
+    const Vec3 q = m.on_piece(p, i);
     const double dist = (q - p).norm();
     if (dist < n.distance_mm || (dist == n.distance_mm && i < n.segment)) n = {dist, i, q};
   };
+  const uint32_t id = n.segment;
   n.distance_mm = HUGE_VAL;
   offer(id);
   offer(h);
-  const double reach = n.distance_mm + impl_->slack_mm;
+  const double reach = n.distance_mm + m.slack_mm;
+  if (!tree) {
+    m.scan(p, reach, [&](uint32_t i, const Vec3&, double) { offer(i); });
+    return n;
+  }
   const K::Iso_cuboid_3 box(point(p - Vec3(reach, reach, reach)), point(p + Vec3(reach, reach, reach)));
   thread_local std::vector<uint32_t> near;
   near.clear();
-  impl_->tree.all_intersected_primitives(box, std::back_inserter(near));
+  m.tree.all_intersected_primitives(box, std::back_inserter(near));
   for (uint32_t i : near) offer(i);
   return n;
 }

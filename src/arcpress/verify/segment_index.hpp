@@ -1,6 +1,7 @@
 #pragma once
-// Nearest-segment queries over a path: CGAL's AABB tree over 3D segments, behind a small
-// interface so the CGAL headers are compiled in one place. A segment may stand for a curved
+// Nearest-segment queries over a path: a linear scan over boxes of consecutive segments for
+// the first queries, then CGAL's AABB tree over 3D segments once the scans have cost what
+// building it would, behind a small interface so the CGAL headers are compiled in one place. A segment may stand for a curved
 // piece (an arc's) that lies within a known distance of it: the tree finds the candidates by
 // their chords, and the piece's own distance decides.
 #include <cstdint>
@@ -35,11 +36,10 @@ class SegmentIndex {
   SegmentIndex& operator=(const SegmentIndex&) = delete;
 
   bool empty() const;
-  /// Builds the tree now rather than at the first query (for building two at once).
-  void build() const;
   /// The nearest segment (or piece) to p. The search starts from segment `hint`'s distance,
   /// so it is fast when the hint is near p (e.g. the answer of the previous query along a
-  /// path).
+  /// path), and a segment as near as the hint's does not replace it.
+  /// Safe to call from several threads at once.
   Nearest nearest(const Vec3& p, uint32_t hint) const;
 
  private:
