@@ -1,6 +1,7 @@
 // The nearest-segment index the diff asks when a walk along the other path cannot find the
 // nearest point: its answers are the nearest of all segments (or pieces), whatever the hint,
-// whether its linear scans answer or, after enough queries, its tree, and from two threads.
+// and whether any lies within a distance, whether its linear scans answer or, after enough
+// queries, its tree, and from two threads.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -49,7 +50,7 @@ Vec3 nearest_on_piece(const Walk& w, uint32_t i, double bulge, const Vec3& p) {
 
 }  // namespace
 
-TEST_CASE("the index answers with the nearest segment of all, from any hint, before and after it builds its tree") {
+TEST_CASE("the index answers with the nearest segment of all, from any hint, and whether one lies within a distance, before and after it builds its tree") {
   std::mt19937 rng(7);
   const Walk w = random_walk(rng, 600);
   SegmentIndex index(w.points, w.first);
@@ -66,7 +67,8 @@ TEST_CASE("the index answers with the nearest segment of all, from any hint, bef
     const SegmentIndex::Nearest n = index.nearest(p, any(rng));
     const Vec3 on = nearest_on_segment(p, w.points[w.first[n.segment]], w.points[w.first[n.segment] + 1]);
     const bool right = std::abs(n.distance_mm - best) <= 1e-9 && (n.point - on).norm() <= 1e-9 &&
-                       std::abs((n.point - p).norm() - n.distance_mm) <= 1e-9;
+                       std::abs((n.point - p).norm() - n.distance_mm) <= 1e-9 &&
+                       index.any_within(p, best + 1e-9) && !index.any_within(p, best - 1e-6);
     if (!right) ++wrong;
   }
   CHECK(wrong == 0);
@@ -90,6 +92,7 @@ TEST_CASE("the index measures pieces that bulge off their chords, and may be ask
       const SegmentIndex::Nearest n = index.nearest(p, uint32_t(k % w.first.size()));
       const Vec3 on = nearest_on_piece(w, n.segment, bulge, p);
       if (std::abs(n.distance_mm - best) > 1e-9 || (n.point - on).norm() > 1e-9) ++wrong[t];
+      if (!index.any_within(p, best + 1e-9) || index.any_within(p, best - 1e-6)) ++wrong[t];
     }
   };
   std::thread other(ask, 1);

@@ -372,6 +372,7 @@ template <class Visit>
 void compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, const Interpretation& ib,
                   const SegmentIndex& index_a, double tolerance_mm, Visit&& visit) {
   constexpr size_t kWindow = 4096;  // A segments searched ahead of the cursor
+  constexpr size_t kWindowFirst = 64;  // ... before asking whether any lies within the band
   const double along = std::cos(deg_to_rad(45)), same_way = std::cos(deg_to_rad(10));
   auto cosine = [&](size_t sa, const Vec3& db) {
     Vec3 da = pa.b(sa) - pa.a(sa);
@@ -384,11 +385,17 @@ void compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, cons
     if (db.norm() <= kLengthEpsMm || pb.arc_of[sb] == Path::kClosingStep) continue;
     Vec3 mid = pb.middle(sb);
     size_t found = pa.size();
-    for (size_t k = cursor; k < std::min(pa.size(), cursor + kWindow); ++k)
-      if ((pa.nearest(k, mid) - mid).norm() <= tolerance_mm && cosine(k, db) >= along) {
-        found = k;
-        break;
-      }
+    auto search = [&](size_t from, size_t to) {
+      for (size_t k = from; k < std::min(pa.size(), to) && found == pa.size(); ++k)
+        if ((pa.nearest(k, mid) - mid).norm() <= tolerance_mm && cosine(k, db) >= along) found = k;
+    };
+    // The first steps of the window, then whether any segment lies within the band at all:
+    // where none does (B strays from A there), the rest of the window holds no counterpart.
+    search(cursor, cursor + kWindowFirst);
+    if (found == pa.size()) {
+      if (!index_a.any_within(mid, tolerance_mm)) continue;
+      search(cursor + kWindowFirst, cursor + kWindow);
+    }
     if (found == pa.size()) {
       SegmentIndex::Nearest n = index_a.nearest(mid, uint32_t(std::min(cursor, pa.size() - 1)));
       if (n.segment < cursor || n.distance_mm > tolerance_mm || cosine(n.segment, db) < same_way) continue;

@@ -110,14 +110,14 @@ struct SegmentIndex::Impl {
   }
 
   /// Calls visit(i, nearest point, distance) for every segment within `reach_mm` (mm) of p,
-  /// by a scan over the chunks; `visit` may narrow the reach as it goes.
+  /// by a scan over the chunks; `visit` may narrow the reach as it goes (below 0: no further).
   template <class Visit>
   void scan(const Vec3& p, const double& reach_mm, Visit&& visit) {
     scanned.fetch_add(chunks.size(), std::memory_order_relaxed);
-    for (uint32_t c = 0; c < chunks.size(); ++c) {
+    for (uint32_t c = 0; c < chunks.size() && reach_mm >= 0; ++c) {
       if (chunks[c].squared_distance(p) > reach_mm * reach_mm) continue;
       const uint32_t end = std::min(count, (c + 1) * kChunkSegments);
-      for (uint32_t i = c * kChunkSegments; i < end; ++i) {
+      for (uint32_t i = c * kChunkSegments; i < end && reach_mm >= 0; ++i) {
         const Vec3 q = nearest_on_segment(p, lines.a(i), lines.b(i));
         const double dist = (q - p).norm();
         if (dist <= reach_mm) visit(i, q, dist);
@@ -196,6 +196,27 @@ SegmentIndex::Nearest SegmentIndex::nearest(const Vec3& p, uint32_t hint) const 
   m.tree.all_intersected_primitives(box, std::back_inserter(near));
   for (uint32_t i : near) offer(i);
   return n;
+}
+
+bool SegmentIndex::any_within(const Vec3& p, double radius_mm) const {
+  if (empty()) return false;
+  Impl& m = *impl_;
+  auto within = [&](uint32_t i) {
+    const Vec3 q = m.on_piece ? m.on_piece(p, i) : nearest_on_segment(p, m.lines.a(i), m.lines.b(i));
+    return (q - p).norm() <= radius_mm;
+  };
+  // A piece lies within the slack of its chord: its chord within the radius and the slack.
+  const double reach = radius_mm + m.slack_mm;
+  if (!m.use_tree()) {
+    double until = reach;  // none once one is found
+    m.scan(p, until, [&](uint32_t i, const Vec3&, double) { until = within(i) ? -1.0 : until; });
+    return until < 0;
+  }
+  const K::Iso_cuboid_3 box(point(p - Vec3(reach, reach, reach)), point(p + Vec3(reach, reach, reach)));
+  thread_local std::vector<uint32_t> near;
+  near.clear();
+  m.tree.all_intersected_primitives(box, std::back_inserter(near));
+  return std::any_of(near.begin(), near.end(), within);
 }
 
 }  // namespace arcpress

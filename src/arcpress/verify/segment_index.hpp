@@ -41,6 +41,8 @@ class SegmentIndex {
   /// path), and a segment as near as the hint's does not replace it.
   /// Safe to call from several threads at once.
   Nearest nearest(const Vec3& p, uint32_t hint) const;
+  /// Whether some segment (or piece) comes within `radius_mm` (mm) of p.
+  bool any_within(const Vec3& p, double radius_mm) const;
 
  private:
   struct Impl;
