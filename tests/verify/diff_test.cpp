@@ -219,15 +219,20 @@ TEST_CASE("a bulge between the samples of either path is not missed", "[diff]") 
 
 TEST_CASE("the maximum and the worst places are the same on any number of threads", "[diff][threads]") {
   // A long line along X whose copy has six bumps of known heights spread along it, so that
-  // every share of the path holds some and the shares' lists must be merged.
-  const std::vector<std::pair<int, double>> bumps = {{20, 0.004}, {75, 0.009}, {110, 0.002},
-                                                     {160, 0.007}, {230, 0.005}, {290, 0.003}};
+  // the measure's shares each hold some and their lists must be merged. Each bump's vertex
+  // lies a quarter of the way along the line's move, so the farthest point of the line
+  // from the copy there lies between the line's vertices, where only a split finds it, and
+  // no point of either path is equally near two moves of the other.
+  const int moves = 150000;
+  const std::vector<std::pair<int, double>> bumps = {{20, 0.004},     {40075, 0.009},  {61110, 0.002},
+                                                     {99160, 0.007}, {120230, 0.005}, {149290, 0.003}};
   auto line = [&](bool bumped) {
     std::string t = "G21 G90\nG0 X0 Y0 Z0\nG1 F300\n";
-    for (int k = 1; k <= 300; ++k) {
-      double y = 0;
-      for (auto [at, h] : bumps) y = bumped && k == at ? h : y;
-      t += fmt::format("G1 X{} Y{:.4f}\n", k, y);
+    for (int k = 1; k <= moves; ++k) {
+      double x = k, y = 0;
+      for (auto [at, h] : bumps)
+        if (bumped && k == at) x = k + 0.25, y = h;
+      t += fmt::format("G1 X{:.2f} Y{:.4f}\n", x, y);
     }
     return t + "M2\n";
   };
@@ -241,22 +246,17 @@ TEST_CASE("the maximum and the worst places are the same on any number of thread
     opt.top = 5;
     opt.threads = threads;
     ProgramDiff d = diff_programs(pa, ia, pb, ib, opt);
-    CHECK(d.max_deviation_mm == Approx(0.009).margin(1e-6));
+    CHECK(d.max_deviation_mm == Approx(0.009).margin(1e-9));
     REQUIRE(d.worst.size() == 5);
-    // Each bump shows at its vertex, h from the line, and at the line's vertex under it, a
-    // little less from the copy's moves into and out of the bump. Which of those two moves
-    // a place names is a tie (both are as near), and two places that name the same pair of
-    // moves are one: so each listed distance is one of those, largest first.
-    auto under = [](double h) { return h / std::hypot(1.0, h); };  // line's vertex to a move into the bump
-    for (size_t k = 0; k < 5; ++k) {
-      bool known = false;
-      for (auto [at, h] : bumps)
-        known = known || d.worst[k].deviation_mm == Approx(h).margin(1e-9) ||
-                d.worst[k].deviation_mm == Approx(under(h)).margin(1e-9);
-      CHECK(known);
-      if (k > 0) CHECK(d.worst[k].deviation_mm <= d.worst[k - 1].deviation_mm);
+    // The copy's "G1 X40075.25 ..." is its line 40 078, over the line's move to X40076.
+    CHECK(d.worst[0].line_b == 40078);
+    CHECK(d.worst[0].line_a == 40079);
+    // Each place lies at one of the two largest bumps, within its height.
+    for (const DiffPlace& p : d.worst) {
+      const bool at_bump = std::abs(p.at.x() - 40075.25) < 1 || std::abs(p.at.x() - 99160.25) < 1;
+      CHECK(at_bump);
+      CHECK(p.deviation_mm <= 0.009 + 1e-9);
     }
-    CHECK((d.worst[0].line_b == 78 || d.worst[0].line_b == 79));  // "G1 X75 ..." is line 78
     if (threads == 1) {
       one_thread = d.worst;
       continue;

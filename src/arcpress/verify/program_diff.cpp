@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <cmath>
 #include <limits>
@@ -60,9 +61,13 @@ constexpr double kPieceMm = 10.0;
 /// Largest sweep of a flat arc's piece: its chord runs within half of it of the arc's
 /// direction, as the feed pairing's direction tests read it.
 constexpr double kPieceSweepRad = 5 * kPi / 180;
-/// How far a piece may lie from its chord, as a share of the band: the spatial tree finds
+/// How far a piece may lie from its chord, as a share of the band: the spatial index finds
 /// pieces by their chords, so its searches reach this much further.
 constexpr double kPieceSagittaShare = 0.5;
+/// Segments of the longer path in each share of the path measure (see diff_programs()):
+/// enough that the few points each share measures before its own maximum has grown cost
+/// little, few enough that two or more threads have shares to take.
+constexpr size_t kShareSegments = 65536;
 
 Path path_of(const Interpretation& in, double chord_mm, double tolerance_mm) {
   Path p;
@@ -431,13 +436,12 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
   d.deviation_of_b.assign(ib.moves.size(), 0.0);
 
   // Feed paths, both ways: the maximum, the worst places, and each B move's deviation.
-  // Each of `workers` threads measures its share of both directions (the same contiguous
-  // share of each path for a given count) with its own worst places and per-move
-  // deviations, merged after. The merged worst places are exact: a place among the worst
-  // overall is among the worst of the share where it is largest. (Below the worst places'
-  // floor a share may keep an upper bound instead of the exact distance, so per-move
-  // deviations for plots can differ slightly with the count; the maximum and the places
-  // cannot.)
+  // Both paths are cut into the same number of contiguous shares, set by their lengths
+  // alone; each share measures its part of both directions with its own worst places (its
+  // running maximum, which decides which stretches it splits, starts from nothing), and the
+  // threads take shares in turn, each keeping its own per-move deviations. The shares'
+  // places are merged after: what is measured, and so the result, is the same for any
+  // number of threads.
   auto pieces = [](const Path& p) {
     return p.arcs.empty() ? SegmentIndex::NearestOnPiece{}
                           : SegmentIndex::NearestOnPiece([&p](const Vec3& q, uint32_t s) { return p.nearest(s, q); });
@@ -445,38 +449,38 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
   SegmentIndex index_a(pa.points, pa.first, pieces(pa), pa.max_sagitta_mm),
       index_b(pb.points, pb.first, pieces(pb), pb.max_sagitta_mm);
   if (pa.size() > 0 && pb.size() > 0) {
-    struct Share {
-      TopPlaces top;
-      std::vector<double> deviation_of_b;
-    };
-    const size_t workers = worker_count(opt.threads, std::min(pa.size(), pb.size()));
-    std::vector<Share> shares(workers, Share{TopPlaces(opt.top), std::vector<double>(ib.moves.size(), 0.0)});
+    const size_t share_count = (std::max(pa.size(), pb.size()) + kShareSegments - 1) / kShareSegments;
+    const size_t workers = worker_count(opt.threads, share_count);
+    std::vector<TopPlaces> shares(share_count, TopPlaces(opt.top));
+    std::vector<std::vector<double>> deviation_of_b(workers, std::vector<double>(ib.moves.size(), 0.0));
+    std::atomic<size_t> next_share{0};
     auto measure = [&](size_t w) {
-      Share& sh = shares[w];
-      auto note = [&](uint32_t move_a, uint32_t move_b, double dist, const Vec3& at) {
-        sh.deviation_of_b[move_b] = std::max(sh.deviation_of_b[move_b], dist);
-        if (dist > sh.top.floor())
-          sh.top.offer({dist, at, a.blocks[ia.moves[move_a].block].line, b.blocks[ib.moves[move_b].block].line});
-      };
-      Directed(pa, pb, index_b, precision_mm, sh.top)
-          .run(pa.size() * w / workers, pa.size() * (w + 1) / workers,
-               [&](size_t s, const SegmentIndex::Nearest& n, const Vec3& p) {
-                 note(pa.move_of[s], pb.move_of[n.segment], n.distance_mm, p);
-               });
-      Directed(pb, pa, index_a, precision_mm, sh.top)
-          .run(pb.size() * w / workers, pb.size() * (w + 1) / workers,
-               [&](size_t s, const SegmentIndex::Nearest& n, const Vec3& p) {
-                 note(pa.move_of[n.segment], pb.move_of[s], n.distance_mm, p);
-               });
+      for (size_t k; (k = next_share++) < share_count;) {
+        TopPlaces& top = shares[k];
+        auto note = [&](uint32_t move_a, uint32_t move_b, double dist, const Vec3& at) {
+          deviation_of_b[w][move_b] = std::max(deviation_of_b[w][move_b], dist);
+          if (dist > top.floor())
+            top.offer({dist, at, a.blocks[ia.moves[move_a].block].line, b.blocks[ib.moves[move_b].block].line});
+        };
+        Directed(pa, pb, index_b, precision_mm, top)
+            .run(pa.size() * k / share_count, pa.size() * (k + 1) / share_count,
+                 [&](size_t s, const SegmentIndex::Nearest& n, const Vec3& p) {
+                   note(pa.move_of[s], pb.move_of[n.segment], n.distance_mm, p);
+                 });
+        Directed(pb, pa, index_a, precision_mm, top)
+            .run(pb.size() * k / share_count, pb.size() * (k + 1) / share_count,
+                 [&](size_t s, const SegmentIndex::Nearest& n, const Vec3& p) {
+                   note(pa.move_of[n.segment], pb.move_of[s], n.distance_mm, p);
+                 });
+      }
     };
     run_workers(workers, measure);
-    for (size_t w = 1; w < workers; ++w)
-      for (const DiffPlace& p : shares[w].top.take()) shares[0].top.offer(p);
-    for (const Share& sh : shares)
-      for (size_t m = 0; m < d.deviation_of_b.size(); ++m)
-        d.deviation_of_b[m] = std::max(d.deviation_of_b[m], sh.deviation_of_b[m]);
-    d.max_deviation_mm = shares[0].top.max();
-    d.worst = shares[0].top.take();
+    for (size_t k = 1; k < share_count; ++k)
+      for (const DiffPlace& p : shares[k].take()) shares[0].offer(p);
+    for (const auto& dev : deviation_of_b)
+      for (size_t m = 0; m < d.deviation_of_b.size(); ++m) d.deviation_of_b[m] = std::max(d.deviation_of_b[m], dev[m]);
+    d.max_deviation_mm = shares[0].max();
+    d.worst = shares[0].take();
     if (opt.feed) compare_feed(pa, ia, pb, ib, index_a, opt.tolerance_mm, [&](const Move& ma, const Move& mb, const Vec3& at) {
       double pct = 100.0 * std::abs(mb.feed_mm_min - ma.feed_mm_min) / ma.feed_mm_min;
       if (pct > d.max_feed_difference_pct) {

@@ -24,8 +24,9 @@
 // scans have cost what building it would) is asked only for points where that could
 // change the maximum or the worst places. The maximum is exact either way; the other listed
 // places are measured at the points the search visits, which reach between a path's
-// vertices only while they could beat the maximum. With several threads, each measures a
-// share of both paths and the shares' worst places are merged.
+// vertices only while they could beat the maximum. The paths are measured in shares whose
+// number their lengths alone set, taken by the threads in turn, and the shares' worst
+// places merged: the result is the same for any number of threads.
 #include <cstdint>
 #include <string>
 #include <vector>

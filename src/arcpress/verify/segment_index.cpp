@@ -64,6 +64,9 @@ using StartMap = NumberMap<Point, StartOf>;
 using Primitive = CGAL::AABB_primitive<uint32_t, SegmentMap, StartMap, CGAL::Tag_true, CGAL::Tag_false>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
 
+/// Two distances to segments that differ by less than this (relative to 1 mm and to their
+/// size) may be the same distance computed two ways: a floating-point epsilon, not a tolerance.
+constexpr double kSameDistanceMm = 1e-12;
 /// Consecutive segments a linear scan takes together, behind their common bounding box.
 constexpr uint32_t kChunkSegments = 32;
 /// Chunk boxes a linear scan visits, per segment of the path, before the tree pays for
@@ -156,41 +159,36 @@ SegmentIndex::Nearest SegmentIndex::nearest(const Vec3& p, uint32_t hint) const 
   Nearest n;
   if (empty()) return n;
   Impl& m = *impl_;
-  // The hint's own nearest point bounds the search radius from the start.
-  const uint32_t h = std::min(hint, m.count - 1);
-  const bool tree = m.use_tree();
-  if (tree) {
-    const Segment hs = m.segment(h);
-    const Vec3 on = nearest_on_segment(p, vec(hs.source()), vec(hs.target()));
-    auto [cp, id] = m.tree.closest_point_and_primitive(point(p), std::make_pair(point(on), h));
-    n = {0, id, vec(cp)};
-    n.distance_mm = (n.point - p).norm();
-  } else {
-    n.point = nearest_on_segment(p, m.lines.a(h), m.lines.b(h));
-    n.segment = h;
-    n.distance_mm = (n.point - p).norm();
-    m.scan(p, n.distance_mm, [&](uint32_t i, const Vec3& q, double dist) {
-      if (dist < n.distance_mm) n = {dist, i, q};  // ties: the hint, as the tree keeps it, then the first
-    });
-  }
-  if (!m.on_piece) return n;
-  // Pieces: the nearest chord's piece, then every piece whose chord comes within the slack
-  // of beating it (a piece lies within the slack of its chord), each measured itself.
+  // Every candidate is measured by the same function and the nearest kept, ties to the lower
+  // index, whether the scans or the tree find the candidates: the answer does not depend on
+  // how many queries came before, nor on which thread asked them.
   auto offer = [&](uint32_t i) {
-    const Vec3 q = m.on_piece(p, i);
+    const Vec3 q = m.on_piece ? m.on_piece(p, i) : nearest_on_segment(p, m.lines.a(i), m.lines.b(i));
     const double dist = (q - p).norm();
     if (dist < n.distance_mm || (dist == n.distance_mm && i < n.segment)) n = {dist, i, q};
   };
-  const uint32_t id = n.segment;
+  // A piece lies within the slack of its chord: every piece that could beat the nearest so far
+  // has its chord within that distance and the slack.
+  auto reach = [&] { return n.distance_mm + m.slack_mm; };
   n.distance_mm = HUGE_VAL;
-  offer(id);
-  offer(h);
-  const double reach = n.distance_mm + m.slack_mm;
-  if (!tree) {
-    m.scan(p, reach, [&](uint32_t i, const Vec3&, double) { offer(i); });
+  const uint32_t h = std::min(hint, m.count - 1);
+  offer(h);  // the hint's distance bounds the search from the start
+  if (!m.use_tree()) {
+    double until = reach();
+    m.scan(p, until, [&](uint32_t i, const Vec3&, double) {
+      offer(i);
+      until = reach();
+    });
     return n;
   }
-  const K::Iso_cuboid_3 box(point(p - Vec3(reach, reach, reach)), point(p + Vec3(reach, reach, reach)));
+  // The nearest chord, then every chord within the slack of the nearest so far (for
+  // segments, within rounding of it: those that tie).
+  const Segment hs = m.segment(h);
+  const Vec3 on = nearest_on_segment(p, vec(hs.source()), vec(hs.target()));
+  const uint32_t id = m.tree.closest_point_and_primitive(point(p), std::make_pair(point(on), h)).second;
+  offer(id);
+  const double r = reach() + kSameDistanceMm * (1 + n.distance_mm);
+  const K::Iso_cuboid_3 box(point(p - Vec3(r, r, r)), point(p + Vec3(r, r, r)));
   thread_local std::vector<uint32_t> near;
   near.clear();
   m.tree.all_intersected_primitives(box, std::back_inserter(near));
