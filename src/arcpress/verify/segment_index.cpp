@@ -112,6 +112,16 @@ struct SegmentIndex::Impl {
     return true;
   }
 
+  /// The segments that cross the cube of half-side `half_mm` (mm) about p, from the tree
+  /// (a buffer of the calling thread's, valid until its next call).
+  const std::vector<uint32_t>& in_box(const Vec3& p, double half_mm) const {
+    const Vec3 h(half_mm, half_mm, half_mm);
+    thread_local std::vector<uint32_t> near;
+    near.clear();
+    tree.all_intersected_primitives(K::Iso_cuboid_3(point(p - h), point(p + h)), std::back_inserter(near));
+    return near;
+  }
+
   /// Calls visit(i, nearest point, distance) for every segment within `reach_mm` (mm) of p,
   /// by a scan over the chunks; `visit` may narrow the reach as it goes (below 0: no further).
   template <class Visit>
@@ -187,12 +197,7 @@ SegmentIndex::Nearest SegmentIndex::nearest(const Vec3& p, uint32_t hint) const 
   const Vec3 on = nearest_on_segment(p, vec(hs.source()), vec(hs.target()));
   const uint32_t id = m.tree.closest_point_and_primitive(point(p), std::make_pair(point(on), h)).second;
   offer(id);
-  const double r = reach() + kSameDistanceMm * (1 + n.distance_mm);
-  const K::Iso_cuboid_3 box(point(p - Vec3(r, r, r)), point(p + Vec3(r, r, r)));
-  thread_local std::vector<uint32_t> near;
-  near.clear();
-  m.tree.all_intersected_primitives(box, std::back_inserter(near));
-  for (uint32_t i : near) offer(i);
+  for (uint32_t i : m.in_box(p, reach() + kSameDistanceMm * (1 + n.distance_mm))) offer(i);
   return n;
 }
 
@@ -210,10 +215,7 @@ bool SegmentIndex::any_within(const Vec3& p, double radius_mm) const {
     m.scan(p, until, [&](uint32_t i, const Vec3&, double) { until = within(i) ? -1.0 : until; });
     return until < 0;
   }
-  const K::Iso_cuboid_3 box(point(p - Vec3(reach, reach, reach)), point(p + Vec3(reach, reach, reach)));
-  thread_local std::vector<uint32_t> near;
-  near.clear();
-  m.tree.all_intersected_primitives(box, std::back_inserter(near));
+  const std::vector<uint32_t>& near = m.in_box(p, reach);
   return std::any_of(near.begin(), near.end(), within);
 }
 
