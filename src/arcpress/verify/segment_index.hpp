@@ -1,9 +1,10 @@
 #pragma once
 // Nearest-segment queries over a path: a linear scan over boxes of consecutive segments for
 // the first queries, then CGAL's AABB tree over 3D segments once the scans have cost what
-// building it would, behind a small interface so the CGAL headers are compiled in one place. A segment may stand for a curved
-// piece (an arc's) that lies within a known distance of it: the tree finds the candidates by
-// their chords, and the piece's own distance decides.
+// building it would, behind a small interface so the CGAL headers are compiled in one
+// place. A segment may stand for a curved piece (an arc's) that lies within a known
+// distance of it: the scans and the tree find the candidates by their chords, and the
+// piece's own distance decides.
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -39,8 +40,7 @@ class SegmentIndex {
   /// The nearest segment (or piece) to p. The search starts from segment `hint`'s distance,
   /// so it is fast when the hint is near p (e.g. the answer of the previous query along a
   /// path). Of several as near, the lowest-numbered: the answer is the same whatever came
-  /// before.
-  /// Safe to call from several threads at once.
+  /// before. Safe to call from several threads at once, as is any_within().
   Nearest nearest(const Vec3& p, uint32_t hint) const;
   /// Whether some segment (or piece) comes within `radius_mm` (mm) of p.
   bool any_within(const Vec3& p, double radius_mm) const;
