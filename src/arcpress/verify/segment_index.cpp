@@ -67,10 +67,12 @@ using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
 /// Two distances to segments that differ by less than this (relative to 1 mm and to their
 /// size) may be the same distance computed two ways: a floating-point epsilon, not a tolerance.
 constexpr double kSameDistanceMm = 1e-12;
-/// Consecutive segments a linear scan takes together, behind their common bounding box.
+/// Consecutive segments a linear scan takes together, behind their common bounding box, and
+/// consecutive such chunks behind theirs.
 constexpr uint32_t kChunkSegments = 32;
-/// Chunk boxes a linear scan visits, per segment of the path, before the tree pays for
-/// itself: building it costs about as much as visiting this many boxes per segment.
+constexpr uint32_t kGroupChunks = 32;
+/// Boxes the linear scans visit, per segment of the path, before the tree pays for itself:
+/// building it costs about as much as visiting this many boxes per segment.
 constexpr uint64_t kScanBudgetPerSegment = 64;
 
 struct Box {
@@ -82,18 +84,19 @@ struct Box {
 };
 }  // namespace
 
-/// Queries go first to a linear scan over boxes of consecutive segments (built in one pass:
-/// a path's segments follow each other, so the boxes are tight), and to CGAL's tree once
-/// the scans have done as much work as building it would: a self-check whose walks along
-/// the path find almost every nearest point asks the index a few dozen times, and a tree
-/// over hundreds of thousands of segments would take most of its time.
+/// Queries go first to a linear scan over boxes of consecutive segments, in two levels
+/// (built in one pass: a path's segments follow each other, so the boxes are tight), and to
+/// CGAL's tree once the scans have done as much work as building it would: a self-check
+/// whose walks along the path find almost every nearest point asks the index a few dozen
+/// times, and a tree over hundreds of thousands of segments would take most of its time.
 struct SegmentIndex::Impl {
   Polylines lines;
   uint32_t count = 0;
   NearestOnPiece on_piece;  ///< empty: the segments are the path
   double slack_mm = 0;
-  std::vector<Box> chunks;
-  std::atomic<uint64_t> scanned{0};  ///< chunk boxes the linear scans have visited
+  std::vector<Box> chunks;  ///< kChunkSegments segments each
+  std::vector<Box> groups;  ///< kGroupChunks chunks each
+  std::atomic<uint64_t> scanned{0};  ///< boxes the linear scans have visited
   std::once_flag built;
   std::atomic<bool> tree_ready{false};
   Tree tree;
@@ -126,16 +129,22 @@ struct SegmentIndex::Impl {
   /// by a scan over the chunks; `visit` may narrow the reach as it goes (below 0: no further).
   template <class Visit>
   void scan(const Vec3& p, const double& reach_mm, Visit&& visit) {
-    scanned.fetch_add(chunks.size(), std::memory_order_relaxed);
-    for (uint32_t c = 0; c < chunks.size() && reach_mm >= 0; ++c) {
-      if (chunks[c].squared_distance(p) > reach_mm * reach_mm) continue;
-      const uint32_t end = std::min(count, (c + 1) * kChunkSegments);
-      for (uint32_t i = c * kChunkSegments; i < end && reach_mm >= 0; ++i) {
-        const Vec3 q = nearest_on_segment(p, lines.a(i), lines.b(i));
-        const double dist = (q - p).norm();
-        if (dist <= reach_mm) visit(i, q, dist);
+    uint64_t boxes = groups.size();
+    for (uint32_t g = 0; g < groups.size() && reach_mm >= 0; ++g) {
+      if (groups[g].squared_distance(p) > reach_mm * reach_mm) continue;
+      const uint32_t last_chunk = std::min<uint32_t>(uint32_t(chunks.size()), (g + 1) * kGroupChunks);
+      for (uint32_t c = g * kGroupChunks; c < last_chunk && reach_mm >= 0; ++c) {
+        ++boxes;
+        if (chunks[c].squared_distance(p) > reach_mm * reach_mm) continue;
+        const uint32_t end = std::min(count, (c + 1) * kChunkSegments);
+        for (uint32_t i = c * kChunkSegments; i < end && reach_mm >= 0; ++i) {
+          const Vec3 q = nearest_on_segment(p, lines.a(i), lines.b(i));
+          const double dist = (q - p).norm();
+          if (dist <= reach_mm) visit(i, q, dist);
+        }
       }
     }
+    scanned.fetch_add(boxes, std::memory_order_relaxed);
   }
 };
 
@@ -151,6 +160,11 @@ SegmentIndex::SegmentIndex(const std::vector<Vec3>& points, const std::vector<ui
       box.lo = box.lo.cwiseMin(v);
       box.hi = box.hi.cwiseMax(v);
     }
+  }
+  for (uint32_t c = 0; c < m.chunks.size(); ++c) {
+    if (c % kGroupChunks == 0) m.groups.push_back(m.chunks[c]);
+    m.groups.back().lo = m.groups.back().lo.cwiseMin(m.chunks[c].lo);
+    m.groups.back().hi = m.groups.back().hi.cwiseMax(m.chunks[c].hi);
   }
 }
 
