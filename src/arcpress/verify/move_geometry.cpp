@@ -1,5 +1,7 @@
 #include "arcpress/verify/move_geometry.hpp"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 
@@ -48,9 +50,12 @@ namespace {
 Vec3 from_plane(const Vec2& v, double height, Plane pl) { return from_plane(Vec3(v.x(), v.y(), height), pl); }
 
 /// `p` about the arc's centre, seen along the plane's normal.
-Vec2 about_center(const FlatArc& arc, const Vec3& p) {
-  auto a = axes_of(arc.plane);
-  return {p[a.first] - arc.center[a.first], p[a.second] - arc.center[a.second]};
+Vec2 about_center(const FlatArc& arc, const Vec3& p) { return project(p - arc.center, arc.plane); }
+
+/// The point of the arc's circle in the direction `v` (in the plane) from its centre.
+Vec3 on_circle(const FlatArc& arc, const Vec2& v) {
+  return from_plane(project(arc.center, arc.plane) + v * (arc.radius_mm / v.norm()),
+                    arc.center[axes_of(arc.plane).normal], arc.plane);
 }
 
 }  // namespace
@@ -83,11 +88,7 @@ bool in_wedge(const FlatArc& arc, const Vec3& a, const Vec3& b, const Vec3& p) {
 Vec3 nearest_on_piece(const FlatArc& arc, const Vec3& a, const Vec3& b, const Vec3& p) {
   const Vec2 V = about_center(arc, p);
   const double len = V.norm();
-  if (len > 0 && in_wedge(arc, a, b, p)) {
-    auto ax = axes_of(arc.plane);
-    const Vec2 c(arc.center[ax.first], arc.center[ax.second]);
-    return from_plane(c + V * (arc.radius_mm / len), arc.center[ax.normal], arc.plane);
-  }
+  if (len > 0 && in_wedge(arc, a, b, p)) return on_circle(arc, V);
   // Off the wedge the in-plane distance grows with the angle from p's own: an end is nearest.
   return (p - a).squaredNorm() <= (p - b).squaredNorm() ? a : b;
 }
@@ -95,12 +96,7 @@ Vec3 nearest_on_piece(const FlatArc& arc, const Vec3& a, const Vec3& b, const Ve
 Vec3 point_on_piece(const FlatArc& arc, const Vec3& a, const Vec3& b, double t) {
   const Vec2 A = about_center(arc, a), B = about_center(arc, b);
   const double sweep = std::atan2(cross2(A, B), A.dot(B)) * t;
-  const double len = A.norm();
-  const Vec2 u = len > 0 ? Vec2(A / len) : Vec2(1, 0);
-  const Vec2 turned(u.x() * std::cos(sweep) - u.y() * std::sin(sweep), u.x() * std::sin(sweep) + u.y() * std::cos(sweep));
-  auto ax = axes_of(arc.plane);
-  const Vec2 c(arc.center[ax.first], arc.center[ax.second]);
-  return from_plane(c + arc.radius_mm * turned, arc.center[ax.normal], arc.plane);
+  return on_circle(arc, Eigen::Rotation2D<double>(sweep) * (A.norm() > 0 ? A : Vec2(1, 0)));
 }
 
 std::optional<double> segment_to_piece_bound(const FlatArc& arc, const Vec3& a, const Vec3& b, const Vec3& p0,
