@@ -55,6 +55,7 @@ inline PlaneAxes axes_of(Plane p) {
 }
 /// The G-code that selects the plane: 17, 18 or 19.
 inline int plane_gcode(Plane p) { return 17 + int(p); }
+/// XYZ point `v` seen along the plane's normal: its first and second coordinates.
 inline Vec2 project(const Vec3& v, Plane p) {
   auto a = axes_of(p);
   return {v[a.first], v[a.second]};
