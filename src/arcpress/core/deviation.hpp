@@ -13,9 +13,9 @@ namespace arcpress {
 /// Share of the band by which reading a whole program back may misread a distance: the
 /// verifier (and `arcpress diff`) follows each helix by chords within half of it (flat arcs
 /// it measures as arcs), and ends its search for the largest distance within the other
-/// half. The emitter holds what it prints this much inside the band, so that reading the output back never finds it outside (an
-/// R-form arc printed to 3 decimals came out 0.99994 of the band, and `arcpress diff` read
-/// it at 1.0009).
+/// half. The emitter holds what it prints this much inside the band, so that reading the
+/// output back never finds it outside (an R-form arc printed to 3 decimals came out 0.99994
+/// of the band, and `arcpress diff` read it at 1.0009).
 inline constexpr double kReadingShare = 2e-3;
 
 /// A circular (possibly helical) arc in plane coordinates.
