@@ -112,11 +112,16 @@ class RunFitter {
     auto ax = axes_of(run.plane);
     p_.resize(n_ + 1);
     q_.resize(n_ + 1);
+    middle_.resize(n_);
     for (uint32_t v = 0; v <= n_; ++v) {
       const auto& a = vertex(v);
       p_[v] = Vec3(a[ax.first], a[ax.second], a[ax.normal]);
       q_[v] = Vec2(a[ax.first], a[ax.second]);
     }
+    for (uint32_t v = 0; v < n_; ++v) middle_[v] = 0.5 * (q_[v] + q_[v + 1]);
+    // (Vertices at one height differ by less than kLengthEpsMm from each other.)
+    const auto [low, high] = std::minmax_element(p_.begin(), p_.end(), [](const Vec3& x, const Vec3& y) { return x.z() < y.z(); });
+    level_ = high->z() - low->z() <= kLengthEpsMm;
     // The extra axes (A/B/C, U/V/W) that move in the run, their values at each vertex, and
     // the path length to each vertex they are carried along.
     for (int x = kA; x < kE; ++x)
@@ -447,26 +452,58 @@ class RunFitter {
     scan_ends(a, T, limit, [&](const Candidate& c) { out.push_back(c); });
   }
 
+  /// What scan_ends() holds each end to besides the band, read off the options and the stretch.
+  struct ScanLimits {
+    double max_alpha, min_alpha, line_alpha;  // pseudo-angles, see the constructor
+    double max_radius_mm, min_radius_mm, min_arc_length_mm;
+    uint32_t min_arc_moves;
+    bool arcs, helical;
+    uint32_t stretch_end;
+    const Vec2* out_tangent;  // null: none
+  };
+  ScanLimits scan_limits() const {
+    return {max_alpha_,        min_alpha_,       line_alpha_,     o_.max_radius_mm,
+            o_.min_radius_mm,  o_.min_arc_length_mm, o_.min_arc_moves, arcs_,
+            o_.helical,        stretch_end_,     out_tangent_ ? &*out_tangent_ : nullptr};
+  }
+
   /// scan() handing each end to `sink` in order, nothing stored.
   template <class Sink>
   void scan_ends(uint32_t a, const Vec2& T, uint32_t limit, Sink&& sink) const {
+    if (level_) {
+      scan_ends_in<true>(a, T, limit, sink);
+    } else {
+      scan_ends_in<false>(a, T, limit, sink);
+    }
+  }
+
+  /// scan_ends() where every vertex of the run lies at one height (`level`: then no
+  /// primitive climbs, which the compiler can see) or not.
+  template <bool level, class Sink>
+  void scan_ends_in(uint32_t a, const Vec2& T, uint32_t limit, Sink& sink) const {
     const Vec2 N = left_normal(T);
     const Vec2 qa = q(a);
     const double h0 = p_[a].z();
+    // The options' limits, read once: the sink writes memory, so the compiler would read
+    // them again at every vertex.
+    const ScanLimits lim = scan_limits();
     // The band a vertex must stay in: all of it while the primitive is flat, the in-plane
     // share once it climbs (from then on, for every vertex from `a`).
     double eps = eps_;
     double lo = -kInf, hi = kInf;  // curvature interval (1/mm) the interior vertices allow
     // A point u from `a`, off T by b = u·N, is within ε of the circle of curvature k when
     // |k·(|u|² - ε²) - 2b| <= 2ε (exact for the full circle).
-    auto narrow = [&](uint32_t m) {
-      const Vec2 u = q(m) - qa;
-      const double w = u.squaredNorm() - eps * eps;
+    auto narrow_by = [&](const Vec2& u, double uu) {  // u from `a`, uu = |u|²
+      const double w = uu - eps * eps;
       if (w > 0) {
         const double b = u.dot(N), inv = 1 / w;
         lo = std::max(lo, (2 * b - 2 * eps) * inv);
         hi = std::min(hi, (2 * b + 2 * eps) * inv);
       }
+    };
+    auto narrow = [&](uint32_t m) {
+      const Vec2 u = q(m) - qa;
+      narrow_by(u, u.squaredNorm());
     };
     double arc_lo = -kInf, arc_hi = kInf;
     // No input move may cut inside an arc by more than the band. A move whose middle lies
@@ -476,20 +513,22 @@ class RunFitter {
     // point nearest the centre is nearer still, so the exact check would fail. Lines are the
     // chord, not this circle, and are not held to it.
     auto narrow_move = [&](uint32_t m) {  // the move from vertex m to m + 1
-      const Vec2 u = 0.5 * (q(m) + q(m + 1)) - qa;
+      const Vec2 u = middle_[m] - qa;
       const double b = u.dot(N);
       if (b > eps) arc_lo = std::max(arc_lo, (2 * b - 2 * eps) / (u.squaredNorm() - eps * eps));
       if (b < -eps) arc_hi = std::min(arc_hi, (2 * b + 2 * eps) / (u.squaredNorm() - eps * eps));
     };
     bool flat = true;
+    Vec2 u{0, 0};  // the end before, from `a`, and its squared length
+    double uu = 0;
     for (uint32_t e = a + 1; e <= limit; ++e) {
       if (e > a + 1) {
         const uint32_t m = e - 1;  // becomes an interior vertex
         if (soft_[m]) break;
-        narrow(m);
+        narrow_by(u, uu);
       }
       narrow_move(e - 1);
-      if (flat && std::abs(p_[e].z() - h0) > kLengthEpsMm) {
+      if (!level && flat && std::abs(p_[e].z() - h0) > kLengthEpsMm) {
         flat = false;
         eps = eps_ * kPlaneShare;
         lo = arc_lo = -kInf;
@@ -498,10 +537,10 @@ class RunFitter {
         for (uint32_t m = a; m < e; ++m) narrow_move(m);
       }
       if (lo > hi) break;
-      const Vec2 u = q(e) - qa;
-      const double uu = u.squaredNorm();
+      u = q(e) - qa;
+      uu = u.squaredNorm();
       if (uu <= kLengthEpsMm * kLengthEpsMm) {
-        if (flat) break;  // back at the start: a full circle is not a single primitive here
+        if (level || flat) break;  // back at the start: a full circle is not a single primitive here
         // Straight above or below the start (a plunge written in steps): no direction in
         // the plane, so only a line can end here, which the exact check measures in 3D.
         sink(Candidate{e, 0.0, true});
@@ -510,24 +549,24 @@ class RunFitter {
       // The tangent-chord angle alpha (sweep = 2 alpha), as the pseudo-angle of |alpha|.
       const double ut = u.dot(T), un = u.dot(N);
       const double abs_alpha = pseudo_angle(ut, std::abs(un));
-      if (abs_alpha > max_alpha_) break;
+      if (abs_alpha > lim.max_alpha) break;
       const double k = 2 * un / uu;
       const double slack = 1e-12 * (1 + std::abs(k));
       if (k < lo - slack || k > hi + slack) continue;
-      const bool line = abs_alpha <= line_alpha_;
+      const bool line = abs_alpha <= lim.line_alpha;
       if (!line) {
-        if (!arcs_ || k < arc_lo - slack || k > arc_hi + slack) continue;
+        if (!lim.arcs || k < arc_lo - slack || k > arc_hi + slack) continue;
         const double r = 1 / std::abs(k);
-        if (r > o_.max_radius_mm || r < o_.min_radius_mm) continue;
-        if (e - a < o_.min_arc_moves || abs_alpha < min_alpha_) continue;
-        if (!flat && !o_.helical) continue;
-        if (o_.min_arc_length_mm > 0 && r * 2 * std::atan2(std::abs(un), ut) < o_.min_arc_length_mm) continue;
+        if (r > lim.max_radius_mm || r < lim.min_radius_mm) continue;
+        if (e - a < lim.min_arc_moves || abs_alpha < lim.min_alpha) continue;
+        if (!level && !flat && !lim.helical) continue;
+        if (lim.min_arc_length_mm > 0 && r * 2 * std::atan2(std::abs(un), ut) < lim.min_arc_length_mm) continue;
       }
       // Before a fixed move, the stretch must end heading along it.
-      if (e == stretch_end_ && out_tangent_) {
+      if (e == lim.stretch_end && lim.out_tangent) {
         const Vec2 c = u / std::sqrt(uu);
         const Vec2 end = line ? c : Vec2(2 * c.dot(T) * c - T);
-        if (!joint_cone_.holds(end, *out_tangent_)) continue;
+        if (!joint_cone_.holds(end, *lim.out_tangent)) continue;
       }
       sink(Candidate{e, k, line});
     }
@@ -1656,6 +1695,8 @@ class RunFitter {
   // The same in the plane, stored as such: the scans read them as whole vectors, where
   // building each from p_ would stall on the store that assembles it.
   std::vector<Vec2> q_;
+  std::vector<Vec2> middle_;      // the middle of each move in the plane
+  bool level_ = true;             // every vertex at the same height (within kLengthEpsMm)
   std::vector<uint8_t> hard_;     // corner: tangent may change, a primitive ends here
   std::vector<uint8_t> plain_hard_;  // with spikes found: the corners with none skipped
   std::vector<uint8_t> soft_;     // extrusion rate changes: a primitive ends here, tangent kept
