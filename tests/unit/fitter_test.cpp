@@ -631,6 +631,30 @@ TEST_CASE("a straight side, a fillet and a straight side written in fine moves c
     }
 }
 
+TEST_CASE("greedy: along a straight stretch the input's direction points forwards, so a line, two arcs turning "
+          "opposite ways and a line come out as four blocks",
+          "[fit][greedy]") {
+  // Where three vertices lie in a line, the input's direction at the middle one is along
+  // it, towards the next. Read backwards, every end along the lines looked off course, and
+  // the chain ended its first arc short of the inflection and crept through the second in
+  // a dozen small ones (16 blocks). Lines in moves of 0.5 mm, arcs of 10 mm in moves of 1.8°.
+  std::vector<Pt> pts;
+  for (int k = 0; k <= 20; ++k) pts.push_back({-10 + 0.5 * k, 0, 0});
+  pts = joined(pts, arc_points(0, 10, 10, -90, 0, 1.8));
+  pts = joined(pts, arc_points(20, 10, 10, 180, 90, 1.8));
+  std::vector<Pt> last;
+  for (int k = 0; k <= 20; ++k) last.push_back({20 + 0.5 * k, 20, 0});
+  pts = joined(pts, last);
+  FitOptions greedy;
+  greedy.method = FitOptions::Method::Greedy;
+  auto o = compress_text(program(pts, "G17", 3), greedy);
+  INFO(o.r.output);
+  CHECK(o.lines == 2);
+  CHECK(o.arcs == 2);
+  CHECK(o.r.forced_kinks == 0);
+  CHECK(o.r.comparison.max_deviation_mm <= 0.01);
+}
+
 TEST_CASE("two tangent arcs of different radii written in fine moves come out as two arcs", "[fit][search]") {
   // Where the curvature jumps, the input's direction read through both sides at once leans
   // towards the tighter arc; read from each side apart it is each arc's own. Two cases in

@@ -1680,7 +1680,8 @@ class RunFitter {
     Vec2 a = p1 - p0, b = p2 - p0;
     double d = 2 * cross2(a, b);
     if (a.norm() <= kLengthEpsMm || b.norm() <= kLengthEpsMm) return std::nullopt;
-    if (std::abs(d) <= 1e-12 * a.norm() * b.norm()) return Vec2(b.normalized());
+    // In a line: along it, towards p1 (p2 may lie on either side).
+    if (std::abs(d) <= 1e-12 * a.norm() * b.norm()) return Vec2(b.dot(a) < 0 ? -b.normalized() : b.normalized());
     Vec2 c(( b.y() * a.squaredNorm() - a.y() * b.squaredNorm()) / d,
            (-b.x() * a.squaredNorm() + a.x() * b.squaredNorm()) / d);  // centre relative to p0
     Vec2 t = left_normal(-c).normalized();
