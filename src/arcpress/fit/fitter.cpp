@@ -289,9 +289,9 @@ class RunFitter {
       stretch_start_ = a;
       stretch_end_ = limit;
       after_fitted = true;
-      if (limit == a + 1) {  // one move between corners: it is its own answer
-        Chosen m = input_move(a);
-        m.kinked = in_tangent_ && !g1_cone_.holds(*in_tangent_, m.end_tangent);
+      if (limit == a + 1) {  // one move: its own answer, or the arc over it that meets a fixed move
+        Chosen m = one_move(a);
+        m.kinked = in_tangent_ && !g1_cone_.holds(*in_tangent_, start_tangent(m, a));
         out.push_back(m);
         a = limit;
         continue;
@@ -1673,6 +1673,26 @@ class RunFitter {
     input_tangents(a, limit, s_.free_starts);
     for (const Vec2& T : s_.free_starts) consider(a, T, limit, best, best_score);
     if (best) return *best;
+    return input_move(a);
+  }
+
+  /// A stretch of the one move from vertex a: the move itself, or, where a fixed move's
+  /// direction is to be met at either end (in_tangent_, out_tangent_), the arc over it that
+  /// meets both within the joint's turn, when the band and the options allow it. (The input
+  /// turns there by less than a corner; kept as a line, the joint would break.)
+  Chosen one_move(uint32_t a) const {
+    const uint32_t e = a + 1;
+    std::optional<Vec2> T;
+    if (in_tangent_) {
+      T = aimed(a, *in_tangent_, e, out_tangent_);
+    } else if (out_tangent_) {
+      T = reflected_end(a, *out_tangent_, e);
+    }
+    if (T)
+      if (auto c = through(a, *T, e);
+          c && (!in_tangent_ || joint_cone_.holds(*in_tangent_, start_tangent(*c, a))) &&
+          (!out_tangent_ || joint_cone_.holds(c->end_tangent, *out_tangent_)))
+        return *c;
     return input_move(a);
   }
 

@@ -93,9 +93,14 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
       while (j + 1 + repeats_b < ib.moves.size() && ib.goes_nowhere(j + 1 + repeats_b)) ++repeats_b;
       for (size_t taken = 0; taken + repeats_b < repeats_a && ia.moves[k + 1].feed_mm_min == mb.feed_mm_min; ++taken) ++k;
     }
-    // Replaced: it stands for several input moves (that go somewhere), so its joints are
-    // the fit's, not the input's own.
+    // Replaced: it stands for several input moves (that go somewhere), or for one that it
+    // is not (a line the fit wrote as an arc), so its joints are the fit's, not the input's own.
     bool replaced = ia.moves_going(i, k + 1) > 1;
+    if (!replaced && is_feed(mb.kind))
+      for (size_t q = i; q <= k; ++q)
+        if (!ia.goes_nowhere(q))
+          replaced = is_arc(ia.moves[q].kind) != is_arc(mb.kind) ||
+                     (is_arc(mb.kind) && (ia.moves[q].kind != mb.kind || (ia.moves[q].center - mb.center).norm() > kSamePointMm));
     if (is_feed(mb.kind) && mb.known) {
       ++r.moves_b;
       // The output move keeps the feed of every input move it stands for.
