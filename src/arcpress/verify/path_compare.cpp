@@ -97,10 +97,12 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
     // is not (a line the fit wrote as an arc), so its joints are the fit's, not the input's own.
     bool replaced = ia.moves_going(i, k + 1) > 1;
     if (!replaced && is_feed(mb.kind))
-      for (size_t q = i; q <= k; ++q)
-        if (!ia.goes_nowhere(q))
-          replaced = is_arc(ia.moves[q].kind) != is_arc(mb.kind) ||
-                     (is_arc(mb.kind) && (ia.moves[q].kind != mb.kind || (ia.moves[q].center - mb.center).norm() > kSamePointMm));
+      for (size_t q = i; q <= k; ++q) {
+        const Move& ma = ia.moves[q];
+        if (ia.goes_nowhere(q)) continue;
+        replaced = is_arc(ma.kind) != is_arc(mb.kind) ||
+                   (is_arc(mb.kind) && (ma.kind != mb.kind || (ma.center - mb.center).norm() > kSamePointMm));
+      }
     if (is_feed(mb.kind) && mb.known) {
       ++r.moves_b;
       // The output move keeps the feed of every input move it stands for.
