@@ -1626,8 +1626,7 @@ class RunFitter {
   static Vec2 rotated(const Vec2& T, double rad) { return Turn(rad)(T); }
 
   /// The input's own directions at `a`, where the tangent is free: those of circles through
-  /// the next vertices, of the first chord, of the input around `a` inside the stretch, and
-  /// the one that turns into the second move.
+  /// the next vertices, of the first chord, and of the input around `a` inside the stretch.
   void input_tangents(uint32_t a, uint32_t limit, std::vector<Vec2>& out) const {
     out.clear();
     for (uint32_t w : {2u, 4u, 8u, 16u}) {
@@ -1637,14 +1636,6 @@ class RunFitter {
     Vec2 chord = q(a + 1) - q(a);
     if (chord.norm() > kLengthEpsMm) out.push_back(chord.normalized());
     if (auto t = input_tangent(a, stretch_start_, limit)) out.push_back(*t);
-    // And the start whose arc over the first move ends heading along the second: where the
-    // input turns at a + 1 by more than the others and their fans span (a slicer's infill
-    // between two corners, a short move then a long one), the start from which the second
-    // move follows as a line, tangent.
-    if (a + 2 <= limit) {
-      const Vec2 next = q(a + 2) - q(a + 1);
-      if (next.norm() > kLengthEpsMm) out.push_back(reflected_end(a, next.normalized(), a + 1));
-    }
     // Where the path leaves `a` along the plane's normal (a plunge), it has no direction in
     // the plane: any will do for the lines that follow it.
     if (out.empty()) out.push_back(Vec2(1, 0));
@@ -1672,14 +1663,28 @@ class RunFitter {
       out.push_back(T);
       for (const Turn& turn : start_turns_) out.push_back(turn(T));
     }
+    if (auto T = into_next(a, limit)) out.push_back(*T);
+  }
+
+  /// The start at `a` whose arc over the first move ends heading along the second. Where the
+  /// input turns at a + 1 by more than the fan of start tangents spans (a slicer's infill
+  /// between two corners, a short move into a long one), it is the one start from which
+  /// the second move follows as a line, tangent. Exact, so it is not fanned out.
+  std::optional<Vec2> into_next(uint32_t a, uint32_t limit) const {
+    if (a + 2 > limit) return std::nullopt;
+    const Vec2 next = q(a + 2) - q(a + 1);
+    if (next.norm() <= kLengthEpsMm) return std::nullopt;
+    return reflected_end(a, next.normalized(), a + 1);
   }
 
   /// Start of a smooth stretch (or after a forced kink): try a few start tangents read off
-  /// the input and keep the one whose primitive reaches furthest.
+  /// the input, and the one into the second move, and keep the one whose primitive reaches
+  /// furthest.
   Chosen best_free(uint32_t a, uint32_t limit) const {
     std::optional<Chosen> best;
     Score best_score;
     input_tangents(a, limit, s_.free_starts);
+    if (auto T = into_next(a, limit)) s_.free_starts.push_back(*T);
     for (const Vec2& T : s_.free_starts) consider(a, T, limit, best, best_score);
     if (best) return *best;
     return input_move(a);
