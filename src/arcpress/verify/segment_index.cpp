@@ -101,6 +101,10 @@ struct SegmentIndex::Impl {
   std::atomic<bool> tree_ready{false};
   Tree tree;
   Segment segment(uint32_t i) const { return get(SegmentMap{lines}, i); }
+  /// The point of segment i (or of the piece it stands for) nearest to p.
+  Vec3 nearest_point(const Vec3& p, uint32_t i) const {
+    return on_piece ? on_piece(p, i) : nearest_on_segment(p, lines.a(i), lines.b(i));
+  }
 
   /// Whether queries go to the tree now (building it, once, when the scans reach the budget).
   bool use_tree() {
@@ -186,10 +190,12 @@ SegmentIndex::Nearest SegmentIndex::nearest(const Vec3& p, uint32_t hint) const 
   // Every candidate is measured by the same function and the nearest kept, ties to the lower
   // index, whether the scans or the tree find the candidates: the answer does not depend on
   // how many queries came before, nor on which thread asked them.
-  auto offer = [&](uint32_t i) {
-    const Vec3 q = m.on_piece ? m.on_piece(p, i) : nearest_on_segment(p, m.lines.a(i), m.lines.b(i));
-    const double dist = (q - p).norm();
+  auto keep = [&](uint32_t i, const Vec3& q, double dist) {
     if (dist < n.distance_mm || (dist == n.distance_mm && i < n.segment)) n = {dist, i, q};
+  };
+  auto offer = [&](uint32_t i) {
+    const Vec3 q = m.nearest_point(p, i);
+    keep(i, q, (q - p).norm());
   };
   // A piece lies within the slack of its chord: every piece that could beat the nearest so far
   // has its chord within that distance and the slack.
@@ -199,8 +205,13 @@ SegmentIndex::Nearest SegmentIndex::nearest(const Vec3& p, uint32_t hint) const 
   offer(h);  // the hint's distance bounds the search from the start
   if (!m.use_tree()) {
     double until = reach();
-    m.scan(p, until, [&](uint32_t i, const Vec3&, double) {
-      offer(i);
+    m.scan(p, until, [&](uint32_t i, const Vec3& q, double dist) {
+      // (The scan measured the segment itself already; a piece is measured here.)
+      if (m.on_piece) {
+        offer(i);
+      } else {
+        keep(i, q, dist);
+      }
       until = reach();
     });
     return n;
@@ -218,15 +229,14 @@ SegmentIndex::Nearest SegmentIndex::nearest(const Vec3& p, uint32_t hint) const 
 bool SegmentIndex::any_within(const Vec3& p, double radius_mm) const {
   if (empty()) return false;
   Impl& m = *impl_;
-  auto within = [&](uint32_t i) {
-    const Vec3 q = m.on_piece ? m.on_piece(p, i) : nearest_on_segment(p, m.lines.a(i), m.lines.b(i));
-    return (q - p).norm() <= radius_mm;
-  };
+  auto within = [&](uint32_t i) { return (m.nearest_point(p, i) - p).norm() <= radius_mm; };
   // A piece lies within the slack of its chord: its chord within the radius and the slack.
   const double reach = radius_mm + m.slack_mm;
   if (!m.use_tree()) {
     double until = reach;  // none once one is found
-    m.scan(p, until, [&](uint32_t i, const Vec3&, double) { until = within(i) ? -1.0 : until; });
+    m.scan(p, until, [&](uint32_t i, const Vec3&, double dist) {
+      until = (m.on_piece ? within(i) : dist <= radius_mm) ? -1.0 : until;
+    });
     return until < 0;
   }
   const std::vector<uint32_t>& near = m.in_box(p, reach);
