@@ -976,12 +976,13 @@ TEST_CASE("every tangent break the verifier finds at a smooth joint is one the f
   // Fanuc prints three decimals: the centre of an arc of radius 0.024 mm lands on a grid
   // that turns its end tangents by more than the G1 angle, whichever grid point is taken.
   // The arc is still written (the lines around it would turn as much), and the joint it
-  // breaks is reported as forced by the digits.
+  // breaks is reported as forced by the digits. (After a lead-in of 0.2 mm, arcs of large
+  // radius over it and over the side after turn by as much as the printed centre needs.)
   FitOptions fine;
   fine.tolerance_mm = 0.002;
   fine.min_radius_mm = 0;
   const double r_mm = 0.0237, x0 = 0.00037, y0 = 0.00041;
-  std::vector<Pt> small = {{-0.2, y0, 0}, {-0.1, y0, 0}, {-0.05, y0, 0}};
+  std::vector<Pt> small = {{-0.5, y0, 0}, {-0.4, y0, 0}, {-0.3, y0, 0}, {-0.2, y0, 0}, {-0.1, y0, 0}, {-0.05, y0, 0}};
   for (const Pt& p : arc_points(x0, y0 + r_mm, r_mm, -90, 0, 10)) small.push_back(p);
   for (int k = 1; k <= 10; ++k) small.push_back({x0 + r_mm, y0 + r_mm + 0.02 * k, 0});
   auto digits = compress_text(program(small), fine, find_dialect("fanuc", dialect_search_path("")));
@@ -989,15 +990,15 @@ TEST_CASE("every tangent break the verifier finds at a smooth joint is one the f
   CHECK(digits.r.comparison.smooth_joints_over_g1 >= 1);
   CHECK(unreported(digits).empty());
   // With a band of 0.001 mm, no centre on Fanuc's 0.001 mm grid keeps this arc of radius
-  // 1.3 mm inside it: the emitter writes the input's moves instead, and the joints beside
-  // them break, as forced by the digits.
+  // 1.3 mm and 45° inside it: the emitter writes the input's moves instead, and the joints
+  // beside them break, as forced by the digits. (Over 90°, two arcs print.)
   FitOptions finest;
   finest.tolerance_mm = 0.001;
   finest.min_radius_mm = 0;
-  const double r2_mm = 1.292;
+  const double r2_mm = 1.292, s45 = std::sqrt(0.5);
   std::vector<Pt> kept = {{-0.2, y0, 0}, {-0.1, y0, 0}, {-0.05, y0, 0}};
-  for (const Pt& p : arc_points(x0, y0 + r2_mm, r2_mm, -90, 0, 3)) kept.push_back(p);
-  for (int k = 1; k <= 10; ++k) kept.push_back({x0 + r2_mm, y0 + r2_mm + 0.05 * k, 0});
+  for (const Pt& p : arc_points(x0, y0 + r2_mm, r2_mm, -90, -45, 3)) kept.push_back(p);
+  for (int k = 1; k <= 10; ++k) kept.push_back({kept.back().x + 0.05 * s45, kept.back().y + 0.05 * s45, 0});
   auto rules = compress_text(program(kept, "G17", 3), finest, find_dialect("fanuc", dialect_search_path("")));
   CHECK(rules.r.stats.arcs_unprintable == 1);
   CHECK(rules.r.comparison.smooth_joints_over_g1 >= 1);

@@ -49,6 +49,12 @@ constexpr int kUntangleDepth = 4;
 constexpr int kLookahead = 6;
 /// Places in each layer of the beam for the chains whose last primitive ends furthest.
 constexpr size_t kFurthestEnds = 2;
+/// The beam's roots at a free start (start_tangents()): the edges of the ranges of start
+/// tangents that reach each of the kNearStartEnds nearest ends and of the kFarStartEnds
+/// furthest, taken kStartRangeInset of the range inside.
+constexpr size_t kNearStartEnds = 4;
+constexpr size_t kFarStartEnds = 2;
+constexpr double kStartRangeInset = 0.05;
 /// Splits of a stretch into two primitives checked exactly per start tangent when merging.
 constexpr size_t kSplitsTried = 12;
 /// A primitive whose end tangent is within this of the input's direction is "on course".
@@ -59,6 +65,13 @@ constexpr double kTangentBinShare = 0.5;
 constexpr uint32_t kLayerGroups = 4;
 /// Layered search: it gives up (and the beam's chain stands) past this many states per vertex.
 constexpr size_t kMaxStatesPerVertex = 64;
+
+/// The start tangents at a free start whose circles reach vertex e inside the band: their
+/// tangent-chord angles (radians, positive to the left of the chord) from lo to hi.
+struct StartRange {
+  uint32_t e;
+  double lo, hi;
+};
 
 /// One way to end the primitive that starts at `a`: at vertex e with curvature k.
 struct Candidate {
@@ -88,6 +101,13 @@ struct Chosen {
 struct Turn {
   double c = 1, s = 0;
   explicit Turn(double rad = 0) : c(std::cos(rad)), s(std::sin(rad)) {}
+  /// The turn with this cosine and sine.
+  static Turn by(double cos_rad, double sin_rad) {
+    Turn t;
+    t.c = cos_rad;
+    t.s = sin_rad;
+    return t;
+  }
   Vec2 operator()(const Vec2& T) const { return {T.x() * c - T.y() * s, T.x() * s + T.y() * c}; }
 };
 
@@ -158,11 +178,7 @@ class RunFitter {
     turn_line_cone_ = Cone(kTurnShare * g1 + line_kink_);
     two_turns_line_cone_ = Cone(2 * kTurnShare * g1 + line_kink_);
     root_turns_ = {Turn(0.3 * g1), Turn(-0.3 * g1), Turn(0.6 * g1), Turn(-0.6 * g1)};
-    for (size_t i = 0; i < 4; ++i) {
-      const double deg = 0.5 * double(1u << i);  // 0.5, 1, 2, 4
-      start_turns_[2 * i] = Turn(deg_to_rad(deg));
-      start_turns_[2 * i + 1] = Turn(-deg_to_rad(deg));
-    }
+    start_sweep_ = Turn(std::min(deg_to_rad(o.max_sweep_deg) / 2, kPi / 2));
     // Limits on the tangent-chord angle alpha (the sweep is 2 alpha) as pseudo-angles of
     // |alpha| in [0, π], so scan() tests each vertex without trigonometry.
     const double half_max_sweep = deg_to_rad(o.max_sweep_deg) / 2;
@@ -1347,7 +1363,8 @@ class RunFitter {
     std::vector<Ranked> ranked;           // best_from()
     std::vector<Chosen> best_made;        // best_from()
     std::vector<Vec2> free_starts;        // best_free()
-    std::vector<Vec2> inputs;             // start_tangents()
+    std::vector<StartRange> reached;      // start_tangents()
+    std::vector<Vec2> inputs;             // fanned_input_tangents()
     std::vector<Candidate> tighten_cand;  // tighten()
     std::vector<size_t> split;            // tighten()
     std::vector<Vec2> starts, firsts;     // tighten()
@@ -1565,7 +1582,16 @@ class RunFitter {
     std::vector<Node> states;
     std::vector<int> layer, next;
     std::vector<Vec2> starts;
-    roots(a, limit, starts);
+    // Where the tangent is free, from the input's own directions fanned out, not from the
+    // beam's starts: those reach further in one primitive, and the later layers, which take
+    // only ends at or past the furthest vertex reached, then lose the chains that started
+    // shorter (plum at 0.01 mm: 37 blocks instead of 35).
+    if (arrives_along(a)) {
+      roots(a, limit, starts);
+    } else {
+      fanned_input_tangents(a, limit, starts);
+      if (auto T = into_next(a, limit)) starts.push_back(*T);
+    }
     for (const Vec2& T : starts) {
       states.push_back({{}, -1, a, T});
       layer.push_back(static_cast<int>(states.size()) - 1);
@@ -1655,15 +1681,162 @@ class RunFitter {
     for (const Turn& turn : root_turns_) out.push_back(turn(*in_tangent_));
   }
 
-  /// The beam's roots at `a`: the input's directions, each fanned out by a few degrees;
-  /// appended to `out`.
+  /// The searches' start tangents at `a` where the tangent is free, appended to `out`: for
+  /// each end e the first primitive can reach, the range of start tangents whose circle
+  /// through e keeps the vertices and move middles between inside the band (start_range())
+  /// is known exactly, and its edges (kStartRangeInset inside) are the starts that end at e
+  /// turned furthest either way. Those of the kNearStartEnds nearest ends give the turns a
+  /// chain can take right after a corner, those of the kFarStartEnds furthest, with the
+  /// middle of the furthest, the longest first primitives; the chord to the furthest end a
+  /// line reaches, the line; into_next() the start from which the second move follows as a
+  /// line. 15 starts at most, where 46 were read off the input (the tangents of circles
+  /// through the next vertices, of the first chord and of the input around `a`, each turned
+  /// by 0.5° to 4° either way): those missed the narrow ranges that reach furthest and the
+  /// turns the band allows over a short first move (the corpus with default options:
+  /// 320 706 blocks and 4 024 forced kinks then, 319 366 and 3 396 now).
   void start_tangents(uint32_t a, uint32_t limit, std::vector<Vec2>& out) const {
+    const size_t first = out.size();
+    auto add = [&](const Vec2& T) {
+      for (size_t i = first; i < out.size(); ++i)
+        if (same_tangent_cone_.holds(out[i], T)) return;
+      out.push_back(T);
+    };
+    auto put_edges = [&](const StartRange& r, bool middle) {
+      const Vec2 chord = (q(r.e) - q(a)).normalized();
+      const double inset = kStartRangeInset * (r.hi - r.lo);
+      add(Turn(r.lo + inset)(chord));
+      add(Turn(r.hi - inset)(chord));
+      if (middle) add(Turn(0.5 * (r.lo + r.hi))(chord));
+    };
+    // A line's tangent is its chord: the one to the furthest end a line reaches (the scan
+    // along it offers the lines a vertex or two shorter too). First, so that where a line
+    // and an arc do as well, the line is kept.
+    if (const uint32_t line_end = furthest_line_end(a, limit); line_end > a) add((q(line_end) - q(a)).normalized());
+    // The ends reached, in the order found: the nearest one by one, then further in
+    // doubling steps and halving back between the furthest reached and the nearest beyond
+    // it that is not.
+    std::vector<StartRange>& reached = s_.reached;
+    reached.clear();
+    auto reach = [&](uint32_t e) {
+      if (soft_between(a, e)) return false;
+      const auto [lo, hi] = start_range(a, e);
+      if (lo <= hi) reached.push_back({e, lo, hi});
+      return lo <= hi;
+    };
+    int misses = 0;  // ends in a row that no start reaches (a later one may be reached again)
+    uint32_t e = a + 1;
+    for (; e <= limit && reached.size() < kNearStartEnds && misses < 2; ++e) {
+      misses = reach(e) ? 0 : misses + 1;
+      if (misses == 0) put_edges(reached.back(), false);
+    }
+    if (reached.size() == kNearStartEnds && e <= limit) {
+      uint32_t far = e - 1, beyond = limit + 1;  // reached, and the nearest known not to be
+      for (uint32_t step = 1; far + step <= limit; step *= 2) {
+        if (!reach(far + step)) {
+          beyond = far + step;
+          break;
+        }
+        far += step;
+      }
+      while (beyond - far > 1) {
+        const uint32_t mid = far + (beyond - far) / 2;
+        (reach(mid) ? far : beyond) = mid;
+      }
+      if (far - 1 > a && reached.back().e != far - 1) reach(far - 1);
+    }
+    std::sort(reached.begin(), reached.end(), [](const StartRange& x, const StartRange& y) { return x.e > y.e; });
+    for (size_t i = 0; i < std::min(kFarStartEnds, reached.size()); ++i) put_edges(reached[i], i == 0);
+    if (auto T = into_next(a, limit)) add(*T);
+    // Where the path leaves `a` along the plane's normal (a plunge), it has no direction in
+    // the plane: any will do for the lines that follow it.
+    if (out.size() == first) out.push_back(Vec2(1, 0));
+  }
+
+  /// The furthest vertex e after `a` (up to `limit`) whose chord from `a` passes within the
+  /// band of every vertex between, found in doubling steps and halving back; `a` itself
+  /// when the first move has no length in the plane.
+  uint32_t furthest_line_end(uint32_t a, uint32_t limit) const {
+    auto reaches = [&](uint32_t e) {
+      const Vec2 chord = q(e) - q(a);
+      const double length = chord.norm();
+      if (length <= kLengthEpsMm || soft_between(a, e)) return false;
+      for (uint32_t m = a + 1; m < e; ++m)
+        if (std::abs(cross2(chord, q(m) - q(a))) > eps_ * length) return false;
+      return true;
+    };
+    if (!reaches(a + 1)) return a;
+    uint32_t far = a + 1, beyond = limit + 1;
+    for (uint32_t step = 1; far + step <= limit; step *= 2) {
+      if (!reaches(far + step)) {
+        beyond = far + step;
+        break;
+      }
+      far += step;
+    }
+    while (beyond - far > 1) {
+      const uint32_t mid = far + (beyond - far) / 2;
+      (reaches(mid) ? far : beyond) = mid;
+    }
+    return far;
+  }
+
+  /// The tangent-chord angles (radians, positive turning left of the chord a→e) of the
+  /// circles from vertex a through vertex e that pass within the band of every vertex and
+  /// move middle between, as [lo, hi] (empty when lo > hi), within the largest sweep. The
+  /// scan's test of a point u (from a, off the tangent by u·N) against the circle of
+  /// curvature k, |k·(|u|² − ε²) − 2·u·N| <= 2ε, becomes for the circle through e (chord
+  /// length L, tangent turned by α from the chord, k = −2·sin α / L) |P·sin α + Q·cos α| <= ε
+  /// with P = (|u|² − ε²) / L − u along the chord and Q = u across it: an interval of α
+  /// around the zero of R·sin(α + β) (R² = P² + Q²) asin(ε / R) wide each way. The bounds
+  /// are kept as directions and compared as pseudo-angles; only the result's are angles.
+  /// The band is the in-plane share once a vertex climbs, as in the scan.
+  std::pair<double, double> start_range(uint32_t a, uint32_t e) const {
+    const Vec2 chord = q(e) - q(a);
+    const double length = chord.norm();
+    if (length <= kLengthEpsMm) return {1, -1};
+    const Vec2 c = chord / length;
+    bool flat = true;
+    for (uint32_t m = a + 1; m <= e && flat; ++m) flat = std::abs(p_[m].z() - p_[a].z()) <= kLengthEpsMm;
+    const double eps = flat ? eps_ : eps_ * kPlaneShare;
+    // Directions (cos α, sin α) in (−π, π), ordered by their pseudo-angle turned half a turn.
+    auto order = [](const Vec2& d) { return pseudo_angle(-d.x(), -d.y()); };
+    Vec2 lo(start_sweep_.c, -start_sweep_.s), hi(start_sweep_.c, start_sweep_.s);
+    double lo_order = order(lo), hi_order = order(hi);
+    // Points 2a+1, 2a+2, ..., 2e-1: odd ones the move middles, even ones the vertices.
+    for (uint32_t j = 2 * a + 1; j < 2 * e; ++j) {
+      const Vec2 u = ((j & 1) ? middle_[j / 2] : q(j / 2)) - q(a);
+      const double w = u.squaredNorm() - eps * eps;
+      if (w <= 0) continue;  // within the band of `a` itself
+      const double P = w / length - u.dot(c), Q = cross2(c, u);
+      const double R2 = P * P + Q * Q;
+      if (R2 <= eps * eps) continue;
+      const double R = std::sqrt(R2), sin_half = eps / R, cos_half = std::sqrt(1 - sin_half * sin_half);
+      // The zero of sin(α + β), α = −β, taken in (−π/2, π/2].
+      const Vec2 zero = P > 0 || (P == 0 && Q <= 0) ? Vec2(P / R, -Q / R) : Vec2(-P / R, Q / R);
+      const Vec2 low = Turn::by(cos_half, -sin_half)(zero), high = Turn::by(cos_half, sin_half)(zero);
+      if (const double o = order(low); o > lo_order) {
+        lo = low;
+        lo_order = o;
+      }
+      if (const double o = order(high); o < hi_order) {
+        hi = high;
+        hi_order = o;
+      }
+      if (lo_order > hi_order) return {1, -1};
+    }
+    return {std::atan2(lo.y(), lo.x()), std::atan2(hi.y(), hi.x())};
+  }
+
+  /// The input's own directions at `a` (input_tangents()), each also turned by 0.5°, 1°, 2°
+  /// and 4° either way; appended to `out`. The layered search's starts where the tangent is
+  /// free.
+  void fanned_input_tangents(uint32_t a, uint32_t limit, std::vector<Vec2>& out) const {
     input_tangents(a, limit, s_.inputs);
     for (const Vec2& T : s_.inputs) {
       out.push_back(T);
-      for (const Turn& turn : start_turns_) out.push_back(turn(T));
+      for (double deg : {0.5, 1.0, 2.0, 4.0})
+        for (double side : {1.0, -1.0}) out.push_back(Turn(side * deg_to_rad(deg))(T));
     }
-    if (auto T = into_next(a, limit)) out.push_back(*T);
   }
 
   /// The start at `a` whose arc over the first move ends heading along the second. Where the
@@ -1755,7 +1928,7 @@ class RunFitter {
   Turn half_left_, half_right_;   // kTurnShare of the G1 angle each way: the greedy step's first turns, the beam's for lines
   Turn full_left_, full_right_;   // twice that, the whole joint allowance: its largest, and the searches' turn
   std::array<Turn, 4> root_turns_;   // roots(): 0.3 and 0.6 of it each way
-  std::array<Turn, 8> start_turns_;  // start_tangents(): 0.5, 1, 2 and 4 degrees each way
+  Turn start_sweep_;                 // start_range(): half the largest sweep, at most a quarter turn
   Cone g1_cone_;                  // the G1 angle: a joint within it is smooth
   Cone same_tangent_cone_;         // 1/32 of it: two tangents a search need not both follow
   Cone joint_cone_;               // kJointShare of it: the turn the fitter may make at a joint
