@@ -637,6 +637,25 @@ std::vector<Pt> drawn_contour(const std::vector<std::pair<double, double>>& piec
 }
 }  // namespace
 
+TEST_CASE("where the tangent is free, the search starts from the exact ranges of tangents that reach each end: a "
+          "quarter circle whose first vertex lies off it inside the band is one arc",
+          "[fit][search]") {
+  // A quarter circle of radius 20 mm in 0.1 mm moves, its first vertex moved towards the
+  // centre by 4 to 8 µm. One arc through that vertex and the last keeps every vertex inside
+  // the 0.01 mm band, but the first chord and the circles through the next vertices lean
+  // towards the moved vertex by degrees, and starts read off them, even turned by up to 4°
+  // either way, took two arcs.
+  for (double off_mm : {0.004, 0.006, 0.008}) {
+    std::vector<Pt> pts = arc_points(0, 20, 20, -90, 0, 90.0 / 314);
+    pts.front().y += off_mm;
+    auto o = compress_text(program(pts));
+    INFO("first vertex " << off_mm << " mm off the circle");
+    CHECK(o.arcs == 1);
+    CHECK(o.lines == 0);
+    CHECK(o.r.comparison.max_deviation_mm <= 0.01);
+  }
+}
+
 TEST_CASE("a straight side, a fillet and a straight side written in fine moves come out as a line, an arc and "
           "a line", "[fit][search]") {
   // Printed to 3 decimals. The longest arc runs on past the fillet's end along the straight

@@ -1712,9 +1712,8 @@ class RunFitter {
     // along it offers the lines a vertex or two shorter too). First, so that where a line
     // and an arc do as well, the line is kept.
     if (const uint32_t line_end = furthest_line_end(a, limit); line_end > a) add((q(line_end) - q(a)).normalized());
-    // The ends reached, in the order found: the nearest one by one, then further in
-    // doubling steps and halving back between the furthest reached and the nearest beyond
-    // it that is not.
+    // The ends reached, in the order found: the nearest one by one, then the furthest
+    // (furthest_reached()) and the one before it.
     std::vector<StartRange>& reached = s_.reached;
     reached.clear();
     auto reach = [&](uint32_t e) {
@@ -1730,18 +1729,7 @@ class RunFitter {
       if (misses == 0) put_edges(reached.back(), false);
     }
     if (reached.size() == kNearStartEnds && e <= limit) {
-      uint32_t far = e - 1, beyond = limit + 1;  // reached, and the nearest known not to be
-      for (uint32_t step = 1; far + step <= limit; step *= 2) {
-        if (!reach(far + step)) {
-          beyond = far + step;
-          break;
-        }
-        far += step;
-      }
-      while (beyond - far > 1) {
-        const uint32_t mid = far + (beyond - far) / 2;
-        (reach(mid) ? far : beyond) = mid;
-      }
+      const uint32_t far = furthest_reached(e - 1, limit, reach);
       if (far - 1 > a && reached.back().e != far - 1) reach(far - 1);
     }
     std::sort(reached.begin(), reached.end(), [](const StartRange& x, const StartRange& y) { return x.e > y.e; });
@@ -1753,8 +1741,8 @@ class RunFitter {
   }
 
   /// The furthest vertex e after `a` (up to `limit`) whose chord from `a` passes within the
-  /// band of every vertex between, found in doubling steps and halving back; `a` itself
-  /// when the first move has no length in the plane.
+  /// band of every vertex between (furthest_reached()); `a` itself when the first move has
+  /// no length in the plane.
   uint32_t furthest_line_end(uint32_t a, uint32_t limit) const {
     auto reaches = [&](uint32_t e) {
       const Vec2 chord = q(e) - q(a);
@@ -1764,10 +1752,18 @@ class RunFitter {
         if (std::abs(cross2(chord, q(m) - q(a))) > eps_ * length) return false;
       return true;
     };
-    if (!reaches(a + 1)) return a;
-    uint32_t far = a + 1, beyond = limit + 1;
+    return reaches(a + 1) ? furthest_reached(a + 1, limit, reaches) : a;
+  }
+
+  /// The furthest vertex up to `limit` that `reached(e)` holds for, from `from`, which it
+  /// holds for: in doubling steps, then halving back between the furthest found and the
+  /// nearest beyond it found not to (exact where `reached` holds up to some vertex and not
+  /// after it, and a vertex it holds for otherwise).
+  template <class Reached>
+  static uint32_t furthest_reached(uint32_t from, uint32_t limit, Reached&& reached) {
+    uint32_t far = from, beyond = limit + 1;
     for (uint32_t step = 1; far + step <= limit; step *= 2) {
-      if (!reaches(far + step)) {
+      if (!reached(far + step)) {
         beyond = far + step;
         break;
       }
@@ -1775,7 +1771,7 @@ class RunFitter {
     }
     while (beyond - far > 1) {
       const uint32_t mid = far + (beyond - far) / 2;
-      (reaches(mid) ? far : beyond) = mid;
+      (reached(mid) ? far : beyond) = mid;
     }
     return far;
   }
