@@ -1388,8 +1388,7 @@ class RunFitter {
   /// its end tangent and along it turned by the whole joint allowance (kJointShare of the G1
   /// angle) each way, and by half of it where the input runs straight ahead (for lines): the
   /// chains' own spread of tangents covers the arcs' turns between. The first chain reaching
-  /// `limit` wins. The tangent at `a` is free, so the roots are a fan of start tangents read off the
-  /// input. The greedy chain (read off `greedy` up to its first kink, or chosen again when
+  /// `limit` wins. Where the tangent at `a` is free, the roots are start_tangents(). The greedy chain (read off `greedy` up to its first kink, or chosen again when
   /// null) is always kept. When no chain goes on tangentially, the one reaching furthest is
   /// returned (empty when none leaves `a`), and the caller takes a kink there.
   std::vector<Chosen> beam_chain(uint32_t a, uint32_t limit, GreedyWalk* greedy) const {
@@ -1835,10 +1834,9 @@ class RunFitter {
     }
   }
 
-  /// The start at `a` whose arc over the first move ends heading along the second. Where the
-  /// input turns at a + 1 by more than the fan of start tangents spans (a slicer's infill
-  /// between two corners, a short move into a long one), it is the one start from which
-  /// the second move follows as a line, tangent. Exact, so it is not fanned out.
+  /// The start at `a` whose arc over the first move ends heading along the second: where the
+  /// input turns at a + 1 (a slicer's infill between two corners, a short move into a long
+  /// one), the one start from which the second move follows as a line, tangent.
   std::optional<Vec2> into_next(uint32_t a, uint32_t limit) const {
     if (a + 2 > limit) return std::nullopt;
     const Vec2 next = q(a + 2) - q(a + 1);
