@@ -1,4 +1,5 @@
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <fmt/format.h>
 
 #include "arcpress/emit/emitter.hpp"
@@ -18,6 +19,43 @@ TEST_CASE("numbers are printed in fixed point, never with an exponent or as -0",
   CHECK(format_number(12.0, {3, true, true}) == "12.");
   CHECK(format_number(-3.14159, {4, false, false}) == "-3.1416");
   CHECK(format_number(123456789.0, {3, true, false}) == "123456789");
+}
+
+TEST_CASE("a printed number reads back as the value rounded to its digits, half away from zero, with exactly "
+          "as many digits as it needs",
+          "[emit]") {
+  CHECK(format_number(0.00005, {4, true, false}) == "0.0001");
+  CHECK(format_number(-0.00005, {4, true, false}) == "-0.0001");
+  CHECK(format_number(-0.00004, {3, false, true}) == "0.000");
+  CHECK(format_number(7.0, {0, false, true}) == "7.");
+  CHECK(format_number(-2.5, {0, true, false}) == "-3");
+  CHECK(format_number(0.1, {3, false, false}) == "0.100");
+  // Seeded, so every run checks the same values: magnitudes from 1e-7 to 1e9 mm, 0 to 6 decimals.
+  uint64_t state = 0x9e3779b97f4a7c15ull;
+  auto next = [&] {
+    state ^= state << 13, state ^= state >> 7, state ^= state << 17;
+    return state;
+  };
+  for (int i = 0; i < 200000; ++i) {
+    const int decimals = int(next() % 7);
+    const double magnitude = std::pow(10.0, int(next() % 17) - 7);
+    const double value = (double(next() % 2000001) / 1000000.0 - 1.0) * magnitude;
+    for (const NumberStyle style : {NumberStyle{decimals, true, false}, NumberStyle{decimals, false, true}}) {
+      const std::string text = format_number(value, style);
+      INFO(fmt::format("{:.17g} at {} decimals: {}", value, decimals, text));
+      REQUIRE(text.find_first_of("eE") == std::string::npos);
+      REQUIRE(text != "-0");
+      REQUIRE(std::stod(text) == rounded(value, decimals));
+      const size_t point = text.find('.');
+      const size_t digits = point == std::string::npos ? 0 : text.size() - point - 1;
+      if (style.trim_zeros) {
+        REQUIRE(digits <= size_t(decimals));
+        REQUIRE((digits == 0 || text.back() != '0'));
+      } else {
+        REQUIRE(digits == size_t(decimals));
+      }
+    }
+  }
 }
 
 namespace {
