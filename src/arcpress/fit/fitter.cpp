@@ -1291,8 +1291,17 @@ class RunFitter {
           starts.clear();
           if (in) {
             starts.push_back(*in);
+          } else if (w == 2) {
+            // One primitive from `a` to `to`: its start lies in the range that reaches `to`
+            // (the chord first where the line does).
+            if (out) starts.push_back(reflected_end(from, *out, to));
+            if (const auto [lo, hi] = start_range(a, to); lo <= hi) {
+              const Vec2 chord = (q(to) - q(a)).normalized();
+              const double inset = kStartRangeInset * (hi - lo);
+              if (lo <= 0 && 0 <= hi) starts.push_back(chord);
+              for (double alpha : {0.5 * (lo + hi), lo + inset, hi - inset}) starts.push_back(Turn(alpha)(chord));
+            }
           } else {
-            if (w == 2 && out) starts.push_back(reflected_end(from, *out, to));
             start_tangents(a, to, starts);
           }
           repl.clear();
@@ -1693,7 +1702,7 @@ class RunFitter {
   /// through the next vertices, of the first chord and of the input around `a`, each turned
   /// by 0.5° to 4° either way): those missed the narrow ranges that reach furthest and the
   /// turns the band allows over a short first move (the corpus with default options:
-  /// 320 706 blocks and 4 024 forced kinks then, 319 366 and 3 396 now).
+  /// 320 706 blocks and 4 024 forced kinks then, 319 352 and 3 396 now).
   void start_tangents(uint32_t a, uint32_t limit, std::vector<Vec2>& out) const {
     const size_t first = out.size();
     auto add = [&](const Vec2& T) {
