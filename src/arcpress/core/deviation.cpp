@@ -165,8 +165,10 @@ Deviation planar_arc_deviation(std::span<const Vec3> pts, const ArcGeom& arc, do
     {
       // Cheap bound first: the piece is within its sagitta of its own chord, and that chord
       // within the vertices' radial distances of the input segment.
+      // Below a finite stop, a piece that cannot reach it is not measured either.
       double cos_half = std::sqrt(std::max(0.0, 0.5 * (1 + u0.dot(u1))));
-      if (r * (1 - cos_half) + std::max(radial[m], radial[m + 1]) <= dev.max_mm) continue;
+      const double skip_at = stop_above_mm < HUGE_VAL ? std::max(dev.max_mm, stop_above_mm) : dev.max_mm;
+      if (r * (1 - cos_half) + std::max(radial[m], radial[m + 1]) <= skip_at) continue;
       Vec2 mid = u0 + u1;
       Vec2 cand[4] = {u0, u1, mid.squaredNorm() > 0 ? Vec2(mid.normalized()) : u0, Vec2(0, 0)};
       int count = 3;

@@ -43,7 +43,9 @@ struct Deviation {
 
 /// Two-sided deviation between the polyline `pts` and the segment pts.front() -> pts.back().
 /// Both measures stop early, with a result above `stop_above_mm`, once the deviation
-/// exceeds it (the fitter only needs to know that a candidate fails).
+/// exceeds it (the fitter only needs to know that a candidate fails); arc_deviation() may
+/// then also return less than the largest distance when it does not exceed the stop (parts
+/// of the arc that cannot reach it are not measured). The default measures it all.
 Deviation line_deviation(std::span<const Vec3> pts, double stop_above_mm = HUGE_VAL);
 /// Two-sided deviation between the polyline `pts` and `arc` (which should start at
 /// pts.front() and end at pts.back()).

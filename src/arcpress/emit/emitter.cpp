@@ -434,8 +434,8 @@ class Emitter {
     // The controller ends on the printed end point: a spiral or a jump of at most dr. (Held
     // inside the band by what reading the program back may misread, kReadingShare.)
     const double band_mm = opt_.band_mm * (1 - kReadingShare);
-    Deviation dev = arc_deviation(pts_, g, band_mm);
-    return dev.ordered && dev.max_mm + dr <= band_mm;
+    Deviation dev = arc_deviation(pts_, g, band_mm - dr);
+    return dev.ordered && dev.max_mm <= band_mm - dr;
   }
 
   /// The dialect's limit on significant digits in one number.
