@@ -248,6 +248,8 @@ class RunFitter {
     }
     soft_upto_.assign(n_ + 2, 0);
     for (uint32_t v = 0; v <= n_; ++v) soft_upto_[v + 1] = soft_upto_[v] + soft_[v];
+    next_soft_.assign(n_ + 1, n_ + 1);
+    for (uint32_t v = n_; v-- > 0;) next_soft_[v] = soft_[v + 1] ? v + 1 : next_soft_[v + 1];
   }
 
   /// The primitives over all moves (fixed moves as themselves), each marked `kinked` where
@@ -547,12 +549,10 @@ class RunFitter {
     bool flat = true;
     Vec2 u{0, 0};  // the end before, from `a`, and its squared length
     double uu = 0;
-    for (uint32_t e = a + 1; e <= limit; ++e) {
-      if (e > a + 1) {
-        const uint32_t m = e - 1;  // becomes an interior vertex
-        if (soft_[m]) break;
-        narrow_by(u, uu);
-      }
+    // A primitive ends at the first soft vertex at the latest.
+    const uint32_t last = std::min(limit, next_soft_[a]);
+    for (uint32_t e = a + 1; e <= last; ++e) {
+      if (e > a + 1) narrow_by(u, uu);  // vertex e - 1 becomes an interior vertex
       narrow_move(e - 1);
       if (!level && flat && std::abs(p_[e].z() - h0) > kLengthEpsMm) {
         flat = false;
@@ -1537,7 +1537,7 @@ class RunFitter {
   /// vertex up to there within the band of the chord there.
   bool straight_ahead(uint32_t v, uint32_t limit) const {
     uint32_t e = v + 1;
-    while (e < limit && (q(e) - q(v)).norm() < kStraightAheadMm) ++e;
+    while (e < limit && (q(e) - q(v)).squaredNorm() < kStraightAheadMm * kStraightAheadMm) ++e;
     const Vec2 chord = q(e) - q(v);
     const double len = chord.norm();
     if (len <= kLengthEpsMm) return false;
@@ -1923,6 +1923,7 @@ class RunFitter {
   std::vector<uint8_t> plain_hard_;  // with spikes found: the corners with none skipped
   std::vector<uint8_t> soft_;     // extrusion rate changes: a primitive ends here, tangent kept
   std::vector<uint32_t> soft_upto_;  // soft vertices before each vertex (prefix count)
+  std::vector<uint32_t> next_soft_;  // the first soft vertex after each vertex (n_ + 1: none)
   // The input's direction at each vertex inside the stretch: sided_tangent() for the
   // searches; the greedy chain, which never goes back on a choice, keeps input_tangent()
   // (with the sided one it breaks the tangent on Bézier 1 at 0.001 mm and y = x³ at 0.01 mm,
