@@ -179,6 +179,11 @@ class RunFitter {
     two_turns_line_cone_ = Cone(2 * kTurnShare * g1 + line_kink_);
     root_turns_ = {Turn(0.3 * g1), Turn(-0.3 * g1), Turn(0.6 * g1), Turn(-0.6 * g1)};
     start_sweep_ = Turn(std::min(deg_to_rad(o.max_sweep_deg) / 2, kPi / 2));
+    for (size_t i = 0; i < 4; ++i) {
+      const double deg = 0.5 * double(1u << i);  // 0.5, 1, 2, 4
+      fan_turns_[2 * i] = Turn(deg_to_rad(deg));
+      fan_turns_[2 * i + 1] = Turn(-deg_to_rad(deg));
+    }
     // Limits on the tangent-chord angle alpha (the sweep is 2 alpha) as pseudo-angles of
     // |alpha| in [0, π], so scan() tests each vertex without trigonometry.
     const double half_max_sweep = deg_to_rad(o.max_sweep_deg) / 2;
@@ -246,8 +251,6 @@ class RunFitter {
         if (rate_changes(x)) soft_[v] = 1;
       if (!pinned.empty() && pinned[v]) soft_[v] = 1;
     }
-    soft_upto_.assign(n_ + 2, 0);
-    for (uint32_t v = 0; v <= n_; ++v) soft_upto_[v + 1] = soft_upto_[v] + soft_[v];
     next_soft_.assign(n_ + 1, n_ + 1);
     for (uint32_t v = n_; v-- > 0;) next_soft_[v] = soft_[v + 1] ? v + 1 : next_soft_[v + 1];
   }
@@ -468,7 +471,7 @@ class RunFitter {
   const Vec2& q(uint32_t v) const { return q_[v]; }
   /// Whether a change of extrusion rate lies strictly between vertices a and e (it would end
   /// a primitive there).
-  bool soft_between(uint32_t a, uint32_t e) const { return e > a + 1 && soft_upto_[e] > soft_upto_[a + 1]; }
+  bool soft_between(uint32_t a, uint32_t e) const { return next_soft_[a] < e; }
 
   /// All ends e in (a, limit] for which the arc (or line) leaving `a` along `T` and passing
   /// exactly through vertex e keeps every vertex in between inside the band. For a fixed
@@ -1296,10 +1299,9 @@ class RunFitter {
             // (the chord first where the line does).
             if (out) starts.push_back(reflected_end(from, *out, to));
             if (const auto [lo, hi] = start_range(a, to); lo <= hi) {
-              const Vec2 chord = (q(to) - q(a)).normalized();
-              const double inset = kStartRangeInset * (hi - lo);
-              if (lo <= 0 && 0 <= hi) starts.push_back(chord);
-              for (double alpha : {0.5 * (lo + hi), lo + inset, hi - inset}) starts.push_back(Turn(alpha)(chord));
+              if (lo <= 0 && 0 <= hi) starts.push_back((q(to) - q(a)).normalized());
+              for (double share : {0.5, kStartRangeInset, 1 - kStartRangeInset})
+                starts.push_back(range_start(a, {to, lo, hi}, share));
             }
           } else {
             start_tangents(a, to, starts);
@@ -1710,12 +1712,11 @@ class RunFitter {
         if (same_tangent_cone_.holds(out[i], T)) return;
       out.push_back(T);
     };
+    // The two starts that end at r.e turned furthest either way (kStartRangeInset inside).
     auto put_edges = [&](const StartRange& r, bool middle) {
-      const Vec2 chord = (q(r.e) - q(a)).normalized();
-      const double inset = kStartRangeInset * (r.hi - r.lo);
-      add(Turn(r.lo + inset)(chord));
-      add(Turn(r.hi - inset)(chord));
-      if (middle) add(Turn(0.5 * (r.lo + r.hi))(chord));
+      add(range_start(a, r, kStartRangeInset));
+      add(range_start(a, r, 1 - kStartRangeInset));
+      if (middle) add(range_start(a, r, 0.5));
     };
     // A line's tangent is its chord: the one to the furthest end a line reaches (the scan
     // along it offers the lines a vertex or two shorter too). First, so that where a line
@@ -1747,6 +1748,12 @@ class RunFitter {
     // Where the path leaves `a` along the plane's normal (a plunge), it has no direction in
     // the plane: any will do for the lines that follow it.
     if (out.size() == first) out.push_back(Vec2(1, 0));
+  }
+
+  /// The start at `a` in range `r` at `share` of the way from its lowest angle to its
+  /// highest.
+  Vec2 range_start(uint32_t a, const StartRange& r, double share) const {
+    return Turn(r.lo + share * (r.hi - r.lo))((q(r.e) - q(a)).normalized());
   }
 
   /// The furthest vertex e after `a` (up to `limit`) whose chord from `a` passes within the
@@ -1801,7 +1808,7 @@ class RunFitter {
     if (length <= kLengthEpsMm) return {1, -1};
     const Vec2 c = chord / length;
     bool flat = true;
-    for (uint32_t m = a + 1; m <= e && flat; ++m) flat = std::abs(p_[m].z() - p_[a].z()) <= kLengthEpsMm;
+    for (uint32_t m = a + 1; m <= e && flat && !level_; ++m) flat = std::abs(p_[m].z() - p_[a].z()) <= kLengthEpsMm;
     const double eps = flat ? eps_ : eps_ * kPlaneShare;
     // Directions (cos α, sin α) in (−π, π), ordered by their pseudo-angle turned half a turn.
     auto order = [](const Vec2& d) { return pseudo_angle(-d.x(), -d.y()); };
@@ -1839,8 +1846,7 @@ class RunFitter {
     input_tangents(a, limit, s_.inputs);
     for (const Vec2& T : s_.inputs) {
       out.push_back(T);
-      for (double deg : {0.5, 1.0, 2.0, 4.0})
-        for (double side : {1.0, -1.0}) out.push_back(Turn(side * deg_to_rad(deg))(T));
+      for (const Turn& turn : fan_turns_) out.push_back(turn(T));
     }
   }
 
@@ -1922,7 +1928,6 @@ class RunFitter {
   std::vector<uint8_t> hard_;     // corner: tangent may change, a primitive ends here
   std::vector<uint8_t> plain_hard_;  // with spikes found: the corners with none skipped
   std::vector<uint8_t> soft_;     // extrusion rate changes: a primitive ends here, tangent kept
-  std::vector<uint32_t> soft_upto_;  // soft vertices before each vertex (prefix count)
   std::vector<uint32_t> next_soft_;  // the first soft vertex after each vertex (n_ + 1: none)
   // The input's direction at each vertex inside the stretch: sided_tangent() for the
   // searches; the greedy chain, which never goes back on a choice, keeps input_tangent()
@@ -1934,6 +1939,7 @@ class RunFitter {
   Turn full_left_, full_right_;   // twice that, the whole joint allowance: its largest, and the searches' turn
   std::array<Turn, 4> root_turns_;   // roots(): 0.3 and 0.6 of it each way
   Turn start_sweep_;                 // start_range(): half the largest sweep, at most a quarter turn
+  std::array<Turn, 8> fan_turns_;    // fanned_input_tangents(): 0.5, 1, 2 and 4 degrees each way
   Cone g1_cone_;                  // the G1 angle: a joint within it is smooth
   Cone same_tangent_cone_;         // 1/32 of it: two tangents a search need not both follow
   Cone joint_cone_;               // kJointShare of it: the turn the fitter may make at a joint
