@@ -38,6 +38,18 @@ inline double pseudo_angle(double x, double y) {
 }
 /// pseudo_angle() of the direction at angle `rad` in [0, 2π).
 inline double pseudo_angle_of(double rad) { return pseudo_angle(std::cos(rad), std::sin(rad)); }
+/// Whether pseudo_angle(x, y) > bound for a point of the upper half-plane (y >= 0), where
+/// pseudo-angles lie in [0, 2], without the division: with d = |x| + y, the pseudo-angle is
+/// y / d for x >= 0 and 2 - y / d otherwise. (A test at every vertex of every scan.)
+inline bool pseudo_angle_above(double x, double y, double bound) {
+  const double d = std::abs(x) + y;
+  return x >= 0 ? y > bound * d : y < (2 - bound) * d;
+}
+/// Whether pseudo_angle(x, y) < bound, as pseudo_angle_above(), for (x, y) not zero.
+inline bool pseudo_angle_below(double x, double y, double bound) {
+  const double d = std::abs(x) + y;
+  return x >= 0 ? y < bound * d : y > (2 - bound) * d;
+}
 
 /// Working plane of an arc: the two in-plane axes and the normal axis (indices into XYZ),
 /// oriented as RS274 defines G17/G18/G19 (G18's first axis is Z, so CCW is seen from +Y).

@@ -185,7 +185,7 @@ class RunFitter {
       fan_turns_[2 * i + 1] = Turn(-deg_to_rad(deg));
     }
     // Limits on the tangent-chord angle alpha (the sweep is 2 alpha) as pseudo-angles of
-    // |alpha| in [0, π], so scan() tests each vertex without trigonometry.
+    // |alpha| in [0, π], so scan() tests each vertex without trigonometry or division.
     const double half_max_sweep = deg_to_rad(o.max_sweep_deg) / 2;
     max_alpha_ = half_max_sweep >= kPi ? 3.0 : pseudo_angle_of(half_max_sweep);
     min_alpha_ = pseudo_angle_of(std::min(deg_to_rad(o.min_sweep_deg) / 2, kPi));
@@ -485,7 +485,8 @@ class RunFitter {
   /// What scan_ends() holds each end to besides the band, read off the options and the stretch.
   struct ScanLimits {
     double max_alpha, min_alpha, line_alpha;  // pseudo-angles, see the constructor
-    double max_radius_mm, min_radius_mm, min_arc_length_mm;
+    double min_curvature, max_curvature;  // 1/mm: those of the largest and smallest radius
+    double min_arc_length_mm;
     uint32_t min_arc_moves;
     bool arcs, helical;
     uint32_t stretch_end;
@@ -493,7 +494,7 @@ class RunFitter {
   };
   ScanLimits scan_limits() const {
     return {max_alpha_,       min_alpha_,           line_alpha_,
-            o_.max_radius_mm, o_.min_radius_mm,     o_.min_arc_length_mm,
+            1 / o_.max_radius_mm, 1 / o_.min_radius_mm, o_.min_arc_length_mm,
             o_.min_arc_moves, arcs_,                o_.helical,
             stretch_end_,     out_tangent_ ? &*out_tangent_ : nullptr};
   }
@@ -575,21 +576,21 @@ class RunFitter {
         sink(Candidate{e, 0.0, true});
         continue;
       }
-      // The tangent-chord angle alpha (sweep = 2 alpha), as the pseudo-angle of |alpha|.
-      const double ut = u.dot(T), un = u.dot(N);
-      const double abs_alpha = pseudo_angle(ut, std::abs(un));
-      if (abs_alpha > lim.max_alpha) break;
+      // The tangent-chord angle alpha (sweep = 2 alpha), held to the limits as the
+      // pseudo-angle of |alpha|, and the curvature.
+      const double ut = u.dot(T), un = u.dot(N), abs_un = std::abs(un);
+      if (pseudo_angle_above(ut, abs_un, lim.max_alpha)) break;
       const double k = 2 * un / uu;
       const double slack = 1e-12 * (1 + std::abs(k));
       if (k < lo - slack || k > hi + slack) continue;
-      const bool line = abs_alpha <= lim.line_alpha;
+      const bool line = !pseudo_angle_above(ut, abs_un, lim.line_alpha);
       if (!line) {
         if (!lim.arcs || k < arc_lo - slack || k > arc_hi + slack) continue;
-        const double r = 1 / std::abs(k);
-        if (r > lim.max_radius_mm || r < lim.min_radius_mm) continue;
-        if (e - a < lim.min_arc_moves || abs_alpha < lim.min_alpha) continue;
+        // The radius 1/|k| within the options' limits.
+        if (std::abs(k) < lim.min_curvature || std::abs(k) > lim.max_curvature) continue;
+        if (e - a < lim.min_arc_moves || pseudo_angle_below(ut, abs_un, lim.min_alpha)) continue;
         if (!level && !flat && !lim.helical) continue;
-        if (lim.min_arc_length_mm > 0 && r * 2 * std::atan2(std::abs(un), ut) < lim.min_arc_length_mm) continue;
+        if (lim.min_arc_length_mm > 0 && 2 * std::atan2(abs_un, ut) / std::abs(k) < lim.min_arc_length_mm) continue;
       }
       // Before a fixed move, the stretch must end heading along it.
       if (e == lim.stretch_end && lim.out_tangent) {
