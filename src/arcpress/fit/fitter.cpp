@@ -580,17 +580,18 @@ class RunFitter {
       // pseudo-angle of |alpha|, and the curvature.
       const double ut = u.dot(T), un = u.dot(N), abs_un = std::abs(un);
       if (pseudo_angle_above(ut, abs_un, lim.max_alpha)) break;
-      const double k = 2 * un / uu;
-      const double slack = 1e-12 * (1 + std::abs(k));
-      if (k < lo - slack || k > hi + slack) continue;
+      // The curvature k = K / uu of the circle through e, held to the intervals with a
+      // relative slack of 1e-12 for rounding, multiplied through by uu > 0.
+      const double K = 2 * un, slack = 1e-12 * (uu + std::abs(K));
+      if (K + slack < lo * uu || K - slack > hi * uu) continue;
       const bool line = !pseudo_angle_above(ut, abs_un, lim.line_alpha);
       if (!line) {
-        if (!lim.arcs || k < arc_lo - slack || k > arc_hi + slack) continue;
-        // The radius 1/|k| within the options' limits.
-        if (std::abs(k) < lim.min_curvature || std::abs(k) > lim.max_curvature) continue;
+        if (!lim.arcs || K + slack < arc_lo * uu || K - slack > arc_hi * uu) continue;
+        // The radius uu / |K| within the options' limits.
+        if (std::abs(K) < lim.min_curvature * uu || std::abs(K) > lim.max_curvature * uu) continue;
         if (e - a < lim.min_arc_moves || pseudo_angle_below(ut, abs_un, lim.min_alpha)) continue;
         if (!level && !flat && !lim.helical) continue;
-        if (lim.min_arc_length_mm > 0 && 2 * std::atan2(abs_un, ut) / std::abs(k) < lim.min_arc_length_mm) continue;
+        if (lim.min_arc_length_mm > 0 && 2 * std::atan2(abs_un, ut) * uu / std::abs(K) < lim.min_arc_length_mm) continue;
       }
       // Before a fixed move, the stretch must end heading along it.
       if (e == lim.stretch_end && lim.out_tangent) {
@@ -598,7 +599,7 @@ class RunFitter {
         const Vec2 end = line ? c : Vec2(2 * c.dot(T) * c - T);
         if (!joint_cone_.holds(end, *lim.out_tangent)) continue;
       }
-      sink(Candidate{e, k, line});
+      sink(Candidate{e, K / uu, line});
     }
   }
 
