@@ -106,7 +106,8 @@ TEST_CASE("the global method keeps the band on every corpus file and is never wo
   CHECK(better > 0);
 }
 
-TEST_CASE("runs fitted on several threads give the same program as on one thread", "[corpus][fit][threads]") {
+TEST_CASE("runs fitted, and their blocks composed, on several threads give the same program as on one thread",
+          "[corpus][fit][emit][threads]") {
   ARCPRESS_CORPUS_FILES_OR_SKIP(files)
   size_t runs = 0;
   for (const auto& f : files) {
@@ -123,6 +124,7 @@ TEST_CASE("runs fitted on several threads give the same program as on one thread
     REQUIRE(b.ok);
     CHECK(b.output == a.output);
     CHECK(b.forced_kinks == a.forced_kinks);
+    CHECK(b.stats.rule_joints == a.stats.rule_joints);
     runs += a.stats.runs;
   }
   CHECK(runs > 1000);  // threads had runs to share

@@ -121,6 +121,7 @@ CompressResult compress(const std::string& name, std::string text, const Compres
   eo.dialect = opt.dialect;
   eo.format = opt.arc_format.value_or(opt.dialect.format);
   eo.tangent_slack_deg = 0.05 * opt.fit.g1_angle_deg;
+  eo.threads = opt.threads;
   r.output = emit_program(prog, in, runs, fits, eo, &r.stats);
   r.ok = true;
   r.band_mm = opt.fit.tolerance_mm;

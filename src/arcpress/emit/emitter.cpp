@@ -3,10 +3,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <optional>
 
 #include "arcpress/core/deviation.hpp"
+#include "arcpress/core/workers.hpp"
 #include "arcpress/emit/number_format.hpp"
 
 namespace arcpress {
@@ -49,10 +51,11 @@ class Emitter {
   }
 
   std::string run(const std::vector<Run>& runs, const std::vector<FitResult>& fits) {
+    compose_all(runs, fits);
     size_t r = 0;
     for (size_t bi = 0; bi < p_.blocks.size(); ++bi) {
       if (r < runs.size() && in_.moves[runs[r].first_move].block == bi) {
-        emit_run(runs[r], fits[r]);
+        emit_run(runs[r], fits[r], composed_[r]);
         bi = in_.moves[runs[r].first_move + runs[r].move_count - 1].block;
         ++r;
         continue;
@@ -141,7 +144,45 @@ class Emitter {
     return s;
   }
 
-  void emit_run(const Run& run, const FitResult& fit) {
+  /// A new block for one primitive, composed apart from the modal state of the output
+  /// before it: its N word (the last covered block's), its motion word (written where a
+  /// covered block states one, or where the output's modal motion differs), and the rest.
+  struct Composed {
+    std::string lead;    ///< the N word, or nothing
+    std::string motion;  ///< the motion word, with the separator before it when after `lead`
+    std::string rest;    ///< the words after the motion word
+    int g = 1;           ///< 1, 2 or 3
+    bool motion_written = false;
+    bool loose = false;  ///< an arc whose printed centre could not keep its end tangents (PrintedArc::loose)
+    /// The block's text after output whose modal motion is `out_motion` (G ×10).
+    std::string text(int out_motion) const {
+      return motion_written || out_motion != g * 10 ? lead + motion + rest : lead + rest;
+    }
+  };
+
+  /// Composes, on opt_.threads threads, the block of every primitive of every run that is
+  /// not a single input move (see emit_run()); nothing where compose() finds none.
+  void compose_all(const std::vector<Run>& runs, const std::vector<FitResult>& fits) {
+    composed_.assign(runs.size(), {});
+    std::atomic<size_t> next{0};
+    run_workers(worker_count(opt_.threads, runs.size()), [&](size_t) {
+      ArcScratch scratch;
+      for (size_t r; (r = next.fetch_add(1)) < runs.size();) {
+        const Run& run = runs[r];
+        const Frame& fr = in_.frames[run.frame];
+        std::vector<std::optional<Composed>>& out = composed_[r];
+        out.resize(fits[r].prims.size());
+        uint32_t a = 0;
+        for (size_t i = 0; i < fits[r].prims.size(); ++i) {
+          const Primitive& pr = fits[r].prims[i];
+          if (pr.kind == Primitive::Kind::Arc || pr.end_vertex > a + 1) out[i] = compose(run, fr, a, pr, false, scratch);
+          a = pr.end_vertex;
+        }
+      }
+    });
+  }
+
+  void emit_run(const Run& run, const FitResult& fit, const std::vector<std::optional<Composed>>& composed) {
     if (stats_) {
       ++stats_->runs;
       stats_->moves_in += run.move_count;
@@ -158,14 +199,27 @@ class Emitter {
       stats_->rule_joints.push_back(run.first_move + a);
       stats_->rule_joints.push_back(run.first_move + e);
     };
-    for (const Primitive& pr : fit.prims) {
+    ArcScratch scratch;
+    for (size_t i = 0; i < fit.prims.size(); ++i) {
+      const Primitive& pr = fit.prims[i];
       uint32_t e = pr.end_vertex;
       bool arc = pr.kind == Primitive::Kind::Arc;
       std::optional<std::string> text;
+      bool loose = false;
       if (arc || e > a + 1) {
-        text = compose(run, fr, a, pr, false);
-        if (text && text->size() > d().max_line_length) text = compose(run, fr, a, pr, true);
-        if (text && text->size() > d().max_line_length) text.reset();
+        if (const std::optional<Composed>& wide = composed[i]) {
+          text = wide->text(out_motion_);
+          loose = wide->loose;
+        }
+        if (text && text->size() > d().max_line_length) {
+          text.reset();
+          if (const std::optional<Composed> narrow = compose(run, fr, a, pr, true, scratch)) {
+            if (std::string t = narrow->text(out_motion_); t.size() <= d().max_line_length) {
+              text = std::move(t);
+              loose = narrow->loose;
+            }
+          }
+        }
         if (!text && stats_) ++(arc ? stats_->arcs_unprintable : stats_->long_lines_kept);
         if (!text) rule_joints(e);
       }
@@ -184,7 +238,7 @@ class Emitter {
         out_.append(p_.eol(last));
         out_motion_ = arc ? (pr.ccw != flip(run.plane) ? 30 : 20) : 10;
         if (stats_) ++(arc ? stats_->arcs_out : stats_->lines_out);
-        if (arc && loose_) rule_joints(e);
+        if (arc && loose) rule_joints(e);
       } else {
         // The input's own blocks: always readable, always on the path.
         for (uint32_t k = a; k < e; ++k) {
@@ -211,6 +265,12 @@ class Emitter {
   /// True where the dialect's G2/G3 turn the other way than RS274's in this plane.
   bool flip(Plane pl) const { return d().zx_reversed && pl == Plane::ZX; }
 
+  /// What printing one arc works on: the input points it replaces, its fitted centre.
+  struct ArcScratch {
+    std::vector<Vec3> pts;
+    Vec2 ideal{0, 0};
+  };
+
   /// What the controller reads from one printed arc, checked against the input points.
   struct PrintedArc {
     std::string words;  ///< "I.. J.." or "R.."
@@ -221,7 +281,8 @@ class Emitter {
   /// The text of one block for primitive `pr` over run vertices a .. pr.end_vertex, or
   /// nothing when the arc cannot be printed so that the controller reads it inside the band.
   /// `compact`: no spaces between words (for short line limits).
-  std::optional<std::string> compose(const Run& run, const Frame& fr, uint32_t a, const Primitive& pr, bool compact) {
+  std::optional<Composed> compose(const Run& run, const Frame& fr, uint32_t a, const Primitive& pr, bool compact,
+                                  ArcScratch& scratch) const {
     uint32_t e = pr.end_vertex;
     const Block& last = p_.blocks[in_.moves[run.first_move + e - 1].block];
     BlockStyle st = style_of(p_.blocks[in_.moves[run.first_move + a].block]);
@@ -245,14 +306,13 @@ class Emitter {
       }
     }
     bool arc = pr.kind == Primitive::Kind::Arc;
-    int g = arc ? (pr.ccw != flip(run.plane) ? 3 : 2) : 1;
-    std::string s;
-    if (const Word* n = p_.find(last, 'N'); n && n == p_.words_begin(last)) s += p_.raw(last, *n);
-    // Modal motion is not repeated where the input does not repeat it.
-    if (motion_written || out_motion_ != g * 10) {
-      if (!s.empty()) s += sep;
-      s += st.motion(g);
-    }
+    Composed out;
+    out.g = arc ? (pr.ccw != flip(run.plane) ? 3 : 2) : 1;
+    // Modal motion is not repeated where the input does not repeat it (see Composed).
+    out.motion_written = motion_written;
+    if (const Word* n = p_.find(last, 'N'); n && n == p_.words_begin(last)) out.lead = p_.raw(last, *n);
+    out.motion = (out.lead.empty() ? "" : sep) + st.motion(out.g);
+    std::string& s = out.rest;
     const AxisValues& from = run.vertex(in_, a);
     const AxisValues& to = run.vertex(in_, e);
     // End point words, and the end point as the controller reads them (mm).
@@ -296,9 +356,9 @@ class Emitter {
     }
     s += axis_words;
     if (arc) {
-      PrintedArc c = print_centre(run, fr, a, pr, end, st, sep);
+      PrintedArc c = print_centre(run, fr, a, pr, end, st, sep, scratch);
       if (!c.ok) return std::nullopt;
-      loose_ = c.loose;
+      out.loose = c.loose;
       s += sep;
       s += c.words;
     }
@@ -307,7 +367,7 @@ class Emitter {
       s += sep;
       s += p_.raw(*last_block['F' - 'A'], *f);
     }
-    return s;
+    return out;
   }
 
   /// Prints the centre (I/J/K or R) of arc `pr` from run vertex a to the printed end point
@@ -315,7 +375,7 @@ class Emitter {
   /// Tries the dialect's usual decimals, then more up to its maximum; at each, the rounded
   /// centre, then its grid neighbours nearest the bisector of the printed end points.
   PrintedArc print_centre(const Run& run, const Frame& fr, uint32_t a, const Primitive& pr, const AxisValues& end,
-                          const BlockStyle& st, const std::string& sep) {
+                          const BlockStyle& st, const std::string& sep, ArcScratch& scratch) const {
     PrintedArc out;
     auto axes = axes_of(run.plane);
     const AxisValues& from = run.vertex(in_, a);
@@ -325,9 +385,9 @@ class Emitter {
     const double chord = (e2 - s2).norm();
     if (chord < std::max(d().min_chord_mm, kLengthEpsMm)) return out;
     // The input points the arc replaces, for the band check.
-    pts_.clear();
-    for (uint32_t k = a; k <= pr.end_vertex; ++k) pts_.push_back(plane3(run.vertex(in_, k)));
-    pts_.back() = e3;
+    scratch.pts.clear();
+    for (uint32_t k = a; k <= pr.end_vertex; ++k) scratch.pts.push_back(plane3(run.vertex(in_, k)));
+    scratch.pts.back() = e3;
 
     const NumberDigits& dig = d().digits(fr.unit_mm != 1.0);
     const double unit = fr.unit_mm;
@@ -335,7 +395,7 @@ class Emitter {
     const bool offsets = d().centre == CentreReading::Absolute ? !fr.absolute : !fr.arc_absolute;
     const int first_dec = std::min(std::max(dig.centre, decimals_for_band(unit)), dig.max);
     const Vec2 ideal = pr.center;
-    ideal_ = ideal;
+    scratch.ideal = ideal;
     const double r_ideal = (s2 - ideal).norm();
     const double sweep_ideal = std::abs(ArcGeom::through(s3, e3, ideal, pr.ccw).sweep);
     bool use_radius = opt_.format == ArcFormat::Radius && d().radius_word &&
@@ -361,7 +421,7 @@ class Emitter {
             bool big = sweep_ideal > kPi;
             double side = (pr.ccw ? 1.0 : -1.0) * (big ? -1.0 : 1.0);
             Vec2 c = (s2 + e2) / 2 + side * h * n;
-            if (h2 < 0 || !acceptable(s3, e3, c, pr.ccw, tangent)) continue;
+            if (h2 < 0 || !acceptable(s3, e3, c, pr.ccw, tangent, scratch)) continue;
             std::string t = format_number(big ? -Rp : Rp, NumberStyle{dec, true, st.keep_point});
             if (!digits_fit(t)) continue;
             out.words = st.letter('R') + t;
@@ -391,7 +451,7 @@ class Emitter {
         std::sort(cands + 1, cands + n, [](const Cand& x, const Cand& y) { return x.dr < y.dr; });
         for (int q = 0; q < n; ++q) {
           Vec2 c = ref + cands[q].w * unit;
-          if (!acceptable(s3, e3, c, pr.ccw, tangent)) continue;
+          if (!acceptable(s3, e3, c, pr.ccw, tangent, scratch)) continue;
           std::string t1 = format_number(cands[q].w.x(), NumberStyle{dec, true, st.keep_point});
           std::string t2 = format_number(cands[q].w.y(), NumberStyle{dec, true, st.keep_point});
           if (!digits_fit(t1) || !digits_fit(t2)) continue;
@@ -414,9 +474,9 @@ class Emitter {
   }
 
   /// Whether an arc from s to e about c (as the controller reads the printed numbers) is one
-  /// the controller runs as meant, inside the band of the input points pts_.
+  /// the controller runs as meant, inside the band of the input points scratch.pts.
   /// With `tangent`, also whether its end tangents are within the slack of the fitted arc's.
-  bool acceptable(const Vec3& s, const Vec3& e, const Vec2& c, bool ccw, bool tangent) const {
+  bool acceptable(const Vec3& s, const Vec3& e, const Vec2& c, bool ccw, bool tangent, const ArcScratch& scratch) const {
     double rs = (s.head<2>() - c).norm(), re = (e.head<2>() - c).norm();
     double dr = std::abs(rs - re);
     if (dr > d().radius_allowance_mm(rs)) return false;
@@ -428,13 +488,13 @@ class Emitter {
     // Rounding the centre turns the arc's radii at its ends, and with them its tangents.
     for (const Vec3* p : {&s, &e}) {
       if (!tangent) break;
-      Vec2 printed = p->head<2>() - c, fitted = p->head<2>() - ideal_;
+      Vec2 printed = p->head<2>() - c, fitted = p->head<2>() - scratch.ideal;
       if (std::atan2(std::abs(cross2(printed, fitted)), printed.dot(fitted)) > tangent_slack_rad_) return false;
     }
     // The controller ends on the printed end point: a spiral or a jump of at most dr. (Held
     // inside the band by what reading the program back may misread, kReadingShare.)
     const double band_mm = opt_.band_mm * (1 - kReadingShare);
-    Deviation dev = arc_deviation(pts_, g, band_mm - dr);
+    Deviation dev = arc_deviation(scratch.pts, g, band_mm - dr);
     return dev.ordered && dev.max_mm <= band_mm - dr;
   }
 
@@ -456,9 +516,7 @@ class Emitter {
   const Interpretation& in_;
   EmitStats* stats_;
   const EmitOptions& opt_;
-  std::vector<Vec3> pts_;     // scratch: input points of the arc being printed
-  Vec2 ideal_{0, 0};          // scratch: the fitted centre of the arc being printed
-  bool loose_ = false;        // scratch: the arc just composed is loose (PrintedArc::loose)
+  std::vector<std::vector<std::optional<Composed>>> composed_;  // per run and primitive: compose_all()
   double tangent_slack_rad_ = deg_to_rad(opt_.tangent_slack_deg);
   bool header_done_ = false;  // the dialect's arc header is written, or the program set the mode
   std::string out_;

@@ -41,6 +41,9 @@ struct EmitOptions {
   /// The fitter leaves joints at most 0.9 of the G1 angle apart; 0.05 of it per side keeps
   /// the printed joints inside the G1 angle.
   double tangent_slack_deg = 0.025;
+  /// Threads that compose the runs' new blocks (0: one per hardware thread). The text is the
+  /// same for any number.
+  unsigned threads = 1;
 };
 
 /// Writes the program with each run replaced by its fit. Every arc is printed, read back
