@@ -145,18 +145,24 @@ class Emitter {
   }
 
   /// A new block for one primitive, composed apart from the modal state of the output
-  /// before it: its N word (the last covered block's), its motion word (written where a
-  /// covered block states one, or where the output's modal motion differs), and the rest.
+  /// before it: its text with the motion word, which is left out where no covered block
+  /// states one and the output's modal motion is already the block's.
   struct Composed {
-    std::string lead;    ///< the N word, or nothing
-    std::string motion;  ///< the motion word, with the separator before it when after `lead`
-    std::string rest;    ///< the words after the motion word
-    int g = 1;           ///< 1, 2 or 3
+    std::string text;
+    uint32_t motion_at = 0, motion_length = 0;  ///< the motion word (with the separator before it)
+    int g = 1;                                  ///< 1, 2 or 3
     bool motion_written = false;
     bool loose = false;  ///< an arc whose printed centre could not keep its end tangents (PrintedArc::loose)
-    /// The block's text after output whose modal motion is `out_motion` (G ×10).
-    std::string text(int out_motion) const {
-      return motion_written || out_motion != g * 10 ? lead + motion + rest : lead + rest;
+    bool with_motion(int out_motion) const { return motion_written || out_motion != g * 10; }
+    /// The length of the block's text after output whose modal motion is `out_motion` (G ×10).
+    size_t size(int out_motion) const { return text.size() - (with_motion(out_motion) ? 0 : motion_length); }
+    void append_to(std::string& out, int out_motion) const {
+      if (with_motion(out_motion)) {
+        out += text;
+        return;
+      }
+      out.append(text, 0, motion_at);
+      out.append(text, motion_at + motion_length);
     }
   };
 
@@ -204,21 +210,16 @@ class Emitter {
       const Primitive& pr = fit.prims[i];
       uint32_t e = pr.end_vertex;
       bool arc = pr.kind == Primitive::Kind::Arc;
-      std::optional<std::string> text;
-      bool loose = false;
+      // The block as composed, or composed again without spaces where too long.
+      const Composed* text = nullptr;
+      std::optional<Composed> narrow;
       if (arc || e > a + 1) {
-        if (const std::optional<Composed>& wide = composed[i]) {
-          text = wide->text(out_motion_);
-          loose = wide->loose;
-        }
-        if (text && text->size() > d().max_line_length) {
-          text.reset();
-          if (const std::optional<Composed> narrow = compose(run, fr, a, pr, true, scratch)) {
-            if (std::string t = narrow->text(out_motion_); t.size() <= d().max_line_length) {
-              text = std::move(t);
-              loose = narrow->loose;
-            }
-          }
+        const std::optional<Composed>& wide = composed[i];
+        if (wide && wide->size(out_motion_) <= d().max_line_length) {
+          text = &*wide;
+        } else if (wide && (narrow = compose(run, fr, a, pr, true, scratch)) &&
+                   narrow->size(out_motion_) <= d().max_line_length) {
+          text = &*narrow;
         }
         if (!text && stats_) ++(arc ? stats_->arcs_unprintable : stats_->long_lines_kept);
         if (!text) rule_joints(e);
@@ -234,11 +235,11 @@ class Emitter {
           plane_selected = true;
         }
         const Block& last = p_.blocks[in_.moves[run.first_move + e - 1].block];
-        out_ += *text;
+        text->append_to(out_, out_motion_);
         out_.append(p_.eol(last));
         out_motion_ = arc ? (pr.ccw != flip(run.plane) ? 30 : 20) : 10;
         if (stats_) ++(arc ? stats_->arcs_out : stats_->lines_out);
-        if (arc && loose) rule_joints(e);
+        if (arc && text->loose) rule_joints(e);
       } else {
         // The input's own blocks: always readable, always on the path.
         for (uint32_t k = a; k < e; ++k) {
@@ -310,9 +311,12 @@ class Emitter {
     out.g = arc ? (pr.ccw != flip(run.plane) ? 3 : 2) : 1;
     // Modal motion is not repeated where the input does not repeat it (see Composed).
     out.motion_written = motion_written;
-    if (const Word* n = p_.find(last, 'N'); n && n == p_.words_begin(last)) out.lead = p_.raw(last, *n);
-    out.motion = (out.lead.empty() ? "" : sep) + st.motion(out.g);
-    std::string& s = out.rest;
+    std::string& s = out.text;
+    if (const Word* n = p_.find(last, 'N'); n && n == p_.words_begin(last)) s += p_.raw(last, *n);
+    out.motion_at = uint32_t(s.size());
+    if (!s.empty()) s += sep;
+    s += st.motion(out.g);
+    out.motion_length = uint32_t(s.size()) - out.motion_at;
     const AxisValues& from = run.vertex(in_, a);
     const AxisValues& to = run.vertex(in_, e);
     // End point words, and the end point as the controller reads them (mm).
