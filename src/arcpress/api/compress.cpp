@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <iterator>
+#include <numeric>
 
 #include "arcpress/core/error.hpp"
 #include "arcpress/core/workers.hpp"
@@ -71,12 +72,17 @@ std::vector<FitResult> fit_runs(const Interpretation& in, const std::vector<Run>
     });
     std::move(got.begin(), got.end(), fits.begin() + c.first_run);
   };
-  // Each worker takes the next chain not yet taken, so a few long ones do not hold the rest
-  // back; results land in their runs' places, so the order never depends on the timing.
+  // Each worker takes the next chain not yet taken, longest first, so a few long ones do not
+  // hold the rest back at the end; results land in their runs' places, so the order never
+  // depends on the timing.
+  std::vector<size_t> order(chains.size());
+  std::iota(order.begin(), order.end(), size_t(0));
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t x, size_t y) { return chains[x].move_count > chains[y].move_count; });
   std::atomic<size_t> next{0};
   run_workers(worker_count(opt.threads, chains.size()), [&](size_t) {
     try {
-      for (size_t i; (i = next.fetch_add(1)) < chains.size();) fit_one(i);
+      for (size_t i; (i = next.fetch_add(1)) < chains.size();) fit_one(order[i]);
     } catch (...) {  // the fitter does not throw; an allocation can: the others stop too
       next = chains.size();
       throw;
