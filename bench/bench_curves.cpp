@@ -2,7 +2,7 @@
 // segments out, measured deviation, largest tangent change at smooth joints, time per curve.
 // Then contours of the kind CAM writes, against the lines and arcs that drew them, and the
 // fitter's throughput on the corpus runs. Figures only; nothing here is a test.
-// Usage: bench_curves [REPEATS]
+// Usage: bench_curves [REPEATS] [--corpus]   (--corpus: the throughput on the corpus alone)
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -14,6 +14,7 @@
 #include <functional>
 #include <iterator>
 #include <random>
+#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -211,6 +212,7 @@ Shape random_contour(unsigned seed) {
 
 int main(int argc, char** argv) {
   int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 5;
+  const bool corpus_only = argc > 2 && std::string_view(argv[2]) == "--corpus";
   std::vector<Curve> curves = {
       {"bezier1", [](double t) { return bezier({1, 1}, {5, 1}, {1, 2.75}, t); }, 0, 1, 1000, 5},
       {"bezier2", [](double t) { return bezier({0.54, 3.40}, {7.22, 3.61}, {7.39, 3.14}, t); }, 0, 1, 1000, 2},
@@ -227,116 +229,118 @@ int main(int argc, char** argv) {
       {"loop", [](double t) { return Vec2(10 * (t * t * t - t) / (t * t + 1), 10 * (t * t - 1) / (t * t + 1)); }, -2, 2,
        1000, 7},
   };
-  fmt::print("Xu 2021 test curves, --min-radius 0 (B-splines: cubic, clamped uniform knots, the paper's control points)\n");
-  fmt::print("Xu's ε bounds a mean square; 'estimate' is the asymptotic G1 count under a max-deviation band;\n");
-  fmt::print("bounds: the fewest lines and arcs joined at vertices with every vertex in the band;\n");
-  fmt::print("'C0' tangent or not (at 0.01 mm only, where the paper's counts are compared: seconds on plum),\n");
-  fmt::print("'G1' tangent within the G1 angle and at most half a turn each (no fit joined so has fewer)\n");
-  fmt::print("stream, lowe (seed methods, tangent only where their adjustment reaches): segments/forced kinks\n");
-  fmt::print("{:<9} {:>6} {:>8} {:>6} {:>6} {:>6} {:>9} {:>5} {:>5} {:>10} {:>10} {:>8} {:>8} {:>7} {:>9} {:>7} {:>8} {:>8}\n", "curve",
-             "points", "tol mm", "segs", "arcs", "Xu", "estimate", "C0", "G1", "max dev", "max kink", "forced", "ms", "global",
-             "global ms", "greedy", "stream", "lowe");
-  for (const Curve& c : curves) {
-    const std::vector<Vec2> pts = samples(c);
-    const std::string text = program(pts);
-    const double rate_integral = curvature_rate_integral(c);
-    for (double tol : {0.01, 0.005, 0.001}) {
-      CompressOptions opt;
-      opt.fit.tolerance_mm = tol;
-      opt.fit.min_radius_mm = 0;  // Xu's problem has no smallest radius (plum's tips are 0.009 mm)
-      DiagnosticSink sink;
-      CompressResult r = compress(c.name, text, opt, sink);  // with verification, for the figures
-      opt.verify = false;
-      double best = 1e9;
-      for (int k = 0; k < repeats; ++k) {
-        DiagnosticSink s2;
-        auto t0 = clk::now();
-        CompressResult q = compress(c.name, text, opt, s2);
-        best = std::min(best, std::chrono::duration<double, std::milli>(clk::now() - t0).count());
-      }
-      opt.fit.method = FitOptions::Method::Global;  // the wider search, and its time
-      double global_ms = 1e9;
-      CompressResult gl;
-      for (int k = 0; k < repeats; ++k) {
-        DiagnosticSink s6;
-        auto t0 = clk::now();
-        gl = compress(c.name, text, opt, s6);
-        global_ms = std::min(global_ms, std::chrono::duration<double, std::milli>(clk::now() - t0).count());
-      }
-      opt.fit.method = FitOptions::Method::Greedy;  // segments the one-step method needs, for comparison
-      DiagnosticSink s3;
-      CompressResult g = compress(c.name, text, opt, s3);
-      opt.fit.method = FitOptions::Method::Stream;  // ... and the seeds' methods, whose joints may break
-      DiagnosticSink s4;
-      CompressResult st = compress(c.name, text, opt, s4);
-      opt.fit.method = FitOptions::Method::Lowe;
-      DiagnosticSink s5;
-      CompressResult lw = compress(c.name, text, opt, s5);
-      auto seed = [](const CompressResult& x) {
-        return fmt::format("{}/{}", x.stats.lines_out + x.stats.arcs_out, x.forced_kinks);
-      };
-      fmt::print("{:<9} {:>6} {:>8.3f} {:>6} {:>6} {:>6} {:>9.1f} {:>5} {:>5} {:>10.6f} {:>9.3f}° {:>8} {:>8.2f} {:>7} {:>9.2f} {:>7} {:>8} {:>8}\n", c.name,
-                 c.samples, tol, r.stats.lines_out + r.stats.arcs_out, r.stats.arcs_out,
-                 tol == 0.01 ? std::to_string(c.xu_arcs) : "", 0.200 * std::cbrt(1 / tol) * rate_integral, tol == 0.01 ? std::to_string(min_primitive_count(pts, tol)) : "", min_g1_primitive_count(pts, tol, opt.fit.g1_angle_deg),
-                 r.comparison.max_deviation_mm,
-                 r.comparison.max_smooth_kink_deg, r.forced_kinks, best, gl.stats.lines_out + gl.stats.arcs_out,
-                 global_ms, g.stats.lines_out + g.stats.arcs_out,
-                 seed(st), seed(lw));
-    }
-  }
-
-  // CAM contours: blocks (and forced kinks) per method against the lines and arcs that drew them.
-  fmt::print("\nCAM contours in G1 moves at 0.01 mm: blocks/forced kinks; 'drawn': the lines and arcs that drew them\n");
-  fmt::print("{:<24} {:>6} {:>6} {:>9} {:>9} {:>9} {:>10}\n", "contour", "moves", "drawn", "arcs", "global", "greedy",
-             "max dev");
-  for (const Shape& shape : cam_shapes()) {
-    auto run = [&](FitOptions::Method m) {
-      CompressOptions opt;
-      opt.fit.method = m;
-      DiagnosticSink sink;
-      return compress(shape.name, shape.text(), opt, sink);
-    };
-    const CompressResult d = run(FitOptions::Method::Arcs), gl = run(FitOptions::Method::Global),
-                         gr = run(FitOptions::Method::Greedy);
-    auto cell = [](const CompressResult& r) { return fmt::format("{}/{}", r.stats.lines_out + r.stats.arcs_out, r.forced_kinks); };
-    fmt::print("{:<24} {:>6} {:>6} {:>9} {:>9} {:>9} {:>10.6f}\n", shape.name, shape.pts.size() - 1, shape.drawn, cell(d),
-               cell(gl), cell(gr), d.comparison.max_deviation_mm);
-  }
-
-  // Random CAM contours: how often, and by how much, each method needs more blocks than drew
-  // the contour (two arcs the same way with close radii may also come out as one).
-  {
-    const unsigned count = 200;
-    struct Sum {
-      size_t blocks = 0, over = 0, most = 0, kinks = 0;
-    };
-    std::array<Sum, 3> sums;
-    size_t moves = 0, drawn = 0;
-    double worst_dev = 0;
-    for (unsigned seed = 1; seed <= count; ++seed) {
-      const Shape shape = random_contour(seed);
-      moves += shape.pts.size() - 1;
-      drawn += shape.drawn;
-      const std::array methods{FitOptions::Method::Arcs, FitOptions::Method::Global, FitOptions::Method::Greedy};
-      for (size_t m = 0; m < methods.size(); ++m) {
+  if (!corpus_only) {
+    fmt::print("Xu 2021 test curves, --min-radius 0 (B-splines: cubic, clamped uniform knots, the paper's control points)\n");
+    fmt::print("Xu's ε bounds a mean square; 'estimate' is the asymptotic G1 count under a max-deviation band;\n");
+    fmt::print("bounds: the fewest lines and arcs joined at vertices with every vertex in the band;\n");
+    fmt::print("'C0' tangent or not (at 0.01 mm only, where the paper's counts are compared: seconds on plum),\n");
+    fmt::print("'G1' tangent within the G1 angle and at most half a turn each (no fit joined so has fewer)\n");
+    fmt::print("stream, lowe (seed methods, tangent only where their adjustment reaches): segments/forced kinks\n");
+    fmt::print("{:<9} {:>6} {:>8} {:>6} {:>6} {:>6} {:>9} {:>5} {:>5} {:>10} {:>10} {:>8} {:>8} {:>7} {:>9} {:>7} {:>8} {:>8}\n", "curve",
+               "points", "tol mm", "segs", "arcs", "Xu", "estimate", "C0", "G1", "max dev", "max kink", "forced", "ms", "global",
+               "global ms", "greedy", "stream", "lowe");
+    for (const Curve& c : curves) {
+      const std::vector<Vec2> pts = samples(c);
+      const std::string text = program(pts);
+      const double rate_integral = curvature_rate_integral(c);
+      for (double tol : {0.01, 0.005, 0.001}) {
         CompressOptions opt;
-        opt.fit.method = methods[m];
+        opt.fit.tolerance_mm = tol;
+        opt.fit.min_radius_mm = 0;  // Xu's problem has no smallest radius (plum's tips are 0.009 mm)
         DiagnosticSink sink;
-        const CompressResult r = compress("random contour", shape.text(), opt, sink);
-        const size_t blocks = r.stats.lines_out + r.stats.arcs_out;
-        sums[m].blocks += blocks;
-        sums[m].kinks += r.forced_kinks;
-        sums[m].over += blocks > shape.drawn;
-        sums[m].most = std::max(sums[m].most, blocks > shape.drawn ? blocks - shape.drawn : 0);
-        worst_dev = std::max(worst_dev, r.comparison.max_deviation_mm);
+        CompressResult r = compress(c.name, text, opt, sink);  // with verification, for the figures
+        opt.verify = false;
+        double best = 1e9;
+        for (int k = 0; k < repeats; ++k) {
+          DiagnosticSink s2;
+          auto t0 = clk::now();
+          CompressResult q = compress(c.name, text, opt, s2);
+          best = std::min(best, std::chrono::duration<double, std::milli>(clk::now() - t0).count());
+        }
+        opt.fit.method = FitOptions::Method::Global;  // the wider search, and its time
+        double global_ms = 1e9;
+        CompressResult gl;
+        for (int k = 0; k < repeats; ++k) {
+          DiagnosticSink s6;
+          auto t0 = clk::now();
+          gl = compress(c.name, text, opt, s6);
+          global_ms = std::min(global_ms, std::chrono::duration<double, std::milli>(clk::now() - t0).count());
+        }
+        opt.fit.method = FitOptions::Method::Greedy;  // segments the one-step method needs, for comparison
+        DiagnosticSink s3;
+        CompressResult g = compress(c.name, text, opt, s3);
+        opt.fit.method = FitOptions::Method::Stream;  // ... and the seeds' methods, whose joints may break
+        DiagnosticSink s4;
+        CompressResult st = compress(c.name, text, opt, s4);
+        opt.fit.method = FitOptions::Method::Lowe;
+        DiagnosticSink s5;
+        CompressResult lw = compress(c.name, text, opt, s5);
+        auto seed = [](const CompressResult& x) {
+          return fmt::format("{}/{}", x.stats.lines_out + x.stats.arcs_out, x.forced_kinks);
+        };
+        fmt::print("{:<9} {:>6} {:>8.3f} {:>6} {:>6} {:>6} {:>9.1f} {:>5} {:>5} {:>10.6f} {:>9.3f}° {:>8} {:>8.2f} {:>7} {:>9.2f} {:>7} {:>8} {:>8}\n", c.name,
+                   c.samples, tol, r.stats.lines_out + r.stats.arcs_out, r.stats.arcs_out,
+                   tol == 0.01 ? std::to_string(c.xu_arcs) : "", 0.200 * std::cbrt(1 / tol) * rate_integral, tol == 0.01 ? std::to_string(min_primitive_count(pts, tol)) : "", min_g1_primitive_count(pts, tol, opt.fit.g1_angle_deg),
+                   r.comparison.max_deviation_mm,
+                   r.comparison.max_smooth_kink_deg, r.forced_kinks, best, gl.stats.lines_out + gl.stats.arcs_out,
+                   global_ms, g.stats.lines_out + g.stats.arcs_out,
+                   seed(st), seed(lw));
       }
     }
-    auto cell = [](const Sum& x) { return fmt::format("{}/{}", x.blocks, x.kinks); };
-    auto over = [&](const Sum& x) { return fmt::format("{} (+{})", x.over, x.most); };
-    fmt::print("{:<24} {:>6} {:>6} {:>9} {:>9} {:>9} {:>10.6f}\n", fmt::format("{} random contours", count), moves,
-               drawn, cell(sums[0]), cell(sums[1]), cell(sums[2]), worst_dev);
-    fmt::print("{:<24} {:>6} {:>6} {:>9} {:>9} {:>9}\n", "  contours over drawn", "", "", over(sums[0]), over(sums[1]),
-               over(sums[2]));
+
+    // CAM contours: blocks (and forced kinks) per method against the lines and arcs that drew them.
+    fmt::print("\nCAM contours in G1 moves at 0.01 mm: blocks/forced kinks; 'drawn': the lines and arcs that drew them\n");
+    fmt::print("{:<24} {:>6} {:>6} {:>9} {:>9} {:>9} {:>10}\n", "contour", "moves", "drawn", "arcs", "global", "greedy",
+               "max dev");
+    for (const Shape& shape : cam_shapes()) {
+      auto run = [&](FitOptions::Method m) {
+        CompressOptions opt;
+        opt.fit.method = m;
+        DiagnosticSink sink;
+        return compress(shape.name, shape.text(), opt, sink);
+      };
+      const CompressResult d = run(FitOptions::Method::Arcs), gl = run(FitOptions::Method::Global),
+                           gr = run(FitOptions::Method::Greedy);
+      auto cell = [](const CompressResult& r) { return fmt::format("{}/{}", r.stats.lines_out + r.stats.arcs_out, r.forced_kinks); };
+      fmt::print("{:<24} {:>6} {:>6} {:>9} {:>9} {:>9} {:>10.6f}\n", shape.name, shape.pts.size() - 1, shape.drawn, cell(d),
+                 cell(gl), cell(gr), d.comparison.max_deviation_mm);
+    }
+
+    // Random CAM contours: how often, and by how much, each method needs more blocks than drew
+    // the contour (two arcs the same way with close radii may also come out as one).
+    {
+      const unsigned count = 200;
+      struct Sum {
+        size_t blocks = 0, over = 0, most = 0, kinks = 0;
+      };
+      std::array<Sum, 3> sums;
+      size_t moves = 0, drawn = 0;
+      double worst_dev = 0;
+      for (unsigned seed = 1; seed <= count; ++seed) {
+        const Shape shape = random_contour(seed);
+        moves += shape.pts.size() - 1;
+        drawn += shape.drawn;
+        const std::array methods{FitOptions::Method::Arcs, FitOptions::Method::Global, FitOptions::Method::Greedy};
+        for (size_t m = 0; m < methods.size(); ++m) {
+          CompressOptions opt;
+          opt.fit.method = methods[m];
+          DiagnosticSink sink;
+          const CompressResult r = compress("random contour", shape.text(), opt, sink);
+          const size_t blocks = r.stats.lines_out + r.stats.arcs_out;
+          sums[m].blocks += blocks;
+          sums[m].kinks += r.forced_kinks;
+          sums[m].over += blocks > shape.drawn;
+          sums[m].most = std::max(sums[m].most, blocks > shape.drawn ? blocks - shape.drawn : 0);
+          worst_dev = std::max(worst_dev, r.comparison.max_deviation_mm);
+        }
+      }
+      auto cell = [](const Sum& x) { return fmt::format("{}/{}", x.blocks, x.kinks); };
+      auto over = [&](const Sum& x) { return fmt::format("{} (+{})", x.over, x.most); };
+      fmt::print("{:<24} {:>6} {:>6} {:>9} {:>9} {:>9} {:>10.6f}\n", fmt::format("{} random contours", count), moves,
+                 drawn, cell(sums[0]), cell(sums[1]), cell(sums[2]), worst_dev);
+      fmt::print("{:<24} {:>6} {:>6} {:>9} {:>9} {:>9}\n", "  contours over drawn", "", "", over(sums[0]), over(sums[1]),
+                 over(sums[2]));
+    }
   }
 
   // Throughput on the corpus: whole pipeline without verification, per input point of the runs.
