@@ -125,7 +125,7 @@ class RunFitter {
   /// meets the next or a fixed move), the tangent going on there.
   RunFitter(const Interpretation& in, const Run& run, const FitOptions& o, std::vector<FixedMove> fixed = {},
             std::vector<uint8_t> pinned = {})
-      : o_(o), at_(vertices_kept(in, run, o, fixed, pinned)), n_(uint32_t(at_.size() - 1)) {
+      : o_(o), at_(vertices_kept(in, run, fixed, pinned)), n_(uint32_t(at_.size() - 1)) {
     fixed.resize(run.move_count);
     if (!pinned.empty())
       for (uint32_t v = 0; v <= n_; ++v) pinned[v] = pinned[at_[v]];
@@ -280,15 +280,14 @@ class RunFitter {
   /// (after a move that goes nowhere: no direction, so no corner either), which the
   /// primitive over their neighbours steps over. Where such a vertex must stay
   /// (the run's end, a pinned vertex) the one it repeats goes instead, unless that must stay
-  /// too. The Keep method keeps them all.
-  static std::vector<uint32_t> vertices_kept(const Interpretation& in, const Run& run, const FitOptions& o,
+  /// too. (The keep method never gets here: fit_chain() keeps every move itself.)
+  static std::vector<uint32_t> vertices_kept(const Interpretation& in, const Run& run,
                                              const std::vector<FixedMove>& fixed, const std::vector<uint8_t>& pinned) {
     const uint32_t n = run.move_count;
     auto must_stay = [&](uint32_t v) { return v == 0 || v == n || (!pinned.empty() && pinned[v]); };
     std::vector<uint32_t> at{0};
     for (uint32_t v = 1; v <= n; ++v) {
-      const bool nowhere = o.method != FitOptions::Method::Keep && (fixed.empty() || !fixed[v - 1].fixed) &&
-                           in.goes_nowhere(run.first_move + v - 1);
+      const bool nowhere = (fixed.empty() || !fixed[v - 1].fixed) && in.goes_nowhere(run.first_move + v - 1);
       if (!nowhere) at.push_back(v);
       else if (must_stay(v) && !must_stay(at.back())) at.back() = v;
       else if (must_stay(v)) at.push_back(v);
@@ -299,7 +298,7 @@ class RunFitter {
  private:
   std::vector<Chosen> fit_kept() {
     std::vector<Chosen> out;
-    if (o_.method == FitOptions::Method::Keep || n_ < 2) return keep();
+    if (n_ < 2) return keep();
     // Stretches run from corner to corner, or to a fixed move; the tangent is free at a
     // corner and follows the fixed move's direction where the path is smooth.
     bool after_fitted = false;  // the last primitive in `out` was fitted, not fixed
@@ -1989,6 +1988,15 @@ double normal_axis_spread_mm(const FitOptions& o) {
 std::vector<FitResult> fit_chain(const Interpretation& in, const RunChain& chain, std::span<const Run> runs,
                                  const std::function<FitOptions(const Run&)>& options_for) {
   std::span<const Run> own(&runs[chain.first_run], chain.run_count);
+  // The keep method: every move its own line, with none of the fit's preparation (the
+  // corner rule, the vertices where a primitive must end), so that the pipeline it times is
+  // the one without the fitter.
+  if (chain.run_count > 0 && options_for(own[0]).method == FitOptions::Method::Keep) {
+    std::vector<FitResult> kept(own.size());
+    for (size_t r = 0; r < own.size(); ++r)
+      for (uint32_t v = 1; v <= own[r].move_count; ++v) kept[r].prims.push_back({v, Primitive::Kind::Line});
+    return kept;
+  }
   const Move& lead = in.moves[chain.first_move];
   auto base = [&](size_t r) { return own[r].first_move - chain.first_move; };
   auto direction = [](const Vec2& d) -> std::optional<Vec2> {
