@@ -297,8 +297,9 @@ class RunFitter {
 
  private:
   std::vector<Chosen> fit_kept() {
-    std::vector<Chosen> out;
     if (n_ < 2) return keep();
+    std::vector<Chosen> out;
+    out.reserve(n_);  // at most one primitive per move
     // Stretches run from corner to corner, or to a fixed move; the tangent is free at a
     // corner and follows the fixed move's direction where the path is smooth.
     bool after_fitted = false;  // the last primitive in `out` was fitted, not fixed
