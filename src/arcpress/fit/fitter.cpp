@@ -123,13 +123,13 @@ class RunFitter {
   /// `run` spans the moves to fit; `fixed` (per move, empty: none) says which stay as they
   /// are, and `pinned` (per vertex, empty: none) where a primitive must end (where one run
   /// meets the next or a fixed move), the tangent going on there.
-  RunFitter(const Interpretation& in, const Run& run, const FitOptions& o, std::vector<FixedMove> fixed = {},
+  RunFitter(const Interpretation& in, const Run& run, const FitOptions& o, const std::vector<FixedMove>& fixed = {},
             std::vector<uint8_t> pinned = {})
       : o_(o), at_(vertices_kept(in, run, fixed, pinned)), n_(uint32_t(at_.size() - 1)) {
-    fixed.resize(run.move_count);
     if (!pinned.empty())
       for (uint32_t v = 0; v <= n_; ++v) pinned[v] = pinned[at_[v]];
-    for (uint32_t v = 0; v < n_; ++v) fixed_.push_back(fixed[at_[v]]);
+    fixed_.reserve(n_);
+    for (uint32_t v = 0; v < n_; ++v) fixed_.push_back(fixed.empty() ? FixedMove{} : fixed[at_[v]]);
     auto vertex = [&](uint32_t v) -> const AxisValues& { return run.vertex(in, at_[v]); };
     auto ax = axes_of(run.plane);
     p_.resize(n_ + 1);
@@ -2069,7 +2069,7 @@ std::vector<FitResult> fit_chain(const Interpretation& in, const RunChain& chain
     }
     for (uint32_t m = 0; m < chain.move_count; ++m)
       if (fixed[m].fixed) pinned[m] = pinned[m + 1] = 1;
-    std::vector<Chosen> fitted = RunFitter(in, all, options_for(all), fixed, pinned).fit();
+    std::vector<Chosen> fitted = RunFitter(in, all, options_for(all), fixed, std::move(pinned)).fit();
     // Back to each run's own vertices. A tangent break at the start of a fixed move is the
     // joint at the end of the run before it, or at the start of the run it begins.
     size_t r = 0;  // the first run that does not end at or before `from`
