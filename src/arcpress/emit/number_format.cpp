@@ -4,24 +4,18 @@
 
 #include <cmath>
 
+#include "arcpress/core/decimal.hpp"
+
 namespace arcpress {
 
-namespace {
-/// 10^decimals, exact up to 10^22; from the table where the printing below handles it.
-double scale_of(int decimals) {
-  static constexpr double kPow10[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
-  return decimals >= 0 && decimals <= 15 ? kPow10[decimals] : std::pow(10.0, decimals);
-}
-}  // namespace
-
 double rounded(double value, int decimals) {
-  const double scale = scale_of(decimals);
+  const double scale = pow10(decimals);
   return std::round(value * scale) / scale;
 }
 
 std::string format_number(double value, const NumberStyle& style) {
   const int dec = style.decimals;
-  const double scaled = std::round(value * scale_of(dec));
+  const double scaled = std::round(value * pow10(dec));
   std::string s;
   if (dec >= 0 && dec <= 15 && std::abs(scaled) < 1e15) {
     // The rounded value is the integer `scaled` over 10^dec: its digits, with the point put
@@ -42,7 +36,7 @@ std::string format_number(double value, const NumberStyle& style) {
       if (i == dec && dec > 0) s += '.';
     }
   } else {
-    double v = scaled / scale_of(dec);
+    double v = scaled / pow10(dec);
     if (v == 0) v = 0;  // no "-0"
     s = fmt::format("{:.{}f}", v, dec);
   }

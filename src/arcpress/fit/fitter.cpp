@@ -1718,7 +1718,7 @@ class RunFitter {
   /// through the next vertices, of the first chord and of the input around `a`, each turned
   /// by 0.5° to 4° either way): those missed the narrow ranges that reach furthest and the
   /// turns the band allows over a short first move (the corpus with default options:
-  /// 320 706 blocks and 4 024 forced kinks then, 319 352 and 3 396 now).
+  /// 320 706 blocks and 4 024 forced kinks from the fan, 319 352 and 3 396 from the ranges).
   void start_tangents(uint32_t a, uint32_t limit, std::vector<Vec2>& out) const {
     const size_t first = out.size();
     auto add = [&](const Vec2& T) {

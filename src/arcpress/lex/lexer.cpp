@@ -6,11 +6,10 @@
 #include <cstdlib>
 #include <string>
 
+#include "arcpress/core/decimal.hpp"
+
 namespace arcpress {
 namespace {
-
-constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
-                             1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
 
 inline bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
 inline bool is_digit(char c) { return c >= '0' && c <= '9'; }
@@ -213,7 +212,7 @@ class LineLexer {
       opaque(i, "E-LEX-NUMBER", fmt::format("word '{}' has no number (found {})", w.letter, found));
       return false;
     }
-    if (!slow && decimals <= 22) {
+    if (!slow && decimals <= kExactPow10Max) {
       w.value = double(mant) / kPow10[decimals];
     } else {
       std::string buf;
