@@ -205,7 +205,8 @@ Deviation arc_deviation_by_angles(std::span<const Vec3> pts, const ArcGeom& arc,
   auto angle_along = [&](const Vec3& p) {  // angle from the start in the arc's direction, [0, 2π)
     double a = std::atan2(p.y() - arc.center.y(), p.x() - arc.center.x()) - arc.start_angle;
     a *= dir;
-    a = std::fmod(a, 2 * kPi);
+    // (Both angles lie in [-π, π]: the remainder is needed only at ±2π.)
+    if (std::abs(a) >= 2 * kPi) a = std::fmod(a, 2 * kPi);
     if (a < 0) a += 2 * kPi;
     return a;
   };
@@ -216,7 +217,9 @@ Deviation arc_deviation_by_angles(std::span<const Vec3> pts, const ArcGeom& arc,
     }
   };
   const size_t n = pts.size();
-  std::vector<double> phi(n);
+  // Scratch kept between calls: the fitter measures many candidates.
+  thread_local std::vector<double> phi, radial, off;
+  phi.resize(n);
   phi[0] = 0;
   phi[n - 1] = total;
   for (size_t m = 1; m + 1 < n; ++m) {
@@ -230,7 +233,7 @@ Deviation arc_deviation_by_angles(std::span<const Vec3> pts, const ArcGeom& arc,
   if (!dev.ordered && stop_above_mm < HUGE_VAL) return dev;
   // Input vertices to the arc (helical height interpolated by angle).
   const bool flat = arc.h0 == arc.h1;
-  std::vector<double> radial(n, 0.0);  // |distance to the centre - r| of each vertex
+  radial.resize(n);  // |distance to the centre - r| of each vertex
   for (size_t m = 0; m < n; ++m) {
     Vec2 rel(pts[m].x() - arc.center.x(), pts[m].y() - arc.center.y());
     radial[m] = std::abs(rel.norm() - r);
@@ -269,15 +272,29 @@ Deviation arc_deviation_by_angles(std::span<const Vec3> pts, const ArcGeom& arc,
   // Arc to input: each piece of the arc between two vertices' angles against that segment,
   // at the piece ends, its middle, and where the arc runs parallel to the segment.
   if (dev.ordered && total > 0) {
+    // Each vertex's distance to the arc's point at its angle (the vertices advance, so each
+    // lies within the sweep).
+    off.resize(n);
+    for (size_t m = 0; m < n; ++m) {
+      const double dz = pts[m].z() - (arc.h0 + (arc.h1 - arc.h0) * (phi[m] / total));
+      off[m] = std::sqrt(radial[m] * radial[m] + dz * dz);
+    }
+    // Below a finite stop, a piece that cannot reach it is not measured either.
+    const bool stops = stop_above_mm < HUGE_VAL;
     for (size_t m = 0; m + 1 < n; ++m) {
       double p0 = phi[m], p1 = phi[m + 1];
-      // Cheap bound first: the arc piece is within its sagitta of its own chord, and that
-      // chord is within the vertices' radial distances of the input segment. Only a piece
-      // whose bound could raise the maximum is measured exactly.
-      // (Planar pieces only: a helix is always measured exactly.)
+      // Cheap bound first: the arc piece is within a distance of its own chord, and that
+      // chord within its end vertices' distances of the input segment. Only a piece whose
+      // bound could raise the maximum (or reach the stop) is measured exactly. A flat piece
+      // lies within its sagitta of the chord. A helix piece's point at angle p0 + s·Δ lies at
+      // the height of the chord's point at share s (both heights run linearly), and in the
+      // plane within r·((1 - cos(Δ/2)) + (Δ/2 - sin(Δ/2))) of it (across and along the chord).
+      const double skip_at = stops ? std::max(dev.max_mm, stop_above_mm) : dev.max_mm;
+      const double half = 0.5 * (p1 - p0);
       bool planar = flat && pts[m].z() == arc.h0 && pts[m + 1].z() == arc.h0;
-      double sagitta = r * (1 - std::cos(0.5 * (p1 - p0)));
-      if (planar && sagitta + std::max(radial[m], radial[m + 1]) <= dev.max_mm) continue;
+      double sagitta = r * (1 - std::cos(half));
+      if (planar && sagitta + std::max(radial[m], radial[m + 1]) <= skip_at) continue;
+      if (!planar && sagitta + r * (half - std::sin(half)) + std::max(off[m], off[m + 1]) <= skip_at) continue;
       double cand[4] = {p0, p1, 0.5 * (p0 + p1), -1};
       Vec2 ab(pts[m + 1].x() - pts[m].x(), pts[m + 1].y() - pts[m].y());
       if (ab.squaredNorm() > 0) {
@@ -286,7 +303,7 @@ Deviation arc_deviation_by_angles(std::span<const Vec3> pts, const ArcGeom& arc,
         for (double s : {1.0, -1.0}) {
           double a = std::atan2(s * nrm.y(), s * nrm.x()) - arc.start_angle;
           a *= dir;
-          a = std::fmod(a, 2 * kPi);
+          if (std::abs(a) >= 2 * kPi) a = std::fmod(a, 2 * kPi);
           if (a < 0) a += 2 * kPi;
           if (a > p0 && a < p1) cand[3] = a;
         }
