@@ -197,6 +197,62 @@ Deviation arc_deviation(std::span<const Vec3> pts, const ArcGeom& arc, double st
   return arc_deviation_by_angles(pts, arc, stop_above_mm);
 }
 
+namespace {
+
+/// How close the measure off the arc's plane comes to the largest gap (mm).
+constexpr double kOffPlaneSlackMm = 1e-9;
+/// Stretches one such measure may halve; past them the bound that is left stands for the
+/// gap (never less than the true one).
+constexpr int kOffPlaneSplits = 400;
+
+/// The largest |V(s)| for s in [at.front(), at.back()] where it could exceed `floor`,
+/// within kOffPlaneSlackMm (below `floor`: some value not above it), for a gap V between
+/// two points moving along a segment and an arc. `gap(s)` gives |V(s)| and |V'(s)|; |V''|
+/// is at most `bend`. Taken at the points `at` (ascending), then each stretch is measured at
+/// its middle c and halved while its bound exceeds both `floor` and the largest gap found
+/// by more than the slack. On a stretch of width w, |V'| <= |V'(c)| + bend·w/2 =: L, so on
+/// either half |V| is at most (the larger end value + |V(c)| + L·w/2) / 2, and |V|², whose
+/// second derivative 2|V'|² + 2V·V'' is at most 2L² + 2·that·bend, at most the largest
+/// end value squared + (2L² + 2·that·bend)·(w/2)²/8: the bound is the smaller.
+template <class Gap>
+double largest_gap(std::span<const double> at, double bend, double floor, Gap&& gap) {
+  struct Stretch {
+    double x, y, fx, fy;
+  };
+  thread_local std::vector<Stretch> todo;
+  todo.clear();
+  double fx = gap(at[0]).first, best = fx;
+  for (size_t i = 1; i < at.size(); ++i) {
+    const double fy = gap(at[i]).first;
+    best = std::max(best, fy);
+    if (at[i] > at[i - 1]) todo.push_back({at[i - 1], at[i], fx, fy});
+    fx = fy;
+  }
+  int splits = 0;
+  while (!todo.empty()) {
+    const Stretch st = todo.back();
+    todo.pop_back();
+    const double w = st.y - st.x, c = 0.5 * (st.x + st.y);
+    const auto [fc, slope] = gap(c);
+    best = std::max(best, fc);
+    const double L = slope + bend * w / 2, ends = std::max(st.fx, st.fy);
+    const double lip = 0.5 * (ends + fc + L * w / 2);
+    const double top = std::max(ends, fc);
+    const double bound = std::min(lip, std::sqrt(top * top + (2 * L * L + 2 * lip * bend) * w * w / 32));
+    if (bound <= std::max(floor, best) + kOffPlaneSlackMm) continue;
+    if (++splits > kOffPlaneSplits) {
+      best = std::max(best, bound);
+      for (const Stretch& o : todo) best = std::max(best, 0.5 * (o.fx + o.fy) + bound);  // (crude, and rare)
+      break;
+    }
+    todo.push_back({st.x, c, st.fx, fc});
+    todo.push_back({c, st.y, fc, st.fy});
+  }
+  return best;
+}
+
+}  // namespace
+
 Deviation arc_deviation_by_angles(std::span<const Vec3> pts, const ArcGeom& arc, double stop_above_mm) {
   Deviation dev;
   const double r = arc.radius_mm;
@@ -250,18 +306,66 @@ Deviation arc_deviation_by_angles(std::span<const Vec3> pts, const ArcGeom& arc,
     note(d, m);
     if (dev.max_mm > stop_above_mm) return dev;
   }
-  // Input segments bulge towards the centre: the point of a chord nearest the centre.
+  // Below a finite stop, a piece or segment that cannot reach it is not measured either.
+  const bool stops = stop_above_mm < HUGE_VAL;
+  const bool advancing = dev.ordered && total > 0;
+  const double rise = total > 0 ? (arc.h1 - arc.h0) / total : 0.0;  // mm per radian
+  // Each vertex's distance to the arc's point at its angle (the vertices advance, so each
+  // lies within the sweep).
+  if (advancing) {
+    off.resize(n);
+    for (size_t m = 0; m < n; ++m) {
+      const double dz = pts[m].z() - (arc.h0 + rise * phi[m]);
+      off[m] = std::sqrt(radial[m] * radial[m] + dz * dz);
+    }
+  }
+  // Input segments to the arc. One in the arc's plane is farthest from the circle at its
+  // point nearest the centre (a chord bulges towards the centre). Off the plane (a helix, or
+  // input above or below a flat arc), points of the segment and of the arc's piece between
+  // its vertices' angles are matched by share, and the largest gap between them, which
+  // bounds the distance both ways, is the measure of both.
   for (size_t m = 0; m + 1 < n; ++m) {
     Vec2 a(pts[m].x(), pts[m].y()), b(pts[m + 1].x(), pts[m + 1].y());
     Vec2 ab = b - a;
     double len2 = ab.squaredNorm();
+    const bool planar = flat && pts[m].z() == arc.h0 && pts[m + 1].z() == arc.h0;
+    if (!planar && advancing) {
+      // Its point at share s lies no farther from the arc than from the arc's point at angle
+      // phi[m] + s·Δ, and that point of the arc no farther from the segment (at the
+      // vertices, the gap is each one's distance to the arc's point at its angle, as above).
+      // Cheap bound first: the chord between the arc's points at the vertices' angles, at
+      // share s, lies within the larger of the vertices' gaps of the segment's point, and
+      // within r·((1 - cos(Δ/2)) + (Δ/2 - sin(Δ/2))) of the arc's point in the plane, at its
+      // height (both heights run linearly), across and along the chord.
+      const double delta = phi[m + 1] - phi[m], half = 0.5 * delta;
+      const double reach = r * ((1 - std::cos(half)) + (half - std::sin(half))) + std::max(off[m], off[m + 1]);
+      const double floor = stops ? std::max(dev.max_mm, stop_above_mm) : dev.max_mm;
+      if (reach <= floor) continue;
+      const Vec3 A = pts[m], AB = pts[m + 1] - pts[m];
+      double at[4] = {0.0, 0.5, 1.0, 1.0};
+      size_t count = 3;
+      const double t = len2 > 0 ? (arc.center - a).dot(ab) / len2 : 0.0;
+      if (t > 0 && t < 1) at[count++] = t;
+      std::sort(at, at + count);
+      // V(s) = A + s·AB - H(phi[m] + s·Δ): V' = AB - H'·Δ, |V''| = |H''|·Δ² = r·Δ².
+      auto gap = [&](double s) {
+        const double angle = arc.start_angle + dir * (phi[m] + s * delta);
+        const double c = std::cos(angle), sn = std::sin(angle);
+        const Vec3 h(arc.center.x() + r * c, arc.center.y() + r * sn, arc.h0 + rise * (phi[m] + s * delta));
+        const Vec3 dh(-r * sn * dir, r * c * dir, rise);
+        return std::pair((A + s * AB - h).norm(), (AB - delta * dh).norm());
+      };
+      note(largest_gap(std::span<const double>(at, count), r * delta * delta, floor, gap), m);
+      if (dev.max_mm > stop_above_mm) return dev;
+      continue;
+    }
     if (len2 <= 0) continue;
     double t = (arc.center - a).dot(ab) / len2;
     if (t <= 0 || t >= 1) continue;
     Vec2 foot = a + t * ab;
     double inward = std::max(r - (foot - arc.center).norm(), 0.0);
     double dz = 0;  // heights at the foot: both linear, so compare the interpolations
-    if (!flat || pts[m].z() != arc.h0 || pts[m + 1].z() != arc.h0) {
+    if (!planar) {
       double ph = phi[m] + t * (phi[m + 1] - phi[m]);
       double hz = pts[m].z() + t * (pts[m + 1].z() - pts[m].z());
       dz = hz - arc.point_at(total > 0 ? ph / total : 0).z();
@@ -271,30 +375,17 @@ Deviation arc_deviation_by_angles(std::span<const Vec3> pts, const ArcGeom& arc,
   }
   // Arc to input: each piece of the arc between two vertices' angles against that segment,
   // at the piece ends, its middle, and where the arc runs parallel to the segment.
-  if (dev.ordered && total > 0) {
-    // Each vertex's distance to the arc's point at its angle (the vertices advance, so each
-    // lies within the sweep).
-    off.resize(n);
-    for (size_t m = 0; m < n; ++m) {
-      const double dz = pts[m].z() - (arc.h0 + (arc.h1 - arc.h0) * (phi[m] / total));
-      off[m] = std::sqrt(radial[m] * radial[m] + dz * dz);
-    }
-    // Below a finite stop, a piece that cannot reach it is not measured either.
-    const bool stops = stop_above_mm < HUGE_VAL;
+  if (advancing) {
     for (size_t m = 0; m + 1 < n; ++m) {
+      // (Off the plane, the gaps measured with the segments bound these distances.)
+      if (!flat || pts[m].z() != arc.h0 || pts[m + 1].z() != arc.h0) continue;
       double p0 = phi[m], p1 = phi[m + 1];
-      // Cheap bound first: the arc piece is within a distance of its own chord, and that
-      // chord within its end vertices' distances of the input segment. Only a piece whose
-      // bound could raise the maximum (or reach the stop) is measured exactly. A flat piece
-      // lies within its sagitta of the chord. A helix piece's point at angle p0 + s·Δ lies at
-      // the height of the chord's point at share s (both heights run linearly), and in the
-      // plane within r·((1 - cos(Δ/2)) + (Δ/2 - sin(Δ/2))) of it (across and along the chord).
+      // Cheap bound first: the arc piece lies within its sagitta of its own chord, and that
+      // chord within its end vertices' radial distances of the input segment. Only a piece
+      // whose bound could raise the maximum (or reach the stop) is measured exactly.
       const double skip_at = stops ? std::max(dev.max_mm, stop_above_mm) : dev.max_mm;
-      const double half = 0.5 * (p1 - p0);
-      bool planar = flat && pts[m].z() == arc.h0 && pts[m + 1].z() == arc.h0;
-      double sagitta = r * (1 - std::cos(half));
-      if (planar && sagitta + std::max(radial[m], radial[m + 1]) <= skip_at) continue;
-      if (!planar && sagitta + r * (half - std::sin(half)) + std::max(off[m], off[m + 1]) <= skip_at) continue;
+      double sagitta = r * (1 - std::cos(0.5 * (p1 - p0)));
+      if (sagitta + std::max(radial[m], radial[m + 1]) <= skip_at) continue;
       double cand[4] = {p0, p1, 0.5 * (p0 + p1), -1};
       Vec2 ab(pts[m + 1].x() - pts[m].x(), pts[m + 1].y() - pts[m].y());
       if (ab.squaredNorm() > 0) {
