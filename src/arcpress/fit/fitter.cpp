@@ -118,49 +118,15 @@ struct Cone {
   bool holds(const Vec2& a, const Vec2& b) const { return a.dot(b) > 0 && std::abs(cross2(a, b)) <= sin_rad; }
 };
 
-class RunFitter {
+/// The turns, cones and limits on angles the fitter works with, all from the options' angles
+/// (and method): worked out once per thread for the options last seen, not for each run
+/// (some 30 sines and cosines).
+class FitAngles {
  public:
-  /// `run` spans the moves to fit; `fixed` (per move, empty: none) says which stay as they
-  /// are, and `pinned` (per vertex, empty: none) where a primitive must end (where one run
-  /// meets the next or a fixed move), the tangent going on there.
-  RunFitter(const Interpretation& in, const Run& run, const FitOptions& o, const std::vector<FixedMove>& fixed = {},
-            std::vector<uint8_t> pinned = {})
-      : o_(o), at_(vertices_kept(in, run, fixed, pinned)), n_(uint32_t(at_.size() - 1)) {
-    if (!pinned.empty())
-      for (uint32_t v = 0; v <= n_; ++v) pinned[v] = pinned[at_[v]];
-    fixed_.reserve(n_);
-    for (uint32_t v = 0; v < n_; ++v) fixed_.push_back(fixed.empty() ? FixedMove{} : fixed[at_[v]]);
-    auto vertex = [&](uint32_t v) -> const AxisValues& { return run.vertex(in, at_[v]); };
-    auto ax = axes_of(run.plane);
-    p_.resize(n_ + 1);
-    q_.resize(n_ + 1);
-    middle_.resize(n_);
-    for (uint32_t v = 0; v <= n_; ++v) {
-      const auto& a = vertex(v);
-      p_[v] = Vec3(a[ax.first], a[ax.second], a[ax.normal]);
-      q_[v] = Vec2(a[ax.first], a[ax.second]);
-    }
-    for (uint32_t v = 0; v < n_; ++v) middle_[v] = 0.5 * (q_[v] + q_[v + 1]);
-    // Level: no vertex lies above or below another by more than the scans' test of a climb.
-    const auto [low, high] =
-        std::minmax_element(p_.begin(), p_.end(), [](const Vec3& x, const Vec3& y) { return x.z() < y.z(); });
-    level_ = high->z() - low->z() <= kLengthEpsMm;
-    // The extra axes (A/B/C, U/V/W) that move in the run, their values at each vertex, and
-    // the path length to each vertex they are carried along.
-    for (int x = kA; x < kE; ++x)
-      for (uint32_t v = 1; v <= n_; ++v)
-        if (vertex(v)[x] != vertex(v - 1)[x]) {
-          extra_.push_back(x);
-          break;
-        }
-    if (!extra_.empty()) {
-      length_.assign(n_ + 1, 0.0);
-      for (uint32_t v = 1; v <= n_; ++v) length_[v] = length_[v - 1] + (p_[v] - p_[v - 1]).norm();
-      for (uint32_t v = 0; v <= n_; ++v)
-        for (int x : extra_) extra_values_.push_back(vertex(v)[x]);
-    }
-    arcs_ = o.arcs && (o.extra_axes || extra_.empty());
-    eps_ = o.tolerance_mm * (1.0 - kRoundingReserve);
+  FitAngles() = default;
+  explicit FitAngles(const FitOptions& o)
+      : g1_angle_deg_(o.g1_angle_deg), max_sweep_deg_(o.max_sweep_deg), min_sweep_deg_(o.min_sweep_deg),
+        method_(o.method) {
     line_kink_ = deg_to_rad(o.g1_angle_deg) / 4;
     const double g1 = deg_to_rad(o.g1_angle_deg);
     half_left_ = Turn(kTurnShare * g1);
@@ -202,6 +168,86 @@ class RunFitter {
     max_alpha_ = half_max_sweep >= kPi ? 3.0 : pseudo_angle_of(half_max_sweep);
     min_alpha_ = pseudo_angle_of(std::min(deg_to_rad(o.min_sweep_deg) / 2, kPi));
     line_alpha_ = pseudo_angle_of(line_kink_);
+  }
+
+  /// Those of `o`: this thread's last, or worked out again when `o`'s angles differ.
+  static const FitAngles& of(const FitOptions& o) {
+    thread_local FitAngles last;
+    thread_local bool made = false;
+    if (!made || last.g1_angle_deg_ != o.g1_angle_deg || last.max_sweep_deg_ != o.max_sweep_deg ||
+        last.min_sweep_deg_ != o.min_sweep_deg || last.method_ != o.method) {
+      last = FitAngles(o);
+      made = true;
+    }
+    return last;
+  }
+
+ protected:
+  double g1_angle_deg_ = 0, max_sweep_deg_ = 0, min_sweep_deg_ = 0;  // what they were worked out from
+  FitOptions::Method method_ = FitOptions::Method::Arcs;
+  Turn half_left_, half_right_;   // kTurnShare of the G1 angle each way: the greedy step's first turns, the beam's for lines
+  Turn full_left_, full_right_;   // twice that, the whole joint allowance: its largest, and the searches' turn
+  std::array<Turn, 4> near_turns_;  // best_near(): the first near_turn_count_ of them
+  size_t near_turn_count_ = 0;
+  std::array<Turn, 4> root_turns_;   // roots(): 0.3 and 0.6 of it each way
+  Turn start_sweep_;                 // start_range(): half the largest sweep, at most a quarter turn
+  std::array<Turn, 8> fan_turns_;    // fanned_input_tangents(): 0.5, 1, 2 and 4 degrees each way
+  Cone g1_cone_;                  // the G1 angle: a joint within it is smooth
+  Cone same_tangent_cone_;         // 1/32 of it: two tangents a search need not both follow
+  Cone joint_cone_;               // kJointShare of it: the turn the fitter may make at a joint
+  // pick(): 1 - cos of that turn, and of a quarter of it (closer by more than the printed
+  // digits can tilt the input's direction: past a straight side's end, along a side whose
+  // every vertex heads exactly along it, the walk back would go on into the side).
+  double joint_miss_ = 0, closer_miss_ = 0;
+  Cone on_course_cone_;           // kOnCourseRad: a primitive ending along the input
+  Cone turn_cone_, turn_line_cone_, two_turns_line_cone_;  // tighten(): one turn, plus a line's, two plus a line's
+  double line_kink_ = 0;          // largest tangent-chord angle written as a line, rad
+  double max_alpha_ = 0, min_alpha_ = 0, line_alpha_ = 0;  // pseudo-angles, see FitAngles()
+};
+
+class RunFitter : private FitAngles {
+ public:
+  /// `run` spans the moves to fit; `fixed` (per move, empty: none) says which stay as they
+  /// are, and `pinned` (per vertex, empty: none) where a primitive must end (where one run
+  /// meets the next or a fixed move), the tangent going on there.
+  RunFitter(const Interpretation& in, const Run& run, const FitOptions& o, const std::vector<FixedMove>& fixed = {},
+            std::vector<uint8_t> pinned = {})
+      : FitAngles(FitAngles::of(o)), o_(o), at_(vertices_kept(in, run, fixed, pinned)), n_(uint32_t(at_.size() - 1)) {
+    if (!pinned.empty())
+      for (uint32_t v = 0; v <= n_; ++v) pinned[v] = pinned[at_[v]];
+    fixed_.reserve(n_);
+    for (uint32_t v = 0; v < n_; ++v) fixed_.push_back(fixed.empty() ? FixedMove{} : fixed[at_[v]]);
+    auto vertex = [&](uint32_t v) -> const AxisValues& { return run.vertex(in, at_[v]); };
+    auto ax = axes_of(run.plane);
+    p_.resize(n_ + 1);
+    q_.resize(n_ + 1);
+    middle_.resize(n_);
+    for (uint32_t v = 0; v <= n_; ++v) {
+      const auto& a = vertex(v);
+      p_[v] = Vec3(a[ax.first], a[ax.second], a[ax.normal]);
+      q_[v] = Vec2(a[ax.first], a[ax.second]);
+    }
+    for (uint32_t v = 0; v < n_; ++v) middle_[v] = 0.5 * (q_[v] + q_[v + 1]);
+    // Level: no vertex lies above or below another by more than the scans' test of a climb.
+    const auto [low, high] =
+        std::minmax_element(p_.begin(), p_.end(), [](const Vec3& x, const Vec3& y) { return x.z() < y.z(); });
+    level_ = high->z() - low->z() <= kLengthEpsMm;
+    // The extra axes (A/B/C, U/V/W) that move in the run, their values at each vertex, and
+    // the path length to each vertex they are carried along.
+    for (int x = kA; x < kE; ++x)
+      for (uint32_t v = 1; v <= n_; ++v)
+        if (vertex(v)[x] != vertex(v - 1)[x]) {
+          extra_.push_back(x);
+          break;
+        }
+    if (!extra_.empty()) {
+      length_.assign(n_ + 1, 0.0);
+      for (uint32_t v = 1; v <= n_; ++v) length_[v] = length_[v - 1] + (p_[v] - p_[v - 1]).norm();
+      for (uint32_t v = 0; v <= n_; ++v)
+        for (int x : extra_) extra_values_.push_back(vertex(v)[x]);
+    }
+    arcs_ = o.arcs && (o.extra_axes || extra_.empty());
+    eps_ = o.tolerance_mm * (1.0 - kRoundingReserve);
     hard_.assign(n_ + 1, 0);
     heading_.assign(n_ + 1, std::nullopt);
     soft_.assign(n_ + 1, 0);
@@ -1949,29 +1995,11 @@ class RunFitter {
   // where the searches find tangent chains, though it needs 1 % fewer blocks on the corpus).
   std::vector<std::optional<Vec2>> heading_;
   Scratch& s_ = thread_scratch();
-  Turn half_left_, half_right_;   // kTurnShare of the G1 angle each way: the greedy step's first turns, the beam's for lines
-  Turn full_left_, full_right_;   // twice that, the whole joint allowance: its largest, and the searches' turn
-  std::array<Turn, 4> near_turns_;  // best_near(): the first near_turn_count_ of them
-  size_t near_turn_count_ = 0;
-  std::array<Turn, 4> root_turns_;   // roots(): 0.3 and 0.6 of it each way
-  Turn start_sweep_;                 // start_range(): half the largest sweep, at most a quarter turn
-  std::array<Turn, 8> fan_turns_;    // fanned_input_tangents(): 0.5, 1, 2 and 4 degrees each way
-  Cone g1_cone_;                  // the G1 angle: a joint within it is smooth
-  Cone same_tangent_cone_;         // 1/32 of it: two tangents a search need not both follow
-  Cone joint_cone_;               // kJointShare of it: the turn the fitter may make at a joint
-  // pick(): 1 - cos of that turn, and of a quarter of it (closer by more than the printed
-  // digits can tilt the input's direction: past a straight side's end, along a side whose
-  // every vertex heads exactly along it, the walk back would go on into the side).
-  double joint_miss_ = 0, closer_miss_ = 0;
-  Cone on_course_cone_;           // kOnCourseRad: a primitive ending along the input
-  Cone turn_cone_, turn_line_cone_, two_turns_line_cone_;  // tighten(): one turn, plus a line's, two plus a line's
   std::vector<FixedMove> fixed_;  // per move
   uint32_t stretch_start_ = 0;    // first vertex of the current stretch (after a corner or fixed move)
   uint32_t stretch_end_ = 0;      // its last vertex (a corner, a fixed move's start, or the end)
   std::optional<Vec2> in_tangent_, out_tangent_;  // directions of the fixed moves around it, where smooth
   double eps_ = 0;                // band the fitter works to, mm
-  double line_kink_ = 0;          // largest tangent-chord angle written as a line, rad
-  double max_alpha_ = 0, min_alpha_ = 0, line_alpha_ = 0;  // pseudo-angles, see the constructor
   bool arcs_ = true;               // arcs allowed: by the options, and in this run by its extra axes
   std::vector<int> extra_;         // the extra axes (kA .. kW) that move in the run
   std::vector<double> extra_values_;  // their values at each vertex, extra_.size() per vertex
