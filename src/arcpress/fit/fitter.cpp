@@ -212,10 +212,12 @@ class RunFitter : private FitAngles {
   /// meets the next or a fixed move), the tangent going on there.
   RunFitter(const Interpretation& in, const Run& run, const FitOptions& o, const std::vector<FixedMove>& fixed = {},
             std::vector<uint8_t> pinned = {})
-      : FitAngles(FitAngles::of(o)), o_(o), at_(vertices_kept(in, run, fixed, pinned)), n_(uint32_t(at_.size() - 1)) {
+      : FitAngles(FitAngles::of(o)), o_(o) {
+    vertices_kept(in, run, fixed, pinned, at_);
+    n_ = uint32_t(at_.size() - 1);
     if (!pinned.empty())
       for (uint32_t v = 0; v <= n_; ++v) pinned[v] = pinned[at_[v]];
-    fixed_.reserve(n_);
+    fixed_.clear();
     for (uint32_t v = 0; v < n_; ++v) fixed_.push_back(fixed.empty() ? FixedMove{} : fixed[at_[v]]);
     auto vertex = [&](uint32_t v) -> const AxisValues& { return run.vertex(in, at_[v]); };
     auto ax = axes_of(run.plane);
@@ -240,6 +242,8 @@ class RunFitter : private FitAngles {
           extra_.push_back(x);
           break;
         }
+    extra_values_.clear();
+    length_.clear();
     if (!extra_.empty()) {
       length_.assign(n_ + 1, 0.0);
       for (uint32_t v = 1; v <= n_; ++v) length_[v] = length_[v - 1] + (p_[v] - p_[v - 1]).norm();
@@ -257,19 +261,21 @@ class RunFitter : private FitAngles {
     // Seed 004's spikes (option): a lone vertex where the path jags out and back, within half
     // the band of its neighbours' chord, with the path smooth once it is skipped. Noise, not
     // a corner; the fitted path still passes within the band of it.
-    std::vector<uint8_t> spike(n_ + 1, 0);
+    std::vector<uint8_t>& spike = b_.spike;
+    spike.assign(n_ + 1, 0);
     for (uint32_t v = 2; o.spikes && v + 2 <= n_; ++v)
       spike[v] = !spike[v - 1] && corner(v - 1, v, v + 1) &&
                  point_segment_distance(p_[v], p_[v - 1], p_[v + 1]) <= 0.5 * o.tolerance_mm &&
                  !corner(v - 2, v - 1, v + 1) && !corner(v - 1, v + 1, v + 2);
     // Moves that go nowhere and stay (fixed ones, or those between two vertices that must
     // stay): the corner rule steps past them, as the verifier does.
-    std::vector<uint8_t> nowhere(n_, 0);
+    std::vector<uint8_t>& nowhere = b_.nowhere;
+    nowhere.assign(n_, 0);
     for (uint32_t v = 0; v < n_; ++v) nowhere[v] = in.moves_going(run.first_move + at_[v], run.first_move + at_[v + 1]) == 0;
     // The same corner rule, with the same band, as the verifier uses to judge joints (with
     // spikes skipped when asked): first each vertex alone, then with its neighbours' corners.
     // A vertex's neighbours are the nearest vertices elsewhere, past spikes when skipped.
-    auto corners = [&](const std::vector<uint8_t>& skipped) {
+    auto corners = [&](const std::vector<uint8_t>& skipped, std::vector<uint8_t>& hard) {
       auto before = [&](uint32_t v, bool past_spikes) {
         uint32_t u = v - 1;
         while (u > 0 && (nowhere[u] || (past_spikes && skipped[u]))) --u;
@@ -280,7 +286,9 @@ class RunFitter : private FitAngles {
         while (u < n_ && (nowhere[u - 1] || (past_spikes && skipped[u]))) ++u;
         return u;
       };
-      std::vector<uint8_t> alone(n_ + 1, 0), hard(n_ + 1, 0);
+      std::vector<uint8_t>& alone = b_.alone;
+      alone.assign(n_ + 1, 0);
+      hard.assign(n_ + 1, 0);
       for (uint32_t v = 1; v < n_; ++v) alone[v] = !skipped[v] && corner(before(v, true), v, after(v, true));
       for (uint32_t v = 1; v < n_; ++v) {
         const uint32_t b = before(v, true), a = after(v, true);
@@ -288,12 +296,15 @@ class RunFitter : private FitAngles {
                                                                       p_[a], a < n_ ? &p_[after(a, false)] : nullptr,
                                                                       alone[b], alone[a], o.tolerance_mm));
       }
-      return hard;
     };
-    hard_ = corners(spike);
+    corners(spike, hard_);
     // The verifier knows no spikes: a joint it calls smooth that only skipping a spike made a
     // corner is reported where the tangent breaks there (see report_spike_corners()).
-    if (std::find(spike.begin(), spike.end(), 1) != spike.end()) plain_hard_ = corners(std::vector<uint8_t>(n_ + 1, 0));
+    plain_hard_.clear();
+    if (std::find(spike.begin(), spike.end(), 1) != spike.end()) {
+      b_.none.assign(n_ + 1, 0);
+      corners(b_.none, plain_hard_);
+    }
     for (uint32_t v = 1; v < n_; ++v) {
       double l1 = (p_[v] - p_[v - 1]).norm(), l2 = (p_[v + 1] - p_[v]).norm();
       // Extrusion and the extra axes per mm must stay (nearly) constant inside one primitive:
@@ -327,18 +338,17 @@ class RunFitter : private FitAngles {
   /// primitive over their neighbours steps over. Where such a vertex must stay
   /// (the run's end, a pinned vertex) the one it repeats goes instead, unless that must stay
   /// too. (The keep method never gets here: fit_chain() keeps every move itself.)
-  static std::vector<uint32_t> vertices_kept(const Interpretation& in, const Run& run,
-                                             const std::vector<FixedMove>& fixed, const std::vector<uint8_t>& pinned) {
+  static void vertices_kept(const Interpretation& in, const Run& run, const std::vector<FixedMove>& fixed,
+                            const std::vector<uint8_t>& pinned, std::vector<uint32_t>& at) {
     const uint32_t n = run.move_count;
     auto must_stay = [&](uint32_t v) { return v == 0 || v == n || (!pinned.empty() && pinned[v]); };
-    std::vector<uint32_t> at{0};
+    at.assign(1, 0);
     for (uint32_t v = 1; v <= n; ++v) {
       const bool nowhere = (fixed.empty() || !fixed[v - 1].fixed) && in.goes_nowhere(run.first_move + v - 1);
       if (!nowhere) at.push_back(v);
       else if (must_stay(v) && !must_stay(at.back())) at.back() = v;
       else if (must_stay(v)) at.push_back(v);
     }
-    return at;
   }
 
  private:
@@ -1976,34 +1986,53 @@ class RunFitter : private FitAngles {
     return t;
   }
 
+  /// The run's data per vertex and per move, and the constructor's own, kept from run to run
+  /// on one thread (one fitter at a time), so that once grown they allocate nothing.
+  struct RunBuffers {
+    std::vector<uint32_t> at;
+    std::vector<Vec3> p;
+    std::vector<Vec2> q, middle;
+    std::vector<uint8_t> hard, plain_hard, soft;
+    std::vector<uint32_t> next_soft;
+    std::vector<std::optional<Vec2>> heading;
+    std::vector<FixedMove> fixed;
+    std::vector<double> extra_values, length;
+    std::vector<uint8_t> spike, nowhere, alone, none;  // the constructor's
+  };
+  static RunBuffers& thread_buffers() {
+    thread_local RunBuffers b;
+    return b;
+  }
+
   const FitOptions& o_;
-  std::vector<uint32_t> at_;      // the run's vertex of each vertex the fitter works on (vertices_kept())
-  uint32_t n_;                    // moves the fitter works on: at_.size() - 1
-  std::vector<Vec3> p_;           // vertices in plane coordinates (first, second, normal)
+  RunBuffers& b_ = thread_buffers();
+  std::vector<uint32_t>& at_ = b_.at;  // the run's vertex of each vertex the fitter works on (vertices_kept())
+  uint32_t n_ = 0;                // moves the fitter works on: at_.size() - 1
+  std::vector<Vec3>& p_ = b_.p;   // vertices in plane coordinates (first, second, normal)
   // The same in the plane, stored as such: the scans read them as whole vectors, where
   // building each from p_ would stall on the store that assembles it.
-  std::vector<Vec2> q_;
-  std::vector<Vec2> middle_;      // the middle of each move in the plane
+  std::vector<Vec2>& q_ = b_.q;
+  std::vector<Vec2>& middle_ = b_.middle;  // the middle of each move in the plane
   bool level_ = true;             // every vertex at the same height (within kLengthEpsMm)
-  std::vector<uint8_t> hard_;     // corner: tangent may change, a primitive ends here
-  std::vector<uint8_t> plain_hard_;  // with spikes found: the corners with none skipped
-  std::vector<uint8_t> soft_;     // extrusion rate changes: a primitive ends here, tangent kept
-  std::vector<uint32_t> next_soft_;  // the first soft vertex after each vertex (n_ + 1: none)
+  std::vector<uint8_t>& hard_ = b_.hard;  // corner: tangent may change, a primitive ends here
+  std::vector<uint8_t>& plain_hard_ = b_.plain_hard;  // with spikes found: the corners with none skipped
+  std::vector<uint8_t>& soft_ = b_.soft;  // extrusion rate changes: a primitive ends here, tangent kept
+  std::vector<uint32_t>& next_soft_ = b_.next_soft;  // the first soft vertex after each vertex (n_ + 1: none)
   // The input's direction at each vertex inside the stretch: sided_tangent() for the
   // searches; the greedy chain, which never goes back on a choice, keeps input_tangent()
   // (with the sided one it breaks the tangent on Bézier 1 at 0.001 mm and y = x³ at 0.01 mm,
   // where the searches find tangent chains, though it needs 1 % fewer blocks on the corpus).
-  std::vector<std::optional<Vec2>> heading_;
+  std::vector<std::optional<Vec2>>& heading_ = b_.heading;
   Scratch& s_ = thread_scratch();
-  std::vector<FixedMove> fixed_;  // per move
+  std::vector<FixedMove>& fixed_ = b_.fixed;  // per move
   uint32_t stretch_start_ = 0;    // first vertex of the current stretch (after a corner or fixed move)
   uint32_t stretch_end_ = 0;      // its last vertex (a corner, a fixed move's start, or the end)
   std::optional<Vec2> in_tangent_, out_tangent_;  // directions of the fixed moves around it, where smooth
   double eps_ = 0;                // band the fitter works to, mm
   bool arcs_ = true;               // arcs allowed: by the options, and in this run by its extra axes
   std::vector<int> extra_;         // the extra axes (kA .. kW) that move in the run
-  std::vector<double> extra_values_;  // their values at each vertex, extra_.size() per vertex
-  std::vector<double> length_;     // path length from vertex 0 to each vertex (mm), when extra_ move
+  std::vector<double>& extra_values_ = b_.extra_values;  // their values at each vertex, extra_.size() per vertex
+  std::vector<double>& length_ = b_.length;  // path length from vertex 0 to each vertex (mm), when extra_ move
 };
 
 }  // namespace
