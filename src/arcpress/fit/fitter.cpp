@@ -224,24 +224,26 @@ class RunFitter : private FitAngles {
     p_.resize(n_ + 1);
     q_.resize(n_ + 1);
     middle_.resize(n_);
+    // (With the extra axes (A/B/C, U/V/W) that move in the run, bit by axis.)
+    unsigned moving = 0;
     for (uint32_t v = 0; v <= n_; ++v) {
       const auto& a = vertex(v);
       p_[v] = Vec3(a[ax.first], a[ax.second], a[ax.normal]);
       q_[v] = Vec2(a[ax.first], a[ax.second]);
+      if (v > 0) {
+        const auto& before = vertex(v - 1);
+        for (int x = kA; x < kE; ++x) moving |= unsigned(a[x] != before[x]) << x;
+      }
     }
     for (uint32_t v = 0; v < n_; ++v) middle_[v] = 0.5 * (q_[v] + q_[v + 1]);
     // Level: no vertex lies above or below another by more than the scans' test of a climb.
     const auto [low, high] =
         std::minmax_element(p_.begin(), p_.end(), [](const Vec3& x, const Vec3& y) { return x.z() < y.z(); });
     level_ = high->z() - low->z() <= kLengthEpsMm;
-    // The extra axes (A/B/C, U/V/W) that move in the run, their values at each vertex, and
-    // the path length to each vertex they are carried along.
+    // The extra axes that move in the run, their values at each vertex, and the path length
+    // to each vertex they are carried along.
     for (int x = kA; x < kE; ++x)
-      for (uint32_t v = 1; v <= n_; ++v)
-        if (vertex(v)[x] != vertex(v - 1)[x]) {
-          extra_.push_back(x);
-          break;
-        }
+      if (moving >> x & 1) extra_.push_back(x);
     extra_values_.clear();
     length_.clear();
     if (!extra_.empty()) {
