@@ -2090,9 +2090,14 @@ std::vector<FitResult> fit_chain(const Interpretation& in, const RunChain& chain
     };
     std::vector<FixedMove> fixed(chain.move_count);
     std::vector<uint8_t> pinned(chain.move_count + 1, 0);
+    for (uint32_t m = 0; m < chain.move_count; ++m) fixed[m].fixed = true;
+    for (size_t r = 0; r < own.size(); ++r)
+      if (own[r].plane == plane)
+        for (uint32_t m = base(r); m < base(r) + own[r].move_count; ++m) fixed[m].fixed = false;
+    // (The directions of the moves fitted here are not read.)
     for (uint32_t m = 0; m < chain.move_count; ++m) {
+      if (!fixed[m].fixed) continue;
       const Move& mv = in.moves[chain.first_move + m];
-      fixed[m].fixed = true;
       if (!is_arc(mv.kind)) {
         fixed[m].start = fixed[m].end = direction(at(m + 1) - at(m));
       } else if (mv.plane == plane) {
@@ -2108,10 +2113,7 @@ std::vector<FitResult> fit_chain(const Interpretation& in, const RunChain& chain
     for (size_t r = 0; r < own.size(); ++r) {
       const uint32_t b = base(r), last = b + own[r].move_count - 1;
       pinned[b] = pinned[last + 1] = 1;
-      if (own[r].plane == plane) {
-        for (uint32_t m = b; m <= last; ++m) fixed[m].fixed = false;
-        continue;
-      }
+      if (own[r].plane == plane) continue;
       for (uint32_t m = b; m < last; ++m) fixed[m].end = fixed[m + 1].start = std::nullopt;
       fixed[b].start = fixed[last].end = std::nullopt;
       if (!done[r]) continue;
