@@ -228,23 +228,28 @@ double largest_gap(std::span<const double> at, double bend, double floor, Gap&& 
     if (at[i] > at[i - 1]) todo.push_back({at[i - 1], at[i], fx, fy});
     fx = fy;
   }
+  // A stretch's gap at its middle, and its bound.
+  auto measure = [&](const Stretch& st) {
+    const double w = st.y - st.x;
+    const auto [fc, slope] = gap(0.5 * (st.x + st.y));
+    const double L = slope + bend * w / 2, ends = std::max(st.fx, st.fy);
+    const double lip = 0.5 * (ends + fc + L * w / 2);
+    const double top = std::max(ends, fc);
+    return std::pair(fc, std::min(lip, std::sqrt(top * top + (2 * L * L + 2 * lip * bend) * w * w / 32)));
+  };
   int splits = 0;
   while (!todo.empty()) {
     const Stretch st = todo.back();
     todo.pop_back();
-    const double w = st.y - st.x, c = 0.5 * (st.x + st.y);
-    const auto [fc, slope] = gap(c);
+    const auto [fc, bound] = measure(st);
     best = std::max(best, fc);
-    const double L = slope + bend * w / 2, ends = std::max(st.fx, st.fy);
-    const double lip = 0.5 * (ends + fc + L * w / 2);
-    const double top = std::max(ends, fc);
-    const double bound = std::min(lip, std::sqrt(top * top + (2 * L * L + 2 * lip * bend) * w * w / 32));
     if (bound <= std::max(floor, best) + kOffPlaneSlackMm) continue;
-    if (++splits > kOffPlaneSplits) {
+    if (++splits > kOffPlaneSplits) {  // (reached on none of the specification's cases or corpus files)
       best = std::max(best, bound);
-      for (const Stretch& o : todo) best = std::max(best, 0.5 * (o.fx + o.fy) + bound);  // (crude, and rare)
+      for (const Stretch& o : todo) best = std::max(best, measure(o).second);
       break;
     }
+    const double c = 0.5 * (st.x + st.y);
     todo.push_back({st.x, c, st.fx, fc});
     todo.push_back({c, st.y, fc, st.fy});
   }
