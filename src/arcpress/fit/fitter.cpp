@@ -7,6 +7,7 @@
 #include <limits>
 #include <optional>
 #include <span>
+#include <tuple>
 #include <unordered_set>
 
 #include "arcpress/core/deviation.hpp"
@@ -49,6 +50,8 @@ constexpr int kUntangleDepth = 4;
 constexpr int kLookahead = 6;
 /// Places in each layer of the beam for the chains whose last primitive ends furthest.
 constexpr size_t kFurthestEnds = 2;
+/// Bits of a vertex, and of a candidate's place, in the beam's one-integer ranking keys.
+constexpr int kKeyBits = 21;
 /// The beam's roots at a free start (start_tangents()): the edges of the ranges of start
 /// tangents that reach each of the kNearStartEnds nearest ends and of the kFarStartEnds
 /// furthest, taken kStartRangeInset of the range inside.
@@ -1458,6 +1461,7 @@ class RunFitter : private FitAngles {
     std::vector<Candidate> beam_out;      // beam_chain()
     std::vector<SeenEnd> seen;            // beam_chain()
     std::vector<std::pair<uint64_t, uint64_t>> keys;  // beam_chain()
+    std::vector<uint64_t> packed_keys;                // beam_chain()
     std::vector<std::pair<uint32_t, Vec2>> expanded;  // beam_chain()
   };
   static Scratch& thread_scratch() {
@@ -1490,6 +1494,7 @@ class RunFitter : private FitAngles {
     std::vector<Candidate>& out = s_.beam_out;
     std::vector<SeenEnd>& seen = s_.seen;
     std::vector<std::pair<uint64_t, uint64_t>>& keys = s_.keys;
+    std::vector<uint64_t>& packed_keys = s_.packed_keys;
     std::vector<std::pair<uint32_t, Vec2>>& expanded = s_.expanded;
     int furthest = -1;
     int guide = -1;  // the node the greedy chain would be at: the beam never does worse
@@ -1566,42 +1571,65 @@ class RunFitter : private FitAngles {
       // packs its keys into integers and takes them best first from a heap, ties in the order
       // made. A tangent's bin is worked out only when another kept chain ends at its vertex.
       auto bin_of = [&](const Vec2& t) { return std::lround(std::atan2(t.y(), t.x()) / bin_rad); };
-      auto keep_best = [&](size_t count, auto key) {
+      // Keeps made[k] when it passes the exact check and no kept chain ends at its vertex
+      // with a tangent in the same bin.
+      auto take = [&](uint32_t k) {
+        Made& m = made[k];
+        const uint32_t e = m.c.prim.end_vertex;
+        std::optional<long> bin;
+        for (SeenEnd& s : seen) {
+          if (s.v != e) continue;
+          if (!bin) bin = bin_of(m.c.end_tangent);
+          if (!s.bin) s.bin = bin_of(s.T);
+          if (*s.bin == *bin) return;
+        }
+        auto c = made_from(nodes[m.from], m.T, m.cand);
+        const int from = m.from;
+        m.from = -1;
+        if (!c) return;
+        seen.push_back({e, m.c.end_tangent, bin});
+        nodes.push_back({*c, from, e, c->end_tangent});
+        int id = static_cast<int>(nodes.size()) - 1;
+        if (furthest < 0 || nodes[furthest].v < e) furthest = id;
+        next.push_back(id);
+      };
+      // A ranking orders by (flag, x, y) from each score, then by the order made. Where the
+      // vertices and the candidates fit in 21 bits each, as they do but on runs of more than
+      // two million moves, the key is one 64-bit integer; else two.
+      const bool packed = limit + 2 < (uint32_t(1) << kKeyBits) && made.size() < (size_t(1) << kKeyBits);
+      constexpr uint64_t kIndexMask = (uint64_t(1) << kKeyBits) - 1;
+      auto keep_best = [&](size_t count, auto fields) {
+        if (packed) {
+          packed_keys.clear();
+          for (uint32_t k = 0; k < made.size(); ++k)
+            if (made[k].from >= 0) {  // not yet kept, nor failed its exact check
+              const auto [flag, x, y] = fields(made[k].sc);
+              packed_keys.push_back(uint64_t(flag) << (3 * kKeyBits) | uint64_t(x) << (2 * kKeyBits) |
+                                    uint64_t(y) << kKeyBits | (kIndexMask - k));
+            }
+          std::make_heap(packed_keys.begin(), packed_keys.end());
+          for (auto end = packed_keys.end(); end != packed_keys.begin() && next.size() < count; --end) {
+            std::pop_heap(packed_keys.begin(), end);
+            take(uint32_t(kIndexMask - (*(end - 1) & kIndexMask)));
+          }
+          return;
+        }
         keys.clear();
         for (uint32_t k = 0; k < made.size(); ++k)
-          if (made[k].from >= 0) {  // not yet kept, nor failed its exact check
-            auto [hi, lo] = key(made[k].sc);
-            keys.push_back({hi, (uint64_t(lo) << 32) | (UINT32_MAX - k)});
+          if (made[k].from >= 0) {
+            const auto [flag, x, y] = fields(made[k].sc);
+            keys.push_back({uint64_t(flag) << 32 | x, uint64_t(y) << 32 | (UINT32_MAX - k)});
           }
         std::make_heap(keys.begin(), keys.end());
         for (auto end = keys.end(); end != keys.begin() && next.size() < count; --end) {
           std::pop_heap(keys.begin(), end);
-          Made& m = made[UINT32_MAX - uint32_t((end - 1)->second)];
-          const uint32_t e = m.c.prim.end_vertex;
-          std::optional<long> bin;
-          bool taken = false;
-          for (SeenEnd& s : seen) {
-            if (s.v != e) continue;
-            if (!bin) bin = bin_of(m.c.end_tangent);
-            if (!s.bin) s.bin = bin_of(s.T);
-            if ((taken = *s.bin == *bin)) break;
-          }
-          if (taken) continue;
-          auto c = made_from(nodes[m.from], m.T, m.cand);
-          const int from = m.from;
-          m.from = -1;
-          if (!c) continue;
-          seen.push_back({e, m.c.end_tangent, bin});
-          nodes.push_back({*c, from, e, c->end_tangent});
-          int id = static_cast<int>(nodes.size()) - 1;
-          if (furthest < 0 || nodes[furthest].v < e) furthest = id;
-          next.push_back(id);
+          take(UINT32_MAX - uint32_t((end - 1)->second));
         }
       };
-      using Key = std::pair<uint64_t, uint32_t>;
-      keep_best(width / 2, [](const Score& x) { return Key{(uint64_t(x.reach) << 32) | x.end, 0}; });
-      keep_best(width / 2 + kFurthestEnds, [](const Score& x) { return Key{(uint64_t(x.end) << 32) | x.reach, 0}; });
-      keep_best(width, [](const Score& x) { return Key{(uint64_t(x.on_course) << 32) | x.reach, x.end}; });
+      using Fields = std::tuple<uint32_t, uint32_t, uint32_t>;
+      keep_best(width / 2, [](const Score& x) { return Fields{0, x.reach, x.end}; });
+      keep_best(width / 2 + kFurthestEnds, [](const Score& x) { return Fields{0, x.end, x.reach}; });
+      keep_best(width, [](const Score& x) { return Fields{x.on_course, x.reach, x.end}; });
       layer.swap(next);
     }
     return furthest < 0 ? std::vector<Chosen>{} : chain_to(nodes, furthest);
