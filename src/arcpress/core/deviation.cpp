@@ -6,17 +6,22 @@
 
 namespace arcpress {
 
+double ArcGeom::sweep_of(const Vec3& start, const Vec3& end, const Vec2& center, bool ccw) {
+  Vec2 s(start.x() - center.x(), start.y() - center.y());
+  Vec2 e(end.x() - center.x(), end.y() - center.y());
+  double sweep = std::atan2(cross2(s, e), s.dot(e));  // (-π, π]
+  if (ccw && sweep <= 0) sweep += 2 * kPi;
+  if (!ccw && sweep >= 0) sweep -= 2 * kPi;
+  return sweep;
+}
+
 ArcGeom ArcGeom::through(const Vec3& start, const Vec3& end, const Vec2& center, bool ccw) {
   ArcGeom g;
   g.center = center;
   Vec2 s(start.x() - center.x(), start.y() - center.y());
-  Vec2 e(end.x() - center.x(), end.y() - center.y());
   g.radius_mm = s.norm();
   g.start_angle = std::atan2(s.y(), s.x());
-  double sweep = std::atan2(cross2(s, e), s.dot(e));  // (-π, π]
-  if (ccw && sweep <= 0) sweep += 2 * kPi;
-  if (!ccw && sweep >= 0) sweep -= 2 * kPi;
-  g.sweep = sweep;
+  g.sweep = sweep_of(start, end, center, ccw);
   g.h0 = start.z();
   g.h1 = end.z();
   return g;

@@ -33,6 +33,8 @@ struct ArcGeom {
   /// Builds the arc from start to end about `center`; `ccw` picks the direction; a start
   /// equal to the end is a full turn.
   static ArcGeom through(const Vec3& start, const Vec3& end, const Vec2& center, bool ccw);
+  /// The sweep alone of the arc through() builds (radians, > 0 counter-clockwise).
+  static double sweep_of(const Vec3& start, const Vec3& end, const Vec2& center, bool ccw);
 };
 
 struct Deviation {

@@ -401,7 +401,7 @@ class Emitter {
     const Vec2 ideal = pr.center;
     scratch.ideal = ideal;
     const double r_ideal = (s2 - ideal).norm();
-    const double sweep_ideal = std::abs(ArcGeom::through(s3, e3, ideal, pr.ccw).sweep);
+    const double sweep_ideal = std::abs(ArcGeom::sweep_of(s3, e3, ideal, pr.ccw));
     bool use_radius = opt_.format == ArcFormat::Radius && d().radius_word &&
                       // R is ambiguous near a half circle and meaningless near a full one
                       std::abs(rad_to_deg(sweep_ideal) - 180.0) > 15.0 && rad_to_deg(sweep_ideal) < 345.0;
