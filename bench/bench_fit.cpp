@@ -1,0 +1,75 @@
+// The compression of every corpus file by one method, the pipeline without verification as
+// bench_curves times it, in one process: for timing one change against another, and for
+// counting instructions under callgrind (one repeat), where a figure does not move.
+// Usage: bench_fit [METHOD] [REPEATS] [THREADS]
+//   METHOD: keep, arcs (default), global, greedy, stream or lowe; REPEATS: best of (3);
+//   THREADS: workers (1; 0: one per hardware thread).
+// The fitter's own instructions are those of a method less those of keep, e.g.
+//   valgrind --tool=callgrind ./build/bench/bench_fit arcs 1 1   (and keep 1 1)
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "arcpress/api/arcpress.hpp"
+
+namespace fs = std::filesystem;
+using clk = std::chrono::steady_clock;
+using arcpress::FitOptions;
+
+int main(int argc, char** argv) {
+  const std::string_view name = argc > 1 ? argv[1] : "arcs";
+  const std::pair<std::string_view, FitOptions::Method> methods[] = {
+      {"keep", FitOptions::Method::Keep},     {"arcs", FitOptions::Method::Arcs},
+      {"global", FitOptions::Method::Global}, {"greedy", FitOptions::Method::Greedy},
+      {"stream", FitOptions::Method::Stream}, {"lowe", FitOptions::Method::Lowe}};
+  const auto* method = std::find_if(std::begin(methods), std::end(methods), [&](const auto& m) { return m.first == name; });
+  if (method == std::end(methods)) {
+    fmt::print(stderr, "bench_fit: unknown method '{}' (keep, arcs, global, greedy, stream, lowe)\n", name);
+    return 2;
+  }
+  const int repeats = argc > 2 ? std::max(1, std::atoi(argv[2])) : 3;
+  const unsigned threads = argc > 3 ? unsigned(std::max(0, std::atoi(argv[3]))) : 1;
+  std::vector<fs::path> files;
+  if (fs::is_directory(ARCPRESS_CORPUS_DIR))
+    for (const auto& e : fs::recursive_directory_iterator(ARCPRESS_CORPUS_DIR))
+      if (e.is_regular_file() && e.path().extension() != ".md") files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  if (files.empty()) {
+    fmt::print("no corpus at {}\n", ARCPRESS_CORPUS_DIR);
+    return 0;
+  }
+  double seconds = 0;
+  size_t points = 0, blocks = 0;
+  for (const auto& f : files) {
+    std::ifstream in(f, std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    double best = 1e9;
+    arcpress::CompressResult r;
+    for (int k = 0; k < repeats; ++k) {
+      arcpress::CompressOptions opt;
+      opt.verify = false;
+      opt.fit.method = method->second;
+      opt.threads = threads;
+      arcpress::DiagnosticSink sink;
+      const auto t0 = clk::now();
+      r = arcpress::compress(f.string(), text, opt, sink);
+      best = std::min(best, std::chrono::duration<double>(clk::now() - t0).count());
+    }
+    seconds += best;
+    points += r.stats.moves_in;
+    blocks += r.stats.lines_out + r.stats.arcs_out;
+  }
+  fmt::print("{}: {} files, {} run points, {} blocks out, {:.4f} s (best of {}, {} thread(s)), {:.2f} M run points/s through the pipeline\n",
+             name, files.size(), points, blocks, seconds, repeats, threads == 0 ? std::string("all") : std::to_string(threads),
+             double(points) / seconds / 1e6);
+  return 0;
+}
