@@ -24,7 +24,10 @@ std::vector<Vec3> along(const ArcGeom& arc, int count, double noise_mm, bool in_
   std::vector<Vec3> pts;
   for (int k = 0; k <= count; ++k) {
     Vec3 p = arc.point_at(double(k) / count);
-    if (k > 0 && k < count) p += Vec3(rnd(-noise_mm, noise_mm), rnd(-noise_mm, noise_mm), in_plane ? 0.0 : rnd(-noise_mm, noise_mm));
+    if (k > 0 && k < count) {
+      const double dx = rnd(-noise_mm, noise_mm), dy = rnd(-noise_mm, noise_mm);
+      p += Vec3(dx, dy, in_plane ? 0.0 : rnd(-noise_mm, noise_mm));
+    }
     pts.push_back(p);
   }
   return pts;
@@ -37,7 +40,8 @@ double sampled_arc_to_polyline(const ArcGeom& arc, const std::vector<Vec3>& pts,
   for (int k = 0; k <= samples; ++k) {
     const Vec3 a = arc.point_at(double(k) / samples);
     double nearest = HUGE_VAL;
-    for (size_t m = 0; m + 1 < pts.size(); ++m) nearest = std::min(nearest, point_segment_distance(a, pts[m], pts[m + 1]));
+    for (size_t m = 0; m + 1 < pts.size(); ++m)
+      nearest = std::min(nearest, point_segment_distance(a, pts[m], pts[m + 1]));
     worst = std::max(worst, nearest);
   }
   return worst;
@@ -109,7 +113,6 @@ TEST_CASE("the arc measure is never less than the distance from the arc to the i
                   << " mm, input to arc " << input_to_arc << " mm, " << c.pts.size() << " points");
     REQUIRE(full.max_mm >= arc_to_input - 1e-9);
     REQUIRE(full.max_mm >= input_to_arc - 1e-9);
-    // (And not far above them: the matched gaps exceed the distances by little.)
     // Nor far above them where the arc climbs less than 1 in 10, as a helical entry does
     // (on a steeper helix a vertex's nearest point lies well off its own angle, where the
     // measure takes the distance).
