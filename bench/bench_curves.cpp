@@ -18,6 +18,7 @@
 #include <thread>
 #include <vector>
 
+#include "corpus_files.hpp"
 #include "arcpress/api/arcpress.hpp"
 #include "arcpress/fit/count_bound.hpp"
 
@@ -344,11 +345,7 @@ int main(int argc, char** argv) {
   }
 
   // Throughput on the corpus: whole pipeline without verification, per input point of the runs.
-  std::vector<fs::path> files;
-  if (fs::is_directory(ARCPRESS_CORPUS_DIR))
-    for (const auto& e : fs::recursive_directory_iterator(ARCPRESS_CORPUS_DIR))
-      if (e.is_regular_file() && e.path().extension() != ".md") files.push_back(e.path());
-  std::sort(files.begin(), files.end());
+  const std::vector<fs::path> files = corpus_files();
   // Whole pipeline without verification, best of the repeats, per method, on one thread and
   // on every hardware thread; the fitter's share is the time over the pipeline that keeps
   // every G1.

@@ -19,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "corpus_files.hpp"
 #include "arcpress/api/arcpress.hpp"
 
 namespace fs = std::filesystem;
@@ -38,11 +39,7 @@ int main(int argc, char** argv) {
   }
   const int repeats = argc > 2 ? std::max(1, std::atoi(argv[2])) : 3;
   const unsigned threads = argc > 3 ? unsigned(std::max(0, std::atoi(argv[3]))) : 1;
-  std::vector<fs::path> files;
-  if (fs::is_directory(ARCPRESS_CORPUS_DIR))
-    for (const auto& e : fs::recursive_directory_iterator(ARCPRESS_CORPUS_DIR))
-      if (e.is_regular_file() && e.path().extension() != ".md") files.push_back(e.path());
-  std::sort(files.begin(), files.end());
+  const std::vector<fs::path> files = corpus_files();
   if (files.empty()) {
     fmt::print("no corpus at {}\n", ARCPRESS_CORPUS_DIR);
     return 0;

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "corpus_files.hpp"
 #include "arcpress/lex/lexer.hpp"
 #include "arcpress/model/interpreter.hpp"
 
@@ -20,9 +21,7 @@ int main(int argc, char** argv) {
   int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 5;
   std::vector<fs::path> files;
   for (int i = 2; i < argc; ++i) files.emplace_back(argv[i]);
-  if (files.empty() && fs::is_directory(ARCPRESS_CORPUS_DIR))
-    for (const auto& e : fs::recursive_directory_iterator(ARCPRESS_CORPUS_DIR))
-      if (e.is_regular_file() && e.path().extension() != ".md") files.push_back(e.path());
+  if (files.empty()) files = corpus_files();
   std::sort(files.begin(), files.end());
   if (files.empty()) {
     fmt::print("no input files (corpus folder {} absent)\n", ARCPRESS_CORPUS_DIR);
