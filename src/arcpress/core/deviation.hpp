@@ -54,7 +54,9 @@ Deviation line_deviation(std::span<const Vec3> pts, double stop_above_mm = HUGE_
 Deviation arc_deviation(std::span<const Vec3> pts, const ArcGeom& arc, double stop_above_mm = HUGE_VAL);
 /// The same measure by angles (atan2, sin, cos) for any arc and polyline, helices included.
 /// arc_deviation() uses it for helices and polylines off the arc's plane, and a faster
-/// trigonometry-free form of it otherwise.
+/// trigonometry-free form of it otherwise. Off the plane, each segment and the arc's piece
+/// between its vertices' angles are matched by share, and the largest gap between matched
+/// points (within 1e-9 mm) stands for the distance both ways: never less than either.
 Deviation arc_deviation_by_angles(std::span<const Vec3> pts, const ArcGeom& arc, double stop_above_mm = HUGE_VAL);
 /// True when the path a -> b -> c has a real corner at b: it turns by more than
 /// `corner_angle_deg`, or so sharply for its segment lengths that no tangent-continuous
