@@ -304,31 +304,28 @@ Deviation arc_deviation_by_angles(std::span<const Vec3> pts, const ArcGeom& arc,
     Vec2 rel(pts[m].x() - arc.center.x(), pts[m].y() - arc.center.y());
     radial[m] = std::abs(rel.norm() - r);
   }
+  // Each vertex within the sweep: its distance to the arc's point at its angle, kept for the
+  // bounds on the segments and pieces below.
+  off.resize(n);
+  auto vertex_gap = [&](size_t m) {
+    // (The arc's height there as point_at(phi[m] / total) gives it, without its cosine and sine.)
+    const double t = total > 0 ? phi[m] / total : 0;
+    const double dz = pts[m].z() - (flat ? arc.h0 : arc.h0 + (arc.h1 - arc.h0) * t);
+    return off[m] = std::sqrt(radial[m] * radial[m] + dz * dz);
+  };
   for (size_t m = 1; m + 1 < n; ++m) {
     const Vec3& p = pts[m];
-    double d;
-    if (phi[m] <= total) {
-      double dz = flat ? p.z() - arc.h0 : p.z() - arc.point_at(total > 0 ? phi[m] / total : 0).z();
-      d = std::sqrt(radial[m] * radial[m] + dz * dz);
-    } else {
-      d = std::min((p - pts.front()).norm(), (p - pts.back()).norm());
-    }
-    note(d, m);
+    note(phi[m] <= total ? vertex_gap(m) : std::min((p - pts.front()).norm(), (p - pts.back()).norm()), m);
     if (dev.max_mm > stop_above_mm) return dev;
   }
+  vertex_gap(0);
+  vertex_gap(n - 1);
   // Below a finite stop, a piece or segment that cannot reach it is not measured either.
   const bool stops = stop_above_mm < HUGE_VAL;
   const bool advancing = dev.ordered && total > 0;
   const double rise = total > 0 ? (arc.h1 - arc.h0) / total : 0.0;  // mm per radian
-  // Each vertex's distance to the arc's point at its angle (the vertices advance, so each
-  // lies within the sweep).
-  if (advancing) {
-    off.resize(n);
-    for (size_t m = 0; m < n; ++m) {
-      const double dz = pts[m].z() - (arc.h0 + rise * phi[m]);
-      off[m] = std::sqrt(radial[m] * radial[m] + dz * dz);
-    }
-  }
+  // Whether segment m and its vertices lie in the arc's plane.
+  auto in_plane = [&](size_t m) { return flat && pts[m].z() == arc.h0 && pts[m + 1].z() == arc.h0; };
   // Input segments to the arc. One in the arc's plane is farthest from the circle at its
   // point nearest the centre (a chord bulges towards the centre). Off the plane (a helix, or
   // input above or below a flat arc), points of the segment and of the arc's piece between
@@ -338,7 +335,7 @@ Deviation arc_deviation_by_angles(std::span<const Vec3> pts, const ArcGeom& arc,
     Vec2 a(pts[m].x(), pts[m].y()), b(pts[m + 1].x(), pts[m + 1].y());
     Vec2 ab = b - a;
     double len2 = ab.squaredNorm();
-    const bool planar = flat && pts[m].z() == arc.h0 && pts[m + 1].z() == arc.h0;
+    const bool planar = in_plane(m);
     if (!planar && advancing) {
       // Its point at share s lies no farther from the arc than from the arc's point at angle
       // phi[m] + s·Δ, and that point of the arc no farther from the segment (at the
@@ -388,7 +385,7 @@ Deviation arc_deviation_by_angles(std::span<const Vec3> pts, const ArcGeom& arc,
   if (advancing) {
     for (size_t m = 0; m + 1 < n; ++m) {
       // (Off the plane, the gaps measured with the segments bound these distances.)
-      if (!flat || pts[m].z() != arc.h0 || pts[m + 1].z() != arc.h0) continue;
+      if (!in_plane(m)) continue;
       double p0 = phi[m], p1 = phi[m + 1];
       // Cheap bound first: the arc piece lies within its sagitta of its own chord, and that
       // chord within its end vertices' radial distances of the input segment. Only a piece

@@ -1439,10 +1439,26 @@ class RunFitter : private FitAngles {
     std::optional<long> bin;
   };
 
+  /// The run's data per vertex and per move, and the constructor's own: in the thread's
+  /// Scratch, from run to run (one fitter at a time on a thread), so that once grown they
+  /// allocate nothing.
+  struct RunBuffers {
+    std::vector<uint32_t> at;
+    std::vector<Vec3> p;
+    std::vector<Vec2> q, middle;
+    std::vector<uint8_t> hard, plain_hard, soft;
+    std::vector<uint32_t> next_soft;
+    std::vector<std::optional<Vec2>> heading;
+    std::vector<FixedMove> fixed;
+    std::vector<double> extra_values, length;
+    std::vector<uint8_t> spike, nowhere, alone, none;  // the constructor's
+  };
+
   /// Buffers the searches reuse from call to call, and from run to run on one thread, so
   /// that once warm they allocate nothing. Each belongs to one function; none of those
   /// calls itself, and none calls another that uses the same buffer.
   struct Scratch {
+    RunBuffers run;                       // the fitter's own per-vertex data (see RunBuffers)
     std::vector<Candidate> scanned;       // pick()
     std::vector<Candidate> checked_cand;  // checked_from()
     std::vector<Candidate> best_cand;     // best_from()
@@ -1598,32 +1614,35 @@ class RunFitter : private FitAngles {
       // two million moves, the key is one 64-bit integer; else two.
       const bool packed = limit + 2 < (uint32_t(1) << kKeyBits) && made.size() < (size_t(1) << kKeyBits);
       constexpr uint64_t kIndexMask = (uint64_t(1) << kKeyBits) - 1;
+      // One ranking in `heap`: key_of(fields, k) makes a key, place_of(key) reads k back.
+      auto rank = [&](auto& heap, size_t count, auto fields, auto key_of, auto place_of) {
+        heap.clear();
+        for (uint32_t k = 0; k < made.size(); ++k)
+          if (made[k].from >= 0) heap.push_back(key_of(fields(made[k].sc), k));  // not yet kept, nor failed
+        std::make_heap(heap.begin(), heap.end());
+        for (auto end = heap.end(); end != heap.begin() && next.size() < count; --end) {
+          std::pop_heap(heap.begin(), end);
+          take(place_of(*(end - 1)));
+        }
+      };
       auto keep_best = [&](size_t count, auto fields) {
         if (packed) {
-          packed_keys.clear();
-          for (uint32_t k = 0; k < made.size(); ++k)
-            if (made[k].from >= 0) {  // not yet kept, nor failed its exact check
-              const auto [flag, x, y] = fields(made[k].sc);
-              packed_keys.push_back(uint64_t(flag) << (3 * kKeyBits) | uint64_t(x) << (2 * kKeyBits) |
-                                    uint64_t(y) << kKeyBits | (kIndexMask - k));
-            }
-          std::make_heap(packed_keys.begin(), packed_keys.end());
-          for (auto end = packed_keys.end(); end != packed_keys.begin() && next.size() < count; --end) {
-            std::pop_heap(packed_keys.begin(), end);
-            take(uint32_t(kIndexMask - (*(end - 1) & kIndexMask)));
-          }
-          return;
-        }
-        keys.clear();
-        for (uint32_t k = 0; k < made.size(); ++k)
-          if (made[k].from >= 0) {
-            const auto [flag, x, y] = fields(made[k].sc);
-            keys.push_back({uint64_t(flag) << 32 | x, uint64_t(y) << 32 | (UINT32_MAX - k)});
-          }
-        std::make_heap(keys.begin(), keys.end());
-        for (auto end = keys.end(); end != keys.begin() && next.size() < count; --end) {
-          std::pop_heap(keys.begin(), end);
-          take(UINT32_MAX - uint32_t((end - 1)->second));
+          rank(
+              packed_keys, count, fields,
+              [&](const auto& f, uint32_t k) {
+                const auto [flag, x, y] = f;
+                return uint64_t(flag) << (3 * kKeyBits) | uint64_t(x) << (2 * kKeyBits) | uint64_t(y) << kKeyBits |
+                       (kIndexMask - k);
+              },
+              [&](uint64_t key) { return uint32_t(kIndexMask - (key & kIndexMask)); });
+        } else {
+          rank(
+              keys, count, fields,
+              [](const auto& f, uint32_t k) {
+                const auto [flag, x, y] = f;
+                return std::pair(uint64_t(flag) << 32 | x, uint64_t(y) << 32 | (UINT32_MAX - k));
+              },
+              [](const std::pair<uint64_t, uint64_t>& key) { return UINT32_MAX - uint32_t(key.second); });
         }
       };
       using Fields = std::tuple<uint32_t, uint32_t, uint32_t>;
@@ -2016,26 +2035,9 @@ class RunFitter : private FitAngles {
     return t;
   }
 
-  /// The run's data per vertex and per move, and the constructor's own, kept from run to run
-  /// on one thread (one fitter at a time), so that once grown they allocate nothing.
-  struct RunBuffers {
-    std::vector<uint32_t> at;
-    std::vector<Vec3> p;
-    std::vector<Vec2> q, middle;
-    std::vector<uint8_t> hard, plain_hard, soft;
-    std::vector<uint32_t> next_soft;
-    std::vector<std::optional<Vec2>> heading;
-    std::vector<FixedMove> fixed;
-    std::vector<double> extra_values, length;
-    std::vector<uint8_t> spike, nowhere, alone, none;  // the constructor's
-  };
-  static RunBuffers& thread_buffers() {
-    thread_local RunBuffers b;
-    return b;
-  }
-
   const FitOptions& o_;
-  RunBuffers& b_ = thread_buffers();
+  Scratch& s_ = thread_scratch();
+  RunBuffers& b_ = s_.run;
   std::vector<uint32_t>& at_ = b_.at;  // the run's vertex of each vertex the fitter works on (vertices_kept())
   uint32_t n_ = 0;                // moves the fitter works on: at_.size() - 1
   std::vector<Vec3>& p_ = b_.p;   // vertices in plane coordinates (first, second, normal)
@@ -2053,7 +2055,6 @@ class RunFitter : private FitAngles {
   // (with the sided one it breaks the tangent on Bézier 1 at 0.001 mm and y = x³ at 0.01 mm,
   // where the searches find tangent chains, though it needs 1 % fewer blocks on the corpus).
   std::vector<std::optional<Vec2>>& heading_ = b_.heading;
-  Scratch& s_ = thread_scratch();
   std::vector<FixedMove>& fixed_ = b_.fixed;  // per move
   uint32_t stretch_start_ = 0;    // first vertex of the current stretch (after a corner or fixed move)
   uint32_t stretch_end_ = 0;      // its last vertex (a corner, a fixed move's start, or the end)
