@@ -1,9 +1,10 @@
 // The compression of every corpus file by one method, the pipeline without verification as
 // bench_curves times it, in one process: for timing one change against another, and for
 // counting instructions under callgrind (one repeat), where a figure does not move.
-// Usage: bench_fit [METHOD] [REPEATS] [THREADS]
+// Usage: bench_fit [METHOD] [REPEATS] [THREADS] [MATCH]
 //   METHOD: keep, arcs (default), global, greedy, stream or lowe; REPEATS: best of (3);
-//   THREADS: workers (1; 0: one per hardware thread).
+//   THREADS: workers (1; 0: one per hardware thread); MATCH: only the files whose path
+//   holds it (one file's share of the time, e.g. freecad).
 // The fitter's own instructions are those of a method less those of keep, e.g.
 //   valgrind --tool=callgrind ./build/bench/bench_fit arcs 1 1   (and keep 1 1)
 #include <fmt/format.h>
@@ -39,7 +40,9 @@ int main(int argc, char** argv) {
   }
   const int repeats = argc > 2 ? std::max(1, std::atoi(argv[2])) : 3;
   const unsigned threads = argc > 3 ? unsigned(std::max(0, std::atoi(argv[3]))) : 1;
-  const std::vector<fs::path> files = corpus_files();
+  std::vector<fs::path> files = corpus_files();
+  if (argc > 4)
+    std::erase_if(files, [&](const fs::path& f) { return f.string().find(argv[4]) == std::string::npos; });
   if (files.empty()) {
     fmt::print("no corpus at {}\n", ARCPRESS_CORPUS_DIR);
     return 0;
