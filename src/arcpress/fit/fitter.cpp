@@ -406,13 +406,14 @@ class RunFitter : private FitAngles {
         // kink, are searched again, and the chain with fewer kinks, then fewer primitives,
         // wins. The greedy chain is walked only as far as the search and that choice need.
         GreedyWalk greedy(*this, a, limit);
-        const bool searched = search && o_.beam_width > 1 && (greedy.at(2) || greedy.kinks() > 0);
+        const bool searched = search && o_.beam_width > 1 && (greedy.longer_than(2) || greedy.kinks() > 0);
         size_t beam_forced = 0;
         std::vector<Chosen> b;
         if (searched) b = beam_stretch(a, limit, greedy, beam_forced);
         // A beam chain of k primitives without kinks beats a greedy chain with more than k.
-        if (!searched || beam_forced > 0 || !greedy.at(b.size())) greedy.finish();
-        if (searched && std::pair(beam_forced, b.size()) < std::pair(greedy.kinks(), greedy.length())) {
+        const bool beam_shorter = searched && beam_forced == 0 && greedy.longer_than(b.size());
+        if (!beam_shorter) greedy.finish();
+        if (beam_shorter || (searched && std::pair(beam_forced, b.size()) < std::pair(greedy.kinks(), greedy.length()))) {
           chain.swap(b);
           forced = beam_forced;
         } else {
@@ -980,6 +981,12 @@ class RunFitter : private FitAngles {
     const Chosen* at(size_t k) {
       while (chain.size() <= k && a < limit) step();
       return k < chain.size() ? &chain[k] : nullptr;
+    }
+    /// Whether it has more than k primitives, walking on only as far as that takes: once it
+    /// has k, whether the k-th ends short of `limit` (a step always adds one).
+    bool longer_than(size_t k) {
+      while (chain.size() < k && a < limit) step();
+      return chain.size() > k || (chain.size() == k && a < limit);
     }
     /// Walks to `limit`.
     void finish() {
