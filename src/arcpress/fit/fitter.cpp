@@ -382,6 +382,7 @@ class RunFitter : private FitAngles {
       out_tangent_ = limit < n_ && fixed_[limit].fixed && !hard_[limit] ? fixed_[limit].start : std::nullopt;
       stretch_start_ = a;
       stretch_end_ = limit;
+      lim_ = scan_limits();
       after_fitted = true;
       if (limit == a + 1) {  // one move: its own answer, or the arc over it that meets a fixed move
         Chosen m = one_move(a);
@@ -556,7 +557,8 @@ class RunFitter : private FitAngles {
     scan_ends(a, T, limit, [&](const Candidate& c) { out.push_back(c); });
   }
 
-  /// What scan_ends() holds each end to besides the band, read off the options and the stretch.
+  /// What scan_ends() holds each end to besides the band, read off the options and the
+  /// stretch (lim_: once a stretch, not at each of the few million scans).
   struct ScanLimits {
     double max_alpha, min_alpha, line_alpha;  // pseudo-angles, see the constructor
     double min_curvature, max_curvature;  // 1/mm: those of the largest and smallest radius
@@ -590,9 +592,9 @@ class RunFitter : private FitAngles {
     const Vec2 N = left_normal(T);
     const Vec2 qa = q(a);
     const double h0 = p_[a].z();
-    // The options' limits, read once: the sink writes memory, so the compiler would read
+    // The stretch's limits, read once: the sink writes memory, so the compiler would read
     // them again at every vertex.
-    const ScanLimits lim = scan_limits();
+    const ScanLimits lim = lim_;
     // The band a vertex must stay in: all of it while the primitive is flat, the in-plane
     // share once it climbs (from then on, for every vertex from `a`).
     double eps = eps_;
@@ -2066,6 +2068,7 @@ class RunFitter : private FitAngles {
   uint32_t stretch_start_ = 0;    // first vertex of the current stretch (after a corner or fixed move)
   uint32_t stretch_end_ = 0;      // its last vertex (a corner, a fixed move's start, or the end)
   std::optional<Vec2> in_tangent_, out_tangent_;  // directions of the fixed moves around it, where smooth
+  ScanLimits lim_{};              // what the scans hold each end to in it: scan_limits(), worked out once a stretch
   double eps_ = 0;                // band the fitter works to, mm
   bool arcs_ = true;               // arcs allowed: by the options, and in this run by its extra axes
   std::vector<int> extra_;         // the extra axes (kA .. kW) that move in the run
