@@ -383,6 +383,7 @@ class RunFitter : private FitAngles {
       stretch_start_ = a;
       stretch_end_ = limit;
       lim_ = scan_limits();
+      stretch_id_ = ++s_.stretches;
       after_fitted = true;
       if (limit == a + 1) {  // one move: its own answer, or the arc over it that meets a fixed move
         Chosen m = one_move(a);
@@ -857,15 +858,42 @@ class RunFitter : private FitAngles {
     }
   }
 
+  /// A scan a greedy step made in the searches (best_near()), with the reach of each end it
+  /// scored: the beam expands the node the greedy chain is at (its guide) along the same
+  /// tangents from the same vertex, and takes the ends and reaches from here instead of
+  /// scanning again. Valid in the stretch it was made in (the scans read the stretch's limits).
+  struct GuideScan {
+    uint64_t stretch = 0;  // 0: none
+    uint32_t a = 0, limit = 0;
+    Vec2 T{0, 0};
+    std::vector<Candidate> ends;
+    std::vector<std::pair<uint32_t, uint32_t>> reach;  // (end vertex, reach_after())
+  };
+
   /// Up to `count` candidates from `a` along `T`, spread over the longer half of what the
   /// scan allows, longest first; not yet checked exactly. With `next_to_longest`, also the
   /// one before the longest: where a straight stretch turns into a fillet, the primitive
   /// that ends at the turn, one vertex short of the furthest the band lets it overshoot, is
   /// the one the next can follow (a rounded rectangle: 11 blocks without it, 8 with).
+  /// With `guide` (the beam, expanding its guide): a greedy step's scan from `a` along T is
+  /// taken again when there is one, and *guide points at it (else null). While a greedy step
+  /// is taken in a search (s_.guide_record), each scan is kept as a GuideScan.
   void pick(uint32_t a, const Vec2& T, uint32_t limit, int count, std::vector<Candidate>& out,
-            bool next_to_longest = false) const {
-    std::vector<Candidate>& all = s_.scanned;
-    scan(a, T, limit, all);
+            bool next_to_longest = false, const GuideScan** guide = nullptr) const {
+    const GuideScan* kept = guide ? (*guide = guide_scan(a, T, limit)) : nullptr;
+    if (!kept && s_.guide_record) {
+      GuideScan& g = s_.guide_scans[s_.guide_next++ % s_.guide_scans.size()];
+      g.stretch = stretch_id_;
+      g.a = a;
+      g.limit = limit;
+      g.T = T;
+      g.reach.clear();
+      scan(a, T, limit, g.ends);
+      kept = &g;
+    } else if (!kept) {
+      scan(a, T, limit, s_.scanned);
+    }
+    const std::vector<Candidate>& all = kept ? kept->ends : s_.scanned;
     out.clear();
     const size_t n = all.size(), want = static_cast<size_t>(count);
     const size_t step = std::max<size_t>(1, n / (2 * want));
@@ -887,6 +915,27 @@ class RunFitter : private FitAngles {
           out.push_back(all[i]);
           break;
         }
+  }
+
+  /// The greedy steps' scan from `a` along exactly `T` in this stretch, or null.
+  const GuideScan* guide_scan(uint32_t a, const Vec2& T, uint32_t limit) const {
+    for (const GuideScan& g : s_.guide_scans)
+      if (g.stretch == stretch_id_ && g.a == a && g.limit == limit && g.T == T) return &g;
+    return nullptr;
+  }
+
+  /// score() of `c`, a candidate of scan `g`, with the reach the greedy step found when it
+  /// scored it too.
+  Score guide_score(const GuideScan& g, const Chosen& c, uint32_t limit) const {
+    for (const auto& [e, reach] : g.reach)
+      if (e == c.prim.end_vertex) {
+        Score sc;
+        sc.end = e;
+        sc.reach = reach;
+        if (const auto& t = heading_[e]) sc.on_course = on_course_cone_.holds(*t, c.end_tangent);
+        return sc;
+      }
+    return score(c, limit);
   }
 
   /// What candidate `c` from `a` along `T` would be, for scoring before the exact check: its
@@ -912,6 +961,10 @@ class RunFitter : private FitAngles {
     std::vector<Ranked>& ranked = s_.ranked;
     ranked.clear();
     for (size_t i = 0; i < cand.size(); ++i) ranked.push_back({i, score(unchecked(a, T, cand[i]), limit)});
+    if (s_.guide_record) {
+      GuideScan& g = s_.guide_scans[(s_.guide_next - 1) % s_.guide_scans.size()];  // pick()'s
+      for (const Ranked& r : ranked) g.reach.emplace_back(cand[r.i].e, r.sc.reach);
+    }
     std::stable_sort(ranked.begin(), ranked.end(), [](const Ranked& x, const Ranked& y) { return x.sc > y.sc; });
     for (const Ranked& r : ranked)
       if (auto c = make(a, T, cand[r.i])) {
@@ -940,6 +993,11 @@ class RunFitter : private FitAngles {
   /// turned by up to 0.9 of that angle (near_turns_) are tried too, and the one reaching
   /// furthest wins.
   std::optional<Chosen> best_near(uint32_t a, const Vec2& T, uint32_t limit) const {
+    // In the searches, this is the greedy chain's step, whose scans the beam takes again.
+    struct Recording {
+      bool& on;
+      ~Recording() { on = false; }
+    } recording{s_.guide_record = o_.method == FitOptions::Method::Arcs || o_.method == FitOptions::Method::Global};
     Score best_score;
     auto best = best_from(a, T, limit, &best_score);
     if (best) {
@@ -1488,6 +1546,11 @@ class RunFitter : private FitAngles {
     std::vector<std::pair<uint64_t, uint64_t>> keys;  // beam_chain()
     std::vector<uint64_t> packed_keys;                // beam_chain()
     std::vector<std::pair<uint32_t, Vec2>> expanded;  // beam_chain()
+    // The greedy steps' latest scans (GuideScan), in turn, and whether best_near() is taking one.
+    std::array<GuideScan, 9> guide_scans;
+    size_t guide_next = 0;
+    bool guide_record = false;
+    uint64_t stretches = 0;  // stretches begun on this thread (GuideScan::stretch)
   };
   static Scratch& thread_scratch() {
     thread_local Scratch s;
@@ -1560,7 +1623,8 @@ class RunFitter : private FitAngles {
           auto same = [&](const auto& x) { return x.first == nd.v && same_tangent_cone_.holds(x.second, T); };
           if (std::any_of(expanded.begin(), expanded.end(), same)) continue;
           expanded.push_back({nd.v, T});
-          pick(nd.v, T, limit, o_.beam_branch, out, true);
+          const GuideScan* kept = nullptr;
+          pick(nd.v, T, limit, o_.beam_branch, out, true, i == guide ? &kept : nullptr);
           for (const Candidate& cd : out) {
             if (cd.e >= limit) {
               if (auto c = made_from(nd, T, cd)) {
@@ -1570,7 +1634,7 @@ class RunFitter : private FitAngles {
               continue;
             }
             Chosen lite = unchecked(nd.v, T, cd);
-            made.push_back({i, T, cd, lite, score(lite, limit)});
+            made.push_back({i, T, cd, lite, kept ? guide_score(*kept, lite, limit) : score(lite, limit)});
           }
         }
       }
@@ -2068,6 +2132,7 @@ class RunFitter : private FitAngles {
   uint32_t stretch_start_ = 0;    // first vertex of the current stretch (after a corner or fixed move)
   uint32_t stretch_end_ = 0;      // its last vertex (a corner, a fixed move's start, or the end)
   std::optional<Vec2> in_tangent_, out_tangent_;  // directions of the fixed moves around it, where smooth
+  uint64_t stretch_id_ = 0;       // this stretch's number on the thread (GuideScan::stretch)
   ScanLimits lim_{};              // what the scans hold each end to in it: scan_limits(), worked out once a stretch
   double eps_ = 0;                // band the fitter works to, mm
   bool arcs_ = true;               // arcs allowed: by the options, and in this run by its extra axes
