@@ -320,8 +320,9 @@ Deviation arc_deviation_by_angles(std::span<const Vec3> pts, const ArcGeom& arc,
   }
   vertex_gap(0);
   vertex_gap(n - 1);
-  // Below a finite stop, a piece or segment that cannot reach it is not measured either.
-  const bool stops = stop_above_mm < HUGE_VAL;
+  // A piece or segment whose bound is not above this cannot raise the maximum, nor (below a
+  // finite stop) reach the stop: it is not measured.
+  auto unmeasured_below = [&] { return stop_above_mm < HUGE_VAL ? std::max(dev.max_mm, stop_above_mm) : dev.max_mm; };
   const bool advancing = dev.ordered && total > 0;
   const double rise = total > 0 ? (arc.h1 - arc.h0) / total : 0.0;  // mm per radian
   // Whether segment m and its vertices lie in the arc's plane.
@@ -346,7 +347,7 @@ Deviation arc_deviation_by_angles(std::span<const Vec3> pts, const ArcGeom& arc,
       // height (both heights run linearly), across and along the chord.
       const double delta = phi[m + 1] - phi[m], half = 0.5 * delta;
       const double reach = r * ((1 - std::cos(half)) + (half - std::sin(half))) + std::max(off[m], off[m + 1]);
-      const double floor = stops ? std::max(dev.max_mm, stop_above_mm) : dev.max_mm;
+      const double floor = unmeasured_below();
       if (reach <= floor) continue;
       const Vec3 A = pts[m], AB = pts[m + 1] - pts[m];
       double at[4] = {0.0, 0.5, 1.0, 1.0};
@@ -390,7 +391,7 @@ Deviation arc_deviation_by_angles(std::span<const Vec3> pts, const ArcGeom& arc,
       // Cheap bound first: the arc piece lies within its sagitta of its own chord, and that
       // chord within its end vertices' radial distances of the input segment. Only a piece
       // whose bound could raise the maximum (or reach the stop) is measured exactly.
-      const double skip_at = stops ? std::max(dev.max_mm, stop_above_mm) : dev.max_mm;
+      const double skip_at = unmeasured_below();
       double sagitta = r * (1 - std::cos(0.5 * (p1 - p0)));
       if (sagitta + std::max(radial[m], radial[m + 1]) <= skip_at) continue;
       double cand[4] = {p0, p1, 0.5 * (p0 + p1), -1};

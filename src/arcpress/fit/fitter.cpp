@@ -561,7 +561,7 @@ class RunFitter : private FitAngles {
   /// What scan_ends() holds each end to besides the band, read off the options and the
   /// stretch (lim_: once a stretch, not at each of the few million scans).
   struct ScanLimits {
-    double max_alpha, min_alpha, line_alpha;  // pseudo-angles, see the constructor
+    double max_alpha, min_alpha, line_alpha;  // pseudo-angles, see FitAngles()
     double min_curvature, max_curvature;  // 1/mm: those of the largest and smallest radius
     double min_arc_length_mm;
     uint32_t min_arc_moves;
@@ -875,21 +875,20 @@ class RunFitter : private FitAngles {
   /// one before the longest: where a straight stretch turns into a fillet, the primitive
   /// that ends at the turn, one vertex short of the furthest the band lets it overshoot, is
   /// the one the next can follow (a rounded rectangle: 11 blocks without it, 8 with).
-  /// With `guide` (the beam, expanding its guide): a greedy step's scan from `a` along T is
-  /// taken again when there is one, and *guide points at it (else null). While a greedy step
-  /// is taken in a search (s_.guide_record), each scan is kept as a GuideScan.
-  void pick(uint32_t a, const Vec2& T, uint32_t limit, int count, std::vector<Candidate>& out,
-            bool next_to_longest = false, const GuideScan** guide = nullptr) const {
-    const GuideScan* kept = guide ? (*guide = guide_scan(a, T, limit)) : nullptr;
+  /// While a greedy step is taken in a search (s_.guide_record), the scan is kept as a
+  /// GuideScan; with `reuse` (the beam, expanding its guide), a greedy step's scan from `a`
+  /// along T is taken again when there is one. Returns that GuideScan, else null.
+  GuideScan* pick(uint32_t a, const Vec2& T, uint32_t limit, int count, std::vector<Candidate>& out,
+                  bool next_to_longest = false, bool reuse = false) const {
+    GuideScan* kept = reuse ? guide_scan(a, T, limit) : nullptr;
     if (!kept && s_.guide_record) {
-      GuideScan& g = s_.guide_scans[s_.guide_next++ % s_.guide_scans.size()];
-      g.stretch = stretch_id_;
-      g.a = a;
-      g.limit = limit;
-      g.T = T;
-      g.reach.clear();
-      scan(a, T, limit, g.ends);
-      kept = &g;
+      kept = &s_.guide_scans[s_.guide_next++ % s_.guide_scans.size()];
+      kept->stretch = stretch_id_;
+      kept->a = a;
+      kept->limit = limit;
+      kept->T = T;
+      kept->reach.clear();
+      scan(a, T, limit, kept->ends);
     } else if (!kept) {
       scan(a, T, limit, s_.scanned);
     }
@@ -915,11 +914,12 @@ class RunFitter : private FitAngles {
           out.push_back(all[i]);
           break;
         }
+    return kept;
   }
 
   /// The greedy steps' scan from `a` along exactly `T` in this stretch, or null.
-  const GuideScan* guide_scan(uint32_t a, const Vec2& T, uint32_t limit) const {
-    for (const GuideScan& g : s_.guide_scans)
+  GuideScan* guide_scan(uint32_t a, const Vec2& T, uint32_t limit) const {
+    for (GuideScan& g : s_.guide_scans)
       if (g.stretch == stretch_id_ && g.a == a && g.limit == limit && g.T == T) return &g;
     return nullptr;
   }
@@ -957,14 +957,12 @@ class RunFitter : private FitAngles {
     // wins, so most steps check one primitive. (A candidate's end tangent is T reflected
     // about its chord, a line's the chord.)
     std::vector<Candidate>& cand = s_.best_cand;
-    pick(a, T, limit, kLookahead, cand);
+    GuideScan* kept = pick(a, T, limit, kLookahead, cand);
     std::vector<Ranked>& ranked = s_.ranked;
     ranked.clear();
     for (size_t i = 0; i < cand.size(); ++i) ranked.push_back({i, score(unchecked(a, T, cand[i]), limit)});
-    if (s_.guide_record) {
-      GuideScan& g = s_.guide_scans[(s_.guide_next - 1) % s_.guide_scans.size()];  // pick()'s
-      for (const Ranked& r : ranked) g.reach.emplace_back(cand[r.i].e, r.sc.reach);
-    }
+    if (kept)
+      for (const Ranked& r : ranked) kept->reach.emplace_back(cand[r.i].e, r.sc.reach);
     std::stable_sort(ranked.begin(), ranked.end(), [](const Ranked& x, const Ranked& y) { return x.sc > y.sc; });
     for (const Ranked& r : ranked)
       if (auto c = make(a, T, cand[r.i])) {
@@ -1623,8 +1621,7 @@ class RunFitter : private FitAngles {
           auto same = [&](const auto& x) { return x.first == nd.v && same_tangent_cone_.holds(x.second, T); };
           if (std::any_of(expanded.begin(), expanded.end(), same)) continue;
           expanded.push_back({nd.v, T});
-          const GuideScan* kept = nullptr;
-          pick(nd.v, T, limit, o_.beam_branch, out, true, i == guide ? &kept : nullptr);
+          const GuideScan* kept = pick(nd.v, T, limit, o_.beam_branch, out, true, i == guide);
           for (const Candidate& cd : out) {
             if (cd.e >= limit) {
               if (auto c = made_from(nd, T, cd)) {
