@@ -378,7 +378,7 @@ int main(int argc, char** argv) {
                                 {"stream", FitOptions::Method::Stream},
                                 {"lowe", FitOptions::Method::Lowe}};
   // The default's search made smaller, on one thread: what each step down saves in time and
-  // costs in blocks. (The default's width, branch and merging stand where these put them.)
+  // what it costs in blocks.
   struct Search {
     const char* name;
     std::function<void(FitOptions&)> narrow;
@@ -438,17 +438,19 @@ int main(int argc, char** argv) {
     fmt::print("\nthe default (arcs) with a smaller search, 1 thread: blocks, and fitting time as above\n");
     fmt::print("{:<32} {:>12} {:>14} {:>12} {:>18}\n", "search", "blocks out", "over default", "fitting s",
                "fitter M points/s");
+    auto over_default = [&](size_t blocks) {
+      const long more = long(blocks) - long(searches[0].blocks);
+      return fmt::format("{:+} ({:+.2f}%)", more, 100.0 * double(more) / double(searches[0].blocks));
+    };
     for (const Search& v : searches) {
       const double fit_s = std::max(v.seconds - tallies[0].seconds, 1e-9);
-      const long more = long(v.blocks) - long(searches[0].blocks);
-      fmt::print("{:<32} {:>12} {:>14} {:>12.3f} {:>18.2f}\n", v.name, v.blocks,
-                 fmt::format("{:+} ({:+.2f}%)", more, 100.0 * double(more) / double(searches[0].blocks)), fit_s,
+      fmt::print("{:<32} {:>12} {:>14} {:>12.3f} {:>18.2f}\n", v.name, v.blocks, over_default(v.blocks), fit_s,
                  double(tallies[0].points) / fit_s / 1e6);
     }
-    const Tally& greedy = tallies[3];
-    fmt::print("{:<32} {:>12} {:>14}   (the table above)\n", "greedy method", greedy.blocks,
-               fmt::format("{:+} ({:+.2f}%)", long(greedy.blocks) - long(searches[0].blocks),
-                           100.0 * (double(greedy.blocks) - double(searches[0].blocks)) / double(searches[0].blocks)));
+    const auto greedy = std::find_if(tallies.begin(), tallies.end(),
+                                     [](const Tally& t) { return t.method == FitOptions::Method::Greedy; });
+    fmt::print("{:<32} {:>12} {:>14}   (the table above)\n", "greedy method", greedy->blocks,
+               over_default(greedy->blocks));
   }
   return 0;
 }
