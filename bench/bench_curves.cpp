@@ -8,23 +8,20 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <functional>
-#include <iterator>
 #include <random>
 #include <string_view>
 #include <thread>
 #include <vector>
 
 #include "corpus_files.hpp"
+#include "timed_compress.hpp"
 #include "arcpress/api/arcpress.hpp"
 #include "arcpress/fit/count_bound.hpp"
 
 namespace fs = std::filesystem;
-using clk = std::chrono::steady_clock;
 using namespace arcpress;
 
 namespace {
@@ -210,20 +207,6 @@ Shape random_contour(unsigned seed) {
   return s;
 }
 
-/// The best of `repeats` compressions of `text` with `opt` (seconds), and the last result.
-std::pair<double, CompressResult> timed_compress(const fs::path& f, const std::string& text, const CompressOptions& opt,
-                                                 int repeats) {
-  double best = 1e9;
-  CompressResult r;
-  for (int k = 0; k < repeats; ++k) {
-    DiagnosticSink sink;
-    auto t0 = clk::now();
-    r = compress(f.string(), text, opt, sink);
-    best = std::min(best, std::chrono::duration<double>(clk::now() - t0).count());
-  }
-  return {best, std::move(r)};
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -266,22 +249,10 @@ int main(int argc, char** argv) {
         DiagnosticSink sink;
         CompressResult r = compress(c.name, text, opt, sink);  // with verification, for the figures
         opt.verify = false;
-        double best = 1e9;
-        for (int k = 0; k < repeats; ++k) {
-          DiagnosticSink s2;
-          auto t0 = clk::now();
-          CompressResult q = compress(c.name, text, opt, s2);
-          best = std::min(best, std::chrono::duration<double, std::milli>(clk::now() - t0).count());
-        }
+        const double best = 1000 * timed_compress(c.name, text, opt, repeats).first;  // ms
         opt.fit.method = FitOptions::Method::Global;  // the wider search, and its time
-        double global_ms = 1e9;
-        CompressResult gl;
-        for (int k = 0; k < repeats; ++k) {
-          DiagnosticSink s6;
-          auto t0 = clk::now();
-          gl = compress(c.name, text, opt, s6);
-          global_ms = std::min(global_ms, std::chrono::duration<double, std::milli>(clk::now() - t0).count());
-        }
+        const auto [global_s, gl] = timed_compress(c.name, text, opt, repeats);
+        const double global_ms = 1000 * global_s;
         opt.fit.method = FitOptions::Method::Greedy;  // segments the one-step method needs, for comparison
         DiagnosticSink s3;
         CompressResult g = compress(c.name, text, opt, s3);
@@ -395,8 +366,7 @@ int main(int argc, char** argv) {
       {"width 4, branch 2, no merging", [](FitOptions& o) { o.beam_width = 4; o.beam_branch = 2; o.merge = false; }},
   };
   for (const auto& f : files) {
-    std::ifstream in(f, std::ios::binary);
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string text = file_text(f);
     for (Tally& t : tallies) {
       for (unsigned threads : {1u, hw}) {
         CompressOptions opt;

@@ -10,21 +10,18 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
 #include "corpus_files.hpp"
+#include "timed_compress.hpp"
 #include "arcpress/api/arcpress.hpp"
 
 namespace fs = std::filesystem;
-using clk = std::chrono::steady_clock;
 using arcpress::FitOptions;
 
 int main(int argc, char** argv) {
@@ -50,20 +47,11 @@ int main(int argc, char** argv) {
   double seconds = 0;
   size_t points = 0, blocks = 0;
   for (const auto& f : files) {
-    std::ifstream in(f, std::ios::binary);
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    double best = 1e9;
-    arcpress::CompressResult r;
-    for (int k = 0; k < repeats; ++k) {
-      arcpress::CompressOptions opt;
-      opt.verify = false;
-      opt.fit.method = method->second;
-      opt.threads = threads;
-      arcpress::DiagnosticSink sink;
-      const auto t0 = clk::now();
-      r = arcpress::compress(f.string(), text, opt, sink);
-      best = std::min(best, std::chrono::duration<double>(clk::now() - t0).count());
-    }
+    arcpress::CompressOptions opt;
+    opt.verify = false;
+    opt.fit.method = method->second;
+    opt.threads = threads;
+    const auto [best, r] = timed_compress(f, file_text(f), opt, repeats);
     seconds += best;
     points += r.stats.moves_in;
     blocks += r.stats.lines_out + r.stats.arcs_out;

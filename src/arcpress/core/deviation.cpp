@@ -97,6 +97,12 @@ Deviation line_deviation(std::span<const Vec3> pts, double stop_above_mm) {
 
 namespace {
 
+/// A segment or arc piece whose bound is not above this cannot raise the maximum found so
+/// far, nor (below a finite stop) reach the stop: it need not be measured.
+double unmeasured_below(const Deviation& dev, double stop_above_mm) {
+  return stop_above_mm < HUGE_VAL ? std::max(dev.max_mm, stop_above_mm) : dev.max_mm;
+}
+
 /// arc_deviation() for the common case of a flat arc and a polyline in its plane, without
 /// trigonometry: angles along the arc are pseudo-angles in the arc's own frame, and the arc
 /// points measured (at the vertices' angles, piece middles, and where the arc runs parallel
@@ -172,8 +178,7 @@ Deviation planar_arc_deviation(std::span<const Vec3> pts, const ArcGeom& arc, do
       // within the vertices' radial distances of the input segment.
       // Below a finite stop, a piece that cannot reach it is not measured either.
       double cos_half = std::sqrt(std::max(0.0, 0.5 * (1 + u0.dot(u1))));
-      const double skip_at = stop_above_mm < HUGE_VAL ? std::max(dev.max_mm, stop_above_mm) : dev.max_mm;
-      if (r * (1 - cos_half) + std::max(radial[m], radial[m + 1]) <= skip_at) continue;
+      if (r * (1 - cos_half) + std::max(radial[m], radial[m + 1]) <= unmeasured_below(dev, stop_above_mm)) continue;
       Vec2 mid = u0 + u1;
       Vec2 cand[4] = {u0, u1, mid.squaredNorm() > 0 ? Vec2(mid.normalized()) : u0, Vec2(0, 0)};
       int count = 3;
@@ -268,14 +273,15 @@ Deviation arc_deviation_by_angles(std::span<const Vec3> pts, const ArcGeom& arc,
   const double r = arc.radius_mm;
   const double dir = arc.sweep >= 0 ? 1.0 : -1.0;
   const double total = std::abs(arc.sweep);
-  auto angle_along = [&](const Vec3& p) {  // angle from the start in the arc's direction, [0, 2π)
-    double a = std::atan2(p.y() - arc.center.y(), p.x() - arc.center.x()) - arc.start_angle;
-    a *= dir;
+  // The angle of direction (x, y) from the centre, from the start in the arc's direction, [0, 2π).
+  auto angle_of = [&](double x, double y) {
+    double a = (std::atan2(y, x) - arc.start_angle) * dir;
     // (Both angles lie in [-π, π]: the remainder is needed only at ±2π.)
     if (std::abs(a) >= 2 * kPi) a = std::fmod(a, 2 * kPi);
     if (a < 0) a += 2 * kPi;
     return a;
   };
+  auto angle_along = [&](const Vec3& p) { return angle_of(p.x() - arc.center.x(), p.y() - arc.center.y()); };
   auto note = [&](double d, size_t m) {
     if (d > dev.max_mm) {
       dev.max_mm = d;
@@ -320,9 +326,6 @@ Deviation arc_deviation_by_angles(std::span<const Vec3> pts, const ArcGeom& arc,
   }
   vertex_gap(0);
   vertex_gap(n - 1);
-  // A piece or segment whose bound is not above this cannot raise the maximum, nor (below a
-  // finite stop) reach the stop: it is not measured.
-  auto unmeasured_below = [&] { return stop_above_mm < HUGE_VAL ? std::max(dev.max_mm, stop_above_mm) : dev.max_mm; };
   const bool advancing = dev.ordered && total > 0;
   const double rise = total > 0 ? (arc.h1 - arc.h0) / total : 0.0;  // mm per radian
   // Whether segment m and its vertices lie in the arc's plane.
@@ -347,7 +350,7 @@ Deviation arc_deviation_by_angles(std::span<const Vec3> pts, const ArcGeom& arc,
       // height (both heights run linearly), across and along the chord.
       const double delta = phi[m + 1] - phi[m], half = 0.5 * delta;
       const double reach = r * ((1 - std::cos(half)) + (half - std::sin(half))) + std::max(off[m], off[m + 1]);
-      const double floor = unmeasured_below();
+      const double floor = unmeasured_below(dev, stop_above_mm);
       if (reach <= floor) continue;
       const Vec3 A = pts[m], AB = pts[m + 1] - pts[m];
       double at[4] = {0.0, 0.5, 1.0, 1.0};
@@ -391,7 +394,7 @@ Deviation arc_deviation_by_angles(std::span<const Vec3> pts, const ArcGeom& arc,
       // Cheap bound first: the arc piece lies within its sagitta of its own chord, and that
       // chord within its end vertices' radial distances of the input segment. Only a piece
       // whose bound could raise the maximum (or reach the stop) is measured exactly.
-      const double skip_at = unmeasured_below();
+      const double skip_at = unmeasured_below(dev, stop_above_mm);
       double sagitta = r * (1 - std::cos(0.5 * (p1 - p0)));
       if (sagitta + std::max(radial[m], radial[m + 1]) <= skip_at) continue;
       double cand[4] = {p0, p1, 0.5 * (p0 + p1), -1};
@@ -400,10 +403,7 @@ Deviation arc_deviation_by_angles(std::span<const Vec3> pts, const ArcGeom& arc,
         // Arc point whose radius is perpendicular to the segment, on the far side.
         Vec2 nrm = left_normal(ab.normalized());
         for (double s : {1.0, -1.0}) {
-          double a = std::atan2(s * nrm.y(), s * nrm.x()) - arc.start_angle;
-          a *= dir;
-          if (std::abs(a) >= 2 * kPi) a = std::fmod(a, 2 * kPi);
-          if (a < 0) a += 2 * kPi;
+          const double a = angle_of(s * nrm.x(), s * nrm.y());
           if (a > p0 && a < p1) cand[3] = a;
         }
       }

@@ -819,11 +819,14 @@ class RunFitter : private FitAngles {
     Score sc;
   };
   Score score(const Chosen& c, uint32_t limit) const {
+    return scored(c, reach_after(c.prim.end_vertex, c.end_tangent, limit));
+  }
+  /// The score of `c`, after which the chain reaches `reach`.
+  Score scored(const Chosen& c, uint32_t reach) const {
     Score sc;
     sc.end = c.prim.end_vertex;
-    sc.reach = reach_after(sc.end, c.end_tangent, limit);
-    if (const auto& t = heading_[sc.end])
-      sc.on_course = on_course_cone_.holds(*t, c.end_tangent);
+    sc.reach = reach;
+    if (const auto& t = heading_[sc.end]) sc.on_course = on_course_cone_.holds(*t, c.end_tangent);
     return sc;
   }
 
@@ -928,13 +931,7 @@ class RunFitter : private FitAngles {
   /// scored it too.
   Score guide_score(const GuideScan& g, const Chosen& c, uint32_t limit) const {
     for (const auto& [e, reach] : g.reach)
-      if (e == c.prim.end_vertex) {
-        Score sc;
-        sc.end = e;
-        sc.reach = reach;
-        if (const auto& t = heading_[e]) sc.on_course = on_course_cone_.holds(*t, c.end_tangent);
-        return sc;
-      }
+      if (e == c.prim.end_vertex) return scored(c, reach);
     return score(c, limit);
   }
 
