@@ -116,18 +116,23 @@ int run_compress(const CompressArgs& a) {
                "arcpress: {} -> {}\n"
                "  blocks in      {}\n"
                "  bytes in/out   {} / {} ({:.1f} %)\n"
-               "  runs           {} with {} G1 moves\n"
+               "  G1 moves       {} in the input, {} in {} runs\n"
                "  dialect        {}\n"
                "  written        {} G1 + {} G2/G3 ({} blocks for {} moves, {:.1f} %)\n"
                "  kept as input  {} arcs that would not print inside the dialect's rules, {} over-long lines\n"
                "  planes         {} G17/G18/G19 blocks around runs fitted in another plane\n"
                "  time           {:.3f} s\n",
                name, out_path == "-" ? "<stdout>" : out_path, r.blocks_in, r.bytes_in, r.output.size(),
-               r.bytes_in ? 100.0 * double(r.output.size()) / double(r.bytes_in) : 100.0, st.runs, st.moves_in,
+               r.bytes_in ? 100.0 * double(r.output.size()) / double(r.bytes_in) : 100.0, r.g1_moves, st.moves_in, st.runs,
                opt.dialect.source.empty() ? opt.dialect.name : opt.dialect.name + " (" + opt.dialect.source + ")",
                st.lines_out, st.arcs_out, st.lines_out + st.arcs_out, st.moves_in,
                st.moves_in ? 100.0 * double(st.lines_out + st.arcs_out) / double(st.moves_in) : 100.0,
                st.arcs_unprintable, st.long_lines_kept, st.plane_words_added, s);
+    // The G1 moves left as they are, by reason, with the first place of each.
+    for (const NotFitted& n : r.not_fitted)
+      fmt::print(stderr, "  not fitted     {} G1 move{}: {}{} (first at line {})\n", n.moves, n.moves == 1 ? "" : "s",
+                 describe(n.why), n.cause_line ? fmt::format(" at line {}", n.cause_line) : std::string(),
+                 n.first_line);
     if (r.verified) {
       const auto& c = r.comparison;
       // Where the worst place is, when there is one (a path written back as it was has none).
@@ -191,7 +196,12 @@ int run_diff(const DiffArgs& d) {
   }
   std::string out = d.json ? diff_json(r, names, d.tolerance_mm) : diff_text(r, names, d.tolerance_mm);
   std::fputs(out.c_str(), stdout);
-  return r.same(d.tolerance_mm) ? kExitOk : kExitVerifyFailed;
+  switch (r.verdict(d.tolerance_mm)) {
+    case ProgramDiff::Verdict::Same: return kExitOk;
+    case ProgramDiff::Verdict::Different: return kExitVerifyFailed;
+    case ProgramDiff::Verdict::Incomplete: break;
+  }
+  return kExitInput;  // not all was compared: never a pass
 }
 
 }  // namespace

@@ -125,7 +125,7 @@ TEST_CASE("the stats flag reports counts on standard error", "[cli]") {
   auto c = run_arcpress("--stats --method keep", kProgram);
   CHECK(c.exit_code == 0);
   CHECK(c.out == kProgram);
-  CHECK(c.err.find("runs           1 with 4 G1 moves") != std::string::npos);
+  CHECK(c.err.find("G1 moves       4 in the input, 4 in 1 runs") != std::string::npos);
 }
 
 TEST_CASE("the stats name the input lines where the band forced the tangent to break", "[cli]") {

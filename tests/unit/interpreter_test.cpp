@@ -52,7 +52,7 @@ TEST_CASE("modal motion and feed carry over to blocks without them", "[model]") 
   REQUIRE(r.in.moves.size() == 4);
   CHECK(r.in.moves[3].kind == MoveKind::Line);
   CHECK(r.in.moves[3].feed_mm_min == 300.0);
-  CHECK(r.in.moves[3].fittable);
+  CHECK(r.in.moves[3].fittable());
 }
 
 TEST_CASE("arcs get their centre from I/J, G90.1 absolute centres and R", "[model]") {
@@ -77,17 +77,64 @@ TEST_CASE("M83 makes E relative, M82 absolute, G92 E resets it", "[model]") {
   CHECK(r.in.moves[3].to[kE] == 3.0);  // G92 E0 at E=1, then E2
 }
 
-TEST_CASE("what cannot be evaluated makes the position unknown", "[model]") {
+TEST_CASE("what cannot be evaluated makes the position unknown; an unknown axis that does not move stays put",
+          "[model]") {
   auto r = run("G0 X0 Y0 Z0\nG1 X[#1*2] F100\nG1 Y1\nG1 X2 Y1 Z0\nG1 X3\nG53 G0 Z0\nG1 X4\n");
   REQUIRE(r.in.moves.size() == 7);
   CHECK_FALSE(r.in.moves[1].known);
-  CHECK_FALSE(r.in.moves[2].known);  // X still unknown
+  CHECK(r.in.moves[1].unfit == Unfit::UnknownAfterExpression);
+  CHECK(r.in.moves[2].known);        // X unknown, but this move does not move it
+  CHECK(r.in.moves[2].unknown_axes == (1u << kX));
   CHECK_FALSE(r.in.moves[3].known);  // X unknown at its start
+  CHECK(r.in.moves[3].unfit == Unfit::UnknownAfterExpression);
   CHECK(r.in.moves[4].known);
-  CHECK(r.in.moves[4].fittable);
+  CHECK(r.in.moves[4].fittable());
   CHECK(r.in.moves[5].kind == MoveKind::Other);
-  CHECK_FALSE(r.in.moves[6].known);  // Z in machine coordinates is not in our frame
-  CHECK_FALSE(r.in.moves[6].fittable);
+  CHECK(r.in.moves[6].known);  // Z in machine coordinates is not in our frame, and X4 does not move it
+  CHECK(r.in.moves[6].unknown_axes == (1u << kZ));
+  // The feed moves that could not be placed, each with the block that made its axis unknown.
+  REQUIRE(r.in.unplaced.size() == 2);
+  CHECK(r.in.unplaced[0].move == 1);
+  CHECK(r.in.unplaced[0].cause_block == 1);
+  CHECK(r.in.unplaced[1].move == 3);
+  CHECK(r.in.unplaced[1].cause_block == 1);
+}
+
+TEST_CASE("axes a program never sets are constant: a 2-D program's moves are placed", "[model]") {
+  auto r = run("G21 G90\nG0 X1 Y1\nG1 X2 Y1 F300\nG1 X3 Y2\nG2 X5 Y2 I1 J0\n");
+  REQUIRE(r.in.moves.size() == 4);
+  CHECK_FALSE(r.in.moves[0].known);  // from where X and Y were never set
+  CHECK(r.in.moves[0].unfit == Unfit::UnknownAtStart);
+  for (size_t k = 1; k < 4; ++k) {
+    CHECK(r.in.moves[k].known);
+    CHECK(r.in.moves[k].unknown_axes == (1u << kZ | 1u << kA | 1u << kB | 1u << kC | 1u << kU | 1u << kV | 1u << kW));
+  }
+  CHECK(r.in.moves[1].fittable());
+  CHECK(r.in.unplaced.empty());  // the G0 from nowhere is no feed move
+}
+
+TEST_CASE("after homing, a move that moves a homed axis is unplaced until the axis is set again", "[model]") {
+  auto r = run("G0 X0 Y0 Z0\nG1 X1 F100\nG28\nG1 X2 Y2\nG1 X3\nG1 Z1\nG1 Z2\n");
+  REQUIRE(r.in.moves.size() == 7);
+  CHECK(r.in.moves[2].kind == MoveKind::Other);
+  CHECK_FALSE(r.in.moves[3].known);  // X and Y from the home position
+  CHECK(r.in.moves[3].unfit == Unfit::UnknownAfterHoming);
+  CHECK(r.in.moves[4].known);        // X from X2, Y and Z still
+  CHECK_FALSE(r.in.moves[5].known);  // Z from the home position
+  CHECK(r.in.moves[6].known);
+  REQUIRE(r.in.unplaced.size() == 2);
+  CHECK(r.in.unplaced[0].cause_block == 2);
+}
+
+TEST_CASE("S on a feed move is the power in force along it", "[model]") {
+  auto r = run("G0 X0 Y0\nM4 S0\nG1 X1 F1000 S300\nG1 X2\nG1 X3 S500\n");
+  REQUIRE(r.in.moves.size() == 4);
+  CHECK(r.in.moves[0].spindle == 0);
+  CHECK(r.in.moves[1].spindle == 300);
+  CHECK(r.in.moves[2].spindle == 300);
+  CHECK(r.in.moves[3].spindle == 500);
+  CHECK(r.in.moves[1].fittable());
+  CHECK(r.in.moves[3].fittable());
 }
 
 TEST_CASE("only plain G1 blocks are fittable and runs stop at everything else", "[extract]") {

@@ -34,6 +34,14 @@ struct CompressOptions {
   unsigned threads = 0;
 };
 
+/// G1 moves that were put in no run, for one reason (see left_out_moves()).
+struct NotFitted {
+  Unfit why = Unfit::None;  ///< Unfit::None: a lone G1 between blocks that are no run
+  size_t moves = 0;
+  uint32_t first_line = 0;  ///< the first such move's line
+  uint32_t cause_line = 0;  ///< unplaced moves: the line that made the position unknown (0: none)
+};
+
 struct CompressResult {
   bool ok = false;        ///< false: input errors (see the sink); `output` is then empty
   std::string output;
@@ -43,7 +51,13 @@ struct CompressResult {
   size_t forced_kinks = 0;   ///< smooth joints where the band forced a tangent change
   /// Where they are: the input line of the move that starts at each, in order.
   std::vector<uint32_t> forced_kink_lines;
+  size_t g1_moves = 0;       ///< G1 moves in the input
+  /// The G1 moves in no run, grouped by reason (empty with `passthrough`).
+  std::vector<NotFitted> not_fitted;
   bool verified = false;     ///< `check` and `comparison` hold measurements of the output
+  /// The feed moves of input and output that could not be placed (and so not measured) are
+  /// the same moves, one for one: written back as they were.
+  bool unplaced_kept = false;
   /// The output against the input by diff_programs(), the code of `arcpress diff`: the
   /// verdict on the output and its measured deviation.
   ProgramDiff check;
@@ -52,7 +66,9 @@ struct CompressResult {
   PathComparison comparison;
   /// True when the output may be used: read fine and, when verified, the same program as
   /// the input within the band, move by move and as a whole.
-  bool within_band() const { return !verified || (check.same(band_mm) && comparison.within(band_mm)); }
+  bool within_band() const {
+    return !verified || (check.agrees(band_mm) && (check.compared_all() || unplaced_kept) && comparison.within(band_mm));
+  }
   double band_mm = 0;
 };
 

@@ -5,6 +5,8 @@
 #include <iterator>
 #include <numeric>
 
+#include <fmt/format.h>
+
 #include "arcpress/core/error.hpp"
 #include "arcpress/core/workers.hpp"
 #include "arcpress/extract/run.hpp"
@@ -55,6 +57,18 @@ void verify_output(const Program& input, const Interpretation& in, const Compres
   r.check = diff_programs(input, in, out_prog, out_in, dopt);
   if (out_sink.error_count() > 0)
     r.check.findings.insert(r.check.findings.begin(), "the output does not read back: " + out_sink.format_all());
+  // Feed moves that cannot be placed are not measured by either check: they must be the
+  // input's own, one for one, as read (kind, end point as far as it is known, why).
+  r.unplaced_kept = in.unplaced.size() == out_in.unplaced.size();
+  for (size_t k = 0; k < in.unplaced.size() && r.unplaced_kept; ++k) {
+    const Move& ma = in.moves[in.unplaced[k].move];
+    const Move& mb = out_in.moves[out_in.unplaced[k].move];
+    r.unplaced_kept = ma.kind == mb.kind && ma.to == mb.to && ma.unfit == mb.unfit && ma.unknown_axes == mb.unknown_axes;
+  }
+  if (!r.unplaced_kept)
+    r.check.findings.push_back(fmt::format("feed moves whose position is not known: {} in the input, {} in the output, "
+                                           "not the same moves",
+                                           in.unplaced.size(), out_in.unplaced.size()));
   r.band_mm = opt.fit.tolerance_mm;
   r.verified = true;
 }
@@ -121,6 +135,23 @@ CompressResult compress(const std::string& name, std::string text, const Compres
     for (size_t k = 0; k < runs.size(); ++k)
       for (uint32_t v : fits[k].forced_at)
         r.forced_kink_lines.push_back(prog.blocks[in.moves[in.joint_move(runs[k].first_move + v)].block].line);
+  }
+  for (const Move& m : in.moves) r.g1_moves += m.kind == MoveKind::Line;
+  if (!opt.passthrough) {
+    for (const LeftOut& g : left_out_moves(in, runs)) {
+      NotFitted n{g.why, g.moves, prog.blocks[in.moves[g.first_move].block].line, 0};
+      if (g.cause_block >= 0) n.cause_line = prog.blocks[size_t(g.cause_block)].line;
+      r.not_fitted.push_back(n);
+    }
+    // A program with G1 moves of which none could be fitted is told why.
+    if (r.g1_moves > 0 && runs.empty()) {
+      const auto most = std::max_element(r.not_fitted.begin(), r.not_fitted.end(),
+                                         [](const NotFitted& x, const NotFitted& y) { return x.moves < y.moves; });
+      sink.warning({most->first_line, 1}, "W-FIT-NONE",
+                   fmt::format("none of the {} G1 moves could be fitted; {} of them: {}{} (see --stats)", r.g1_moves,
+                               most->moves, describe(most->why),
+                               most->cause_line ? fmt::format(" at line {}", most->cause_line) : std::string()));
+    }
   }
   EmitOptions eo;
   eo.band_mm = opt.fit.tolerance_mm;

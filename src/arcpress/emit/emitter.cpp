@@ -334,6 +334,8 @@ class Emitter {
       bool in_plane = arc && (ax == axes.first || ax == axes.second);
       const Word* w = last_word[L - 'A'];
       if (!w && !in_plane) continue;
+      // An axis whose position is not known is never printed: the input's lines stay.
+      if (!w && (in_.moves[run.first_move + a].unknown_axes >> ax) & 1u) return std::nullopt;
       bool relative = ax == kE ? fr.e_relative : !fr.absolute;
       double scale = kAxisIsLinear[ax] ? fr.unit_mm : 1.0;
       if (relative) {
@@ -367,10 +369,13 @@ class Emitter {
       s += c.words;
     }
     s += e_word;  // arc centre words come before E and F, as arc-fitting slicers write them
-    if (const Word* f = last_word['F' - 'A']) {
-      s += sep;
-      s += p_.raw(*last_block['F' - 'A'], *f);
-    }
+    // F and S (laser power on a feed move) as the covered blocks last state them: the run
+    // holds one of each throughout (see extract_runs()).
+    for (char L : {'F', 'S'})
+      if (const Word* w = last_word[L - 'A']) {
+        s += sep;
+        s += p_.raw(*last_block[L - 'A'], *w);
+      }
     return out;
   }
 

@@ -157,13 +157,14 @@ std::vector<Run> extract_runs(const Interpretation& in, uint32_t min_moves, cons
   const auto& mv = in.moves;
   size_t i = 0;
   while (i < mv.size()) {
-    if (!mv[i].fittable) {
+    if (!mv[i].fittable()) {
       ++i;
       continue;
     }
     size_t j = i + 1;
-    while (j < mv.size() && mv[j].fittable && mv[j].block == mv[j - 1].block + 1 &&
-           mv[j].frame == mv[i].frame && mv[j].plane == mv[i].plane && mv[j].feed_mm_min == mv[i].feed_mm_min)
+    while (j < mv.size() && mv[j].fittable() && mv[j].block == mv[j - 1].block + 1 &&
+           mv[j].frame == mv[i].frame && mv[j].plane == mv[i].plane && mv[j].feed_mm_min == mv[i].feed_mm_min &&
+           mv[j].spindle == mv[i].spindle)
       ++j;
     // The first move must also follow its predecessor directly, or its start is not its block's.
     split_by_plane(in, i, j, min_moves, choice, runs);
@@ -187,7 +188,7 @@ std::vector<RunChain> chain_runs(const Interpretation& in, const std::vector<Run
   };
   for (size_t k = 0; k < mv.size(); ++k) {
     const int32_t r = run_of[k];
-    if (!mv[k].fittable && !(is_arc(mv[k].kind) && mv[k].known)) {
+    if (!mv[k].fittable() && !(is_arc(mv[k].kind) && mv[k].known)) {
       close();
       continue;
     }
@@ -210,6 +211,29 @@ std::vector<RunChain> chain_runs(const Interpretation& in, const std::vector<Run
   }
   close();
   return chains;
+}
+
+std::vector<LeftOut> left_out_moves(const Interpretation& in, const std::vector<Run>& runs) {
+  std::vector<LeftOut> groups;
+  auto add = [&](Unfit why, uint32_t move, int64_t cause) {
+    for (LeftOut& g : groups)
+      if (g.why == why) {
+        ++g.moves;
+        return;
+      }
+    groups.push_back({why, 1, move, cause});
+  };
+  size_t r = 0, u = 0;
+  for (uint32_t k = 0; k < in.moves.size(); ++k) {
+    while (r < runs.size() && runs[r].first_move + runs[r].move_count <= k) ++r;
+    if (r < runs.size() && runs[r].first_move <= k) continue;  // in a run
+    const Move& m = in.moves[k];
+    while (u < in.unplaced.size() && in.unplaced[u].move < k) ++u;
+    if (m.kind != MoveKind::Line) continue;
+    const int64_t cause = u < in.unplaced.size() && in.unplaced[u].move == k ? in.unplaced[u].cause_block : -1;
+    add(m.unfit, k, cause);
+  }
+  return groups;
 }
 
 }  // namespace arcpress

@@ -64,4 +64,14 @@ struct RunChain {
 std::vector<RunChain> chain_runs(const Interpretation& in, const std::vector<Run>& runs, double band_mm,
                                  double corner_angle_deg);
 
+/// G1 moves that are in no run, grouped by why (Move::unfit; Unfit::None: a fittable move
+/// with no fittable neighbour to make a run with), in the order each reason first occurs.
+struct LeftOut {
+  Unfit why = Unfit::None;
+  size_t moves = 0;
+  uint32_t first_move = 0;  ///< the first such move
+  int64_t cause_block = -1; ///< unplaced moves: the block that made the first one's axis unknown (-1: never set)
+};
+std::vector<LeftOut> left_out_moves(const Interpretation& in, const std::vector<Run>& runs);
+
 }  // namespace arcpress

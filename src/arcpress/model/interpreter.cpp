@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -29,6 +30,8 @@ int gcode10(double v) { return int(std::lround(v * 10.0)); }
 
 constexpr uint32_t kAllAxes = (1u << kAxisCount) - 1;
 constexpr uint32_t kXyzMask = (1u << kX) | (1u << kY) | (1u << kZ);
+/// The S in force after an S word that is an expression: constant until the next S word.
+constexpr double kSpindleUnknown = -1;
 
 class Interpreter {
  public:
@@ -51,12 +54,21 @@ class Interpreter {
         return;
       case BlockKind::Code:
         break;
+      case BlockKind::HostCommand:
+        // Firmware M-codes with a text argument (a message, an object label, a printer check,
+        // a file name) move nothing; M32 starts another program, and other host commands
+        // (`$H` homing, `$J=` jogging, firmware macros) may move anything.
+        if (b.word_count > 0 && p_.words_begin(b)->letter == 'M' && !p_.words_begin(b)->is_expr &&
+            std::lround(p_.words_begin(b)->value) != 32)
+          return;
+        forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterControl, bi);
+        return;
       default:
-        // Flow control, macros, host commands and unread lines may move anything.
-        known_ = 1u << kE;
+        // Flow control, macros and unread lines may move anything.
+        forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterControl, bi);
         return;
     }
-    bool only_g1_words = !b.block_delete && !b.has_comment && !b.has_checksum && !b.has_expr;
+    bool other_words = false;   // words a fitted block could not carry along
     int motion = -1;            // G-code ×10 of a motion word in this block
     bool g92 = false, g92_reset = false, g53 = false, axis_consumer = false, homing = false;
     bool words_seen[kAxisCount] = {};
@@ -90,14 +102,15 @@ class Interpreter {
         continue;
       }
       if (w->is_expr) {
-        if (L == 'G' || L == 'M') only_g1_words = false, known_ &= 1u << kE;
+        if (L == 'G' || L == 'M') other_words = true, forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterExpression, bi);
         if (L == 'F') feed_known_ = false;
+        if (L == 'S') spindle_ = kSpindleUnknown;
         continue;
       }
       switch (L) {
         case 'G': {
           int g = gcode10(w->value);
-          if (g != 10) only_g1_words = false;
+          if (g != 10) other_words = true;
           switch (g) {
             case 0: case 10: case 20: case 30: motion = g; break;
             case 50: case 51: case 52: case 53: motion = g; break;  // G5, G5.1, G5.2, G5.3
@@ -126,13 +139,14 @@ class Interpreter {
             case 280: case 300: homing = true; axis_consumer = true; break;
             case 281: case 301: break;
             case 700: case 710: case 720: case 740: case 750:  // lathe turning cycles: run elsewhere
+            case 100:                                           // G10: offsets and tables
               axis_consumer = true;
-              known_ &= 1u << kE;
+              forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterCycle, bi);
               break;
-            case 100: axis_consumer = true; known_ &= 1u << kE; break;  // G10: offsets and tables
             case 530: g53 = true; break;
             case 540: case 550: case 560: case 570: case 580: case 590: case 591: case 592: case 593:
-              if (frame_.work_offset != g) known_ &= 1u << kE;  // same machine point, new coordinates
+              if (frame_.work_offset != g)  // same machine point, new coordinates
+                forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterOffset, bi);
               F().work_offset = g;
               break;
             case 400: case 410: case 411: case 420: case 421:  // cutter compensation
@@ -147,17 +161,18 @@ class Interpreter {
               sink_.problem({b.line, w->col}, "E-MODEL-GCODE",
                             fmt::format("{} is not modelled; the block is kept and not fitted",
                                         p_.raw(b, *w)));
-              known_ &= 1u << kE;
+              forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterUnmodelled, bi);
               break;
           }
           break;
         }
         case 'M': {
-          only_g1_words = false;
+          other_words = true;
           int m = int(std::lround(w->value));
           if (m == 82) F().e_relative = false;
           if (m == 83) F().e_relative = true;
-          if (m == 98 || m == 99) known_ &= 1u << kE;  // subprogram call / return
+          if (m == 98 || m == 99)  // subprogram call / return
+            forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterControl, bi);
           break;
         }
         case 'F':
@@ -168,22 +183,25 @@ class Interpreter {
           int k = L - 'I';
           ijk[k] = number(*w);
           ijk_seen[k] = true;
-          only_g1_words = false;
+          other_words = true;
           break;
         }
         case 'R':
           r_seen = true;
           r_value = number(*w);
-          only_g1_words = false;
+          other_words = true;
           break;
         case 'P':
-          turns = int(std::lround(w->value));
-          only_g1_words = false;
+          turns = int(std::clamp<double>(std::round(w->value), -32768, 32767));
+          other_words = true;
+          break;
+        case 'S':  // spindle speed, or laser power on a feed move: a fitted block carries it
+          spindle_ = w->value;
           break;
         case 'N':
           break;
         default:
-          only_g1_words = false;
+          other_words = true;
           break;
       }
     }
@@ -200,7 +218,7 @@ class Interpreter {
       for (int ax = 0; ax < kAxisCount; ++ax) {
         if (!words_seen[ax]) continue;
         if (expr_axis[ax]) {
-          known_ &= ~(1u << ax);
+          forget(1u << ax, Unfit::UnknownAfterExpression, bi);
           continue;
         }
         double scale = kAxisIsLinear[ax] ? f.unit_mm : 1.0;
@@ -214,11 +232,18 @@ class Interpreter {
     for (int ax = 0; ax < kAxisCount; ++ax) any_axis |= words_seen[ax];
     if (homing) {
       // G28/G30: through an optional point to a stored position we do not know.
-      add_move(bi, MoveKind::Other, pos_, false, 1, false);
       bool any_flag = false;
       for (int ax = 0; ax < kAxisCount; ++ax) any_flag |= flag_axis[ax];
       for (int ax = 0; ax < kE; ++ax)
-        if (words_seen[ax] || flag_axis[ax] || (!any_axis && !any_flag)) known_ &= ~(1u << ax);
+        if (words_seen[ax] || flag_axis[ax] || (!any_axis && !any_flag)) {
+          forget(1u << ax, Unfit::UnknownAfterHoming, bi);
+          // One stand-in for the home position, whatever came before, so that two programs
+          // that home alike hold the same stand-in for an axis they do not set again.
+          pos_[ax] = 0;
+        }
+      Move& m = add_move(bi, MoveKind::Other, pos_, false, 1);
+      m.unknown_axes = uint16_t(kAllAxes & ~known_);
+      m.end_known = false;
       return;
     }
     if (!any_axis || axis_consumer) {
@@ -230,10 +255,15 @@ class Interpreter {
     const Frame& fr = frame_;
     AxisValues target = pos_;
     uint32_t known_after = known_;
+    uint32_t written = 0;  // axes this block writes
+    Unfit after_why[kAxisCount];
+    for (int ax = 0; ax < kAxisCount; ++ax) after_why[ax] = why_[ax].reason;
     for (int ax = 0; ax < kAxisCount; ++ax) {
       if (!words_seen[ax]) continue;
+      written |= 1u << ax;
       if (expr_axis[ax]) {
         known_after &= ~(1u << ax);
+        after_why[ax] = Unfit::UnknownAfterExpression;
         continue;
       }
       double v = value[ax];
@@ -242,6 +272,7 @@ class Interpreter {
       bool relative = ax == kE ? fr.e_relative : !fr.absolute;
       if (g53) {
         known_after &= ~(1u << ax);  // machine coordinates: not in our frame
+        after_why[ax] = Unfit::UnknownAfterMachine;
         target[ax] = v * scale;
       } else if (relative) {
         target[ax] = pos_[ax] + v * scale;
@@ -250,9 +281,6 @@ class Interpreter {
         known_after |= (1u << ax);
       }
     }
-    bool known = (known_ & kXyzMask) == kXyzMask && (known_after & kXyzMask) == kXyzMask;
-    for (int ax = kA; ax < kAxisCount; ++ax)
-      if (words_seen[ax] && !((known_ >> ax) & 1u && (known_after >> ax) & 1u)) known = false;
 
     MoveKind kind = MoveKind::Other;
     if (!g53) {
@@ -263,18 +291,63 @@ class Interpreter {
       else if (motion_ == 20) kind = flip ? MoveKind::ArcCCW : MoveKind::ArcCW;
       else if (motion_ == 30) kind = flip ? MoveKind::ArcCW : MoveKind::ArcCCW;
     }
-    if (kind == MoveKind::Other && motion_ != 0) known_after &= ~kXyzMask;  // cycles end where they like
-    Move& m = add_move(bi, kind, target, known, turns, false);
+    // The axes the move moves: those it writes, and an arc's two plane axes, which it
+    // moves around the centre whether it writes them or not. An axis it does not move
+    // stays where it is, known or not (a 2-D program never sets Z; a lathe never sets Y),
+    // so the move is placed where every axis it moves is known at both ends.
+    uint32_t moved = written;
+    if (is_arc(kind)) moved |= (1u << axes_of(f_plane_).first) | (1u << axes_of(f_plane_).second);
+    const uint32_t unknown_moved = moved & ~(known_ & known_after);
+    bool known = unknown_moved == 0;
+    Unfit unplaced_why = Unfit::None;
+    for (int ax = 0; ax < kAxisCount && !known; ++ax)
+      if ((unknown_moved >> ax) & 1u) {
+        // The axis unknown at the start says why; one this block makes unknown, this block.
+        const bool at_start = !((known_ >> ax) & 1u);
+        unplaced_why = at_start ? why_[ax].reason : after_why[ax];
+        cause_block_ = at_start ? why_[ax].block : int64_t(bi);
+        break;
+      }
+    if (kind == MoveKind::Other && motion_ != 0) {  // cycles end where they like
+      for (int ax : {kX, kY, kZ})
+        if ((known_after >> ax) & 1u) after_why[ax] = Unfit::UnknownAfterCycle;
+      known_after &= ~kXyzMask;
+    }
+    Move& m = add_move(bi, kind, target, known, turns);
+    m.unknown_axes = uint16_t(kAllAxes & ~(known_ & known_after));
+    m.end_known = known || (moved & ~known_after) == 0;
     if (kind == MoveKind::ArcCW || kind == MoveKind::ArcCCW) {
       m.center = arc_center(b, fr, target, ijk, ijk_seen, r_seen, r_value, kind, m.known);
     }
     // A move along X, Y or Z, or one that goes nowhere at all (which the fitter steps over);
     // not one that moves only E or the extra axes (a retraction, a rotary index).
     bool moved_xyz = target[kX] != pos_[kX] || target[kY] != pos_[kY] || target[kZ] != pos_[kZ];
-    m.fittable = only_g1_words && kind == MoveKind::Line && m.known && (moved_xyz || target == pos_) && !fr.inverse_time &&
-                 !fr.diameter_mode && feed_known_;
+    m.unfit = !m.known                        ? (unplaced_why == Unfit::None ? Unfit::UnknownAfterUnmodelled : unplaced_why)
+              : kind != MoveKind::Line        ? Unfit::NotLine
+              : b.has_expr                    ? Unfit::Expression
+              : b.has_comment                 ? Unfit::Comment
+              : b.block_delete                ? Unfit::BlockDelete
+              : b.has_checksum                ? Unfit::Checksum
+              : other_words                   ? Unfit::OtherWords
+              : fr.inverse_time               ? Unfit::InverseTime
+              : fr.diameter_mode              ? Unfit::DiameterMode
+              : !feed_known_                  ? Unfit::FeedUnknown
+              : !(moved_xyz || target == pos_) ? Unfit::NoPathAxis
+                                              : Unfit::None;
+    if (!m.known && is_feed(kind)) out_.unplaced.push_back({uint32_t(out_.moves.size() - 1), cause_block_});
     pos_ = target;
     known_ = known_after;
+    for (int ax = 0; ax < kAxisCount; ++ax) {
+      if ((known_ >> ax) & 1u) why_[ax] = {Unfit::None, -1};
+      else if (after_why[ax] != why_[ax].reason) why_[ax] = {after_why[ax], int64_t(bi)};
+    }
+  }
+
+  /// Axes in `mask` become unknown, `why`, from block `bi` on (the latest reason is kept).
+  void forget(uint32_t mask, Unfit why, uint32_t bi) {
+    for (int ax = 0; ax < kAxisCount; ++ax)
+      if ((mask >> ax) & 1u) why_[ax] = {why, int64_t(bi)};
+    known_ &= ~mask;
   }
 
   Vec3 arc_center(const Block& b, const Frame& fr, const AxisValues& target, const double* ijk,
@@ -316,7 +389,7 @@ class Interpreter {
     return c;
   }
 
-  Move& add_move(uint32_t bi, MoveKind kind, const AxisValues& to, bool known, int turns, bool fittable) {
+  Move& add_move(uint32_t bi, MoveKind kind, const AxisValues& to, bool known, int turns) {
     Move m;
     m.to = to;
     m.block = bi;
@@ -325,8 +398,8 @@ class Interpreter {
     m.plane = f_plane_;
     m.feed_mm_min = feed_mm_;
     m.known = known;
-    m.turns = turns;
-    m.fittable = fittable;
+    m.turns = int16_t(turns);
+    m.spindle = spindle_;
     out_.move_of_block[bi] = int32_t(out_.moves.size());
     out_.moves.push_back(m);
     return out_.moves.back();
@@ -354,6 +427,14 @@ class Interpreter {
   Plane f_plane_ = Plane::XY;
   AxisValues pos_{};
   uint32_t known_ = 1u << kE;  // bit per axis: position known; E is a counter from 0
+  /// Per axis not known: why, and the block that made it so (-1: never set).
+  struct Why {
+    Unfit reason = Unfit::UnknownAtStart;
+    int64_t block = -1;
+  };
+  Why why_[kAxisCount] = {};
+  int64_t cause_block_ = -1;  // of the last unplaced move
+  double spindle_ = 0;   // S in force
   int motion_ = 0;       // modal motion G-code ×10; G0 at power-up
   double feed_mm_ = 0;
   bool feed_known_ = false;

@@ -56,20 +56,70 @@ inline bool is_arc(MoveKind k) { return k == MoveKind::ArcCW || k == MoveKind::A
 /// A move along the programmed path at feed: G1, G2 or G3.
 inline bool is_feed(MoveKind k) { return k == MoveKind::Line || is_arc(k); }
 
+/// Why a move is not one a fitter may rewrite (Unfit::None: it is). Placement first: a move
+/// whose path is not known is never compared or fitted; then what keeps a placed G1 block
+/// as it is.
+enum class Unfit : uint8_t {
+  None,
+  // The move could not be placed: it moves an axis whose position is not known.
+  UnknownAtStart,       ///< the axis has not been set since the program began
+  UnknownAfterHoming,   ///< G28/G30 sent it to a stored position
+  UnknownAfterMachine,  ///< G53 moved it in machine coordinates
+  UnknownAfterCycle,    ///< a canned, lathe or probing cycle, a spline or G10 left it anywhere
+  UnknownAfterExpression,  ///< an expression set it
+  UnknownAfterControl,  ///< flow control, a subprogram, a macro or host command ran
+  UnknownAfterOffset,   ///< a work offset (G54..) changed under it
+  UnknownAfterUnmodelled,  ///< a G-code arcpress does not model
+  // Placed, and kept as it is.
+  NotLine,          ///< G0, G2/G3 or another motion: only G1 is fitted
+  OtherWords,       ///< the block carries words besides G1, axes, F, S and N (modal codes, M, T, ...)
+  Comment,          ///< a comment inside the block (kept with its move)
+  Expression,       ///< an expression word
+  BlockDelete,      ///< '/' block delete: the controller may skip it
+  Checksum,         ///< a checksum or line number the host checks
+  InverseTime,      ///< G93 inverse-time feed: F belongs to the block
+  DiameterMode,     ///< lathe G7: X words are diameters
+  FeedUnknown,      ///< no F in force yet
+  NoPathAxis,       ///< it moves only E or the extra axes (a retraction, a rotary index)
+};
+
+/// A few words on `why`, for reports: "comment in the block", ...
+const char* describe(Unfit why);
+/// True for the reasons that say the move could not be placed.
+inline bool is_unplaced(Unfit why) { return why >= Unfit::UnknownAtStart && why <= Unfit::UnknownAfterUnmodelled; }
+
 struct Move {
   AxisValues to{};            ///< absolute end position (mm for linear axes, degrees for A/B/C)
   Vec3 center{0, 0, 0};       ///< arcs: absolute centre, mm (in-plane components meaningful)
   double feed_mm_min = 0;     ///< F in force (mm/min; inverse-time value when the frame says so)
+  /// S in force during the move (spindle speed, or laser power where S on a feed block sets
+  /// it): a fitted primitive never spans a change of it.
+  double spindle = 0;
   uint32_t block = 0;         ///< index of the block that made this move
   uint32_t frame = 0;         ///< index into Interpretation::frames
-  int turns = 1;              ///< arcs: P word (full turns + 1), 1 when absent
+  int16_t turns = 1;          ///< arcs: P word (full turns + 1), 1 when absent
+  /// Bit per axis (1 << Axis): the axes whose position is not known during this move. They
+  /// do not move in a placed move; they keep a stand-in value and are never printed.
+  uint16_t unknown_axes = 0;
   MoveKind kind = MoveKind::Line;
   Plane plane = Plane::XY;
-  bool known = true;          ///< start and end positions are both known
-  bool fittable = false;      ///< a plain G1 feed block a fitter may rewrite
+  bool known = true;          ///< the path is known: no axis of unknown position moves
+  /// Every axis it moves ends at a known position, so its end point is known even where
+  /// its start is not (the move into the first known position after homing).
+  bool end_known = true;
+  Unfit unfit = Unfit::NotLine;  ///< Unfit::None: a plain G1 feed block a fitter may rewrite
 
+  bool fittable() const { return unfit == Unfit::None; }
   Vec3 xyz() const { return {to[kX], to[kY], to[kZ]}; }
 };
+
+/// A feed move (G1/G2/G3) that could not be placed, and what made its axis unknown.
+struct UnplacedMove {
+  uint32_t move = 0;        ///< index into Interpretation::moves
+  int64_t cause_block = -1; ///< the block that made the axis unknown; -1: never set
+};
+
+inline bool is_unplaced_feed(const Move& m) { return is_feed(m.kind) && !m.known; }
 
 /// Everything the interpreter learned about a program.
 struct Interpretation {
@@ -80,6 +130,9 @@ struct Interpretation {
   /// Absolute position before the first move (unknown axes are 0).
   AxisValues start{};
   bool start_known = false;
+  /// Every feed move that could not be placed, in order (move.unfit says why): those whose
+  /// end is known (Move::end_known) and those whose end is not either.
+  std::vector<UnplacedMove> unplaced;
 
   /// Start of move `i` (end of the previous move, or `start`).
   const AxisValues& from(size_t i) const { return i == 0 ? start : moves[i - 1].to; }

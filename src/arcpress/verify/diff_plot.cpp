@@ -182,7 +182,9 @@ std::string diff_svg(const Interpretation& ia, const Interpretation& ib, const P
                      kMarginPx, ly + 34, kMarginPx + 360, ly + 34, tol, kMarginPx + 460, ly + 34, tol);
   svg += fmt::format("<text x=\"{}\" y=\"{:.0f}\">deviation of {} from {}: max {:.6f} mm, tolerance {} mm — {}</text>\n",
                      kMarginPx, ly + 58, xml_escape(names.b), xml_escape(names.a), d.max_deviation_mm, tol,
-                     d.same(tol) ? "SAME" : "DIFFERENT");
+                     d.verdict(tol) == ProgramDiff::Verdict::Same        ? "SAME"
+                     : d.verdict(tol) == ProgramDiff::Verdict::Different ? "DIFFERENT"
+                                                                          : "INCOMPLETE");
   svg += "</g>\n</svg>\n";
   return svg;
 }

@@ -29,17 +29,36 @@ std::string place_json(const DiffPlace& p) {
 std::string summary_json(const ProgramSummary& s, const std::string& name) {
   return fmt::format(
       "{{\"file\": {}, \"blocks\": {}, \"bytes\": {}, \"feed_moves\": {}, \"rapids\": {}, \"sections\": {}, "
-      "\"non_motion_blocks\": {}, \"path_mm\": {:.6f}}}",
-      json_string(name), s.blocks, s.bytes, s.feed_moves, s.rapids, s.sections, s.non_motion, s.path_mm);
+      "\"non_motion_blocks\": {}, \"path_mm\": {:.6f}, \"unplaced_feed_moves\": {}, \"first_unplaced_line\": {}, "
+      "\"unplaced_reason\": {}, \"entry_moves\": {}, \"first_entry_line\": {}, \"entry_reason\": {}}}",
+      json_string(name), s.blocks, s.bytes, s.feed_moves, s.rapids, s.sections, s.non_motion, s.path_mm,
+      s.unplaced_feed_moves, s.first_unplaced_line, json_string(s.unplaced_reason), s.entry_moves,
+      s.first_entry_line, json_string(s.entry_reason));
+}
+
+const char* verdict_word(ProgramDiff::Verdict v, bool upper) {
+  switch (v) {
+    case ProgramDiff::Verdict::Same: return upper ? "SAME" : "same";
+    case ProgramDiff::Verdict::Different: return upper ? "DIFFERENT" : "different";
+    case ProgramDiff::Verdict::Incomplete: break;
+  }
+  return upper ? "INCOMPLETE" : "incomplete";
 }
 
 }  // namespace
 
 std::string diff_text(const ProgramDiff& d, const DiffNames& n, double tol) {
   std::string t;
-  for (auto [name, s] : {std::pair{n.a, d.a}, std::pair{n.b, d.b}})
+  for (auto [name, s] : {std::pair{n.a, d.a}, std::pair{n.b, d.b}}) {
     t += fmt::format("{}: {} blocks, {} bytes, {} feed moves in {} sections, {} rapids, {:.3f} mm of feed path\n", name,
                      s.blocks, s.bytes, s.feed_moves, s.sections, s.rapids, s.path_mm);
+    if (s.entry_moves > 0)
+      t += fmt::format("{}: {} feed move(s) from an unknown position, compared by their end points (first at line {}: {})\n",
+                       name, s.entry_moves, s.first_entry_line, s.entry_reason);
+    if (s.unplaced_feed_moves > 0)
+      t += fmt::format("{}: {} feed move(s) not compared: their position is not known (first at line {}: {})\n", name,
+                       s.unplaced_feed_moves, s.first_unplaced_line, s.unplaced_reason);
+  }
   t += fmt::format("max deviation {:.6f} mm (band {} mm; measured to {:.1e} mm)\n", d.max_deviation_mm, tol,
                    d.arc_chord_mm);
   for (size_t k = 0; k < d.worst.size(); ++k) {
@@ -50,15 +69,21 @@ std::string diff_text(const ProgramDiff& d, const DiffNames& n, double tol) {
   t += fmt::format("rapid end points: max {:.6f} mm apart", d.max_rapid_mm);
   if (d.max_rapid_mm > 0) t += fmt::format(" ({} line {}, {} line {})", n.a, d.worst_rapid.line_a, n.b, d.worst_rapid.line_b);
   t += "\n";
+  if (d.a.entry_moves + d.b.entry_moves > 0) {
+    t += fmt::format("feed moves from an unknown position: end points max {:.6f} mm apart", d.max_entry_mm);
+    if (d.max_entry_mm > 0) t += fmt::format(" ({} line {}, {} line {})", n.a, d.worst_entry.line_a, n.b, d.worst_entry.line_b);
+    t += "\n";
+  }
   t += fmt::format("feed: max {:.4f} % apart; extrusion: max {:.5f} mm of E per section, {:.3f} % per mm of path\n",
                    d.max_feed_difference_pct, d.max_extrusion_difference_mm, d.max_extrusion_per_mm_difference_pct);
   t += fmt::format("non-motion blocks (M, T, S, dwell, comments): {} in A, {} in B, {} differ\n", d.a.non_motion,
                    d.b.non_motion, d.non_motion_differences);
   for (const auto& f : d.findings) t += "difference: " + f + "\n";
-  bool same = d.same(tol);
-  t += fmt::format("{}: max deviation {:.6f} mm {} the {} mm band{}\n", same ? "SAME" : "DIFFERENT", d.max_deviation_mm,
-                   d.max_deviation_mm <= tol ? "within" : "outside", tol,
-                   d.findings.empty() ? "" : fmt::format(", {} other difference(s)", d.findings.size()));
+  const size_t unplaced = d.a.unplaced_feed_moves + d.b.unplaced_feed_moves;
+  t += fmt::format("{}: max deviation {:.6f} mm {} the {} mm band{}{}\n", verdict_word(d.verdict(tol), true),
+                   d.max_deviation_mm, d.max_deviation_mm <= tol ? "within" : "outside", tol,
+                   d.findings.empty() ? "" : fmt::format(", {} other difference(s)", d.findings.size()),
+                   unplaced == 0 ? "" : fmt::format(", {} feed move(s) not compared", unplaced));
   return t;
 }
 
@@ -71,12 +96,14 @@ std::string diff_json(const ProgramDiff& d, const DiffNames& n, double tol) {
       "{{\n  \"verdict\": \"{}\",\n  \"tolerance_mm\": {},\n  \"a\": {},\n  \"b\": {},\n"
       "  \"max_deviation_mm\": {:.9f},\n  \"arc_precision_mm\": {:.9f},\n  \"worst\": [{}],\n"
       "  \"rapids\": {{\"max_end_point_distance_mm\": {:.9f}, \"worst\": {}}},\n"
+      "  \"entries\": {{\"max_end_point_distance_mm\": {:.9f}, \"worst\": {}}},\n"
       "  \"feed\": {{\"max_difference_percent\": {:.6f}, \"line_a\": {}, \"line_b\": {}}},\n"
       "  \"extrusion\": {{\"max_section_difference_mm\": {:.9f}, \"max_per_mm_difference_percent\": {:.6f}}},\n"
       "  \"non_motion\": {{\"blocks_a\": {}, \"blocks_b\": {}, \"differences\": {}}},\n"
       "  \"differences\": [{}]\n}}\n",
-      d.same(tol) ? "same" : "different", tol, summary_json(d.a, n.a), summary_json(d.b, n.b), d.max_deviation_mm,
-      d.arc_chord_mm, worst, d.max_rapid_mm, place_json(d.worst_rapid), d.max_feed_difference_pct, d.worst_feed.line_a,
+      verdict_word(d.verdict(tol), false), tol, summary_json(d.a, n.a), summary_json(d.b, n.b), d.max_deviation_mm,
+      d.arc_chord_mm, worst, d.max_rapid_mm, place_json(d.worst_rapid), d.max_entry_mm, place_json(d.worst_entry),
+      d.max_feed_difference_pct, d.worst_feed.line_a,
       d.worst_feed.line_b, d.max_extrusion_difference_mm, d.max_extrusion_per_mm_difference_pct, d.a.non_motion,
       d.b.non_motion, d.non_motion_differences, findings);
 }

@@ -38,7 +38,9 @@ struct Path {
   /// Per section, how far floating rounding can carry its E sum (mm): E is a running
   /// position, so each move's E is the difference of two numbers as large as that.
   std::vector<double> section_e_rounding_mm;
-  std::vector<uint32_t> rapids;                      ///< move indices of known rapids
+  std::vector<uint32_t> rapids;                      ///< move indices of rapids whose end is known
+  /// Move indices of feed moves from an unknown position to a known one.
+  std::vector<uint32_t> entries;
   size_t feed_moves = 0;
 
   size_t size() const { return move_of.size(); }
@@ -76,7 +78,8 @@ Path path_of(const Interpretation& in, double chord_mm, double tolerance_mm) {
   for (size_t i = 0; i < in.moves.size(); ++i) {
     const Move& m = in.moves[i];
     if (!is_feed(m.kind) || !m.known) {
-      if (m.kind == MoveKind::Rapid && m.known) p.rapids.push_back(uint32_t(i));
+      if (m.kind == MoveKind::Rapid && m.end_known) p.rapids.push_back(uint32_t(i));
+      if (is_feed(m.kind) && m.end_known) p.entries.push_back(uint32_t(i));
       in_section = false;
       continue;
     }
@@ -421,8 +424,17 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
   d.arc_chord_mm = std::max(opt.tolerance_mm * kReadingShare / 2, 1e-7);
   const double precision_mm = opt.tolerance_mm * kReadingShare / 2;
   Path pa = path_of(ia, d.arc_chord_mm, opt.tolerance_mm), pb = path_of(ib, d.arc_chord_mm, opt.tolerance_mm);
-  auto summary = [](const Program& p, const Path& path) {
+  auto summary = [](const Program& p, const Interpretation& in, const Path& path) {
     ProgramSummary s;
+    for (const UnplacedMove& u : in.unplaced) {
+      const Move& m = in.moves[u.move];
+      size_t& count = m.end_known ? s.entry_moves : s.unplaced_feed_moves;
+      if (count++ > 0) continue;
+      std::string why = describe(m.unfit);
+      if (u.cause_block >= 0) why += fmt::format(" at line {}", p.blocks[size_t(u.cause_block)].line);
+      (m.end_known ? s.first_entry_line : s.first_unplaced_line) = p.blocks[m.block].line;
+      (m.end_known ? s.entry_reason : s.unplaced_reason) = std::move(why);
+    }
     s.blocks = p.blocks.size();
     s.bytes = p.text.size();
     s.feed_moves = path.feed_moves;
@@ -431,8 +443,8 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
     for (double l : path.section_length_mm) s.path_mm += l;
     return s;
   };
-  d.a = summary(a, pa);
-  d.b = summary(b, pb);
+  d.a = summary(a, ia, pa);
+  d.b = summary(b, ib, pb);
   d.deviation_of_b.assign(ib.moves.size(), 0.0);
 
   // Feed paths, both ways: the maximum, the worst places, and each B move's deviation.
@@ -496,18 +508,22 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
   if (d.a.sections != d.b.sections)
     d.findings.push_back(fmt::format("cutting sections between rapids: {} in A, {} in B", d.a.sections, d.b.sections));
 
-  // Rapids: end points in order.
-  if (pa.rapids.size() != pb.rapids.size())
-    d.findings.push_back(fmt::format("rapid moves: {} in A, {} in B", pa.rapids.size(), pb.rapids.size()));
-  for (size_t k = 0; k < std::min(pa.rapids.size(), pb.rapids.size()); ++k) {
-    const Move& ma = ia.moves[pa.rapids[k]];
-    const Move& mb = ib.moves[pb.rapids[k]];
-    double dist = (xyz(ma.to) - xyz(mb.to)).norm();
-    if (dist > d.max_rapid_mm) {
-      d.max_rapid_mm = dist;
-      d.worst_rapid = {dist, xyz(ma.to), a.blocks[ma.block].line, b.blocks[mb.block].line};
+  // Rapids, and feed moves from an unknown position: end points in order.
+  auto end_points = [&](const std::vector<uint32_t>& in_a, const std::vector<uint32_t>& in_b, const char* what,
+                        double& max_mm, DiffPlace& worst) {
+    if (in_a.size() != in_b.size()) d.findings.push_back(fmt::format("{}: {} in A, {} in B", what, in_a.size(), in_b.size()));
+    for (size_t k = 0; k < std::min(in_a.size(), in_b.size()); ++k) {
+      const Move& ma = ia.moves[in_a[k]];
+      const Move& mb = ib.moves[in_b[k]];
+      double dist = (xyz(ma.to) - xyz(mb.to)).norm();
+      if (dist > max_mm) {
+        max_mm = dist;
+        worst = {dist, xyz(ma.to), a.blocks[ma.block].line, b.blocks[mb.block].line};
+      }
     }
-  }
+  };
+  end_points(pa.rapids, pb.rapids, "rapid moves", d.max_rapid_mm, d.worst_rapid);
+  end_points(pa.entries, pb.entries, "feed moves from an unknown position", d.max_entry_mm, d.worst_entry);
 
   // Extrusion per section.
   constexpr double kExtrusionMm = 1e-4;  // E printed with 5 decimals: sums agree far closer

@@ -62,6 +62,16 @@ struct ProgramSummary {
   size_t blocks = 0, bytes = 0, feed_moves = 0, rapids = 0, sections = 0;
   size_t non_motion = 0;     ///< M/T/S/dwell/comment and other non-word blocks compared
   double path_mm = 0;        ///< length of the feed path
+  /// Feed moves (G1/G2/G3) that could not be placed: an axis they move has no known
+  /// position at their end, so nothing of them can be compared. The first one's line and why.
+  size_t unplaced_feed_moves = 0;
+  uint32_t first_unplaced_line = 0;
+  std::string unplaced_reason;
+  /// Feed moves from an unknown position to a known one (the first move after homing, or
+  /// after the program's start): compared by their end points, in order, as rapids are.
+  size_t entry_moves = 0;
+  uint32_t first_entry_line = 0;
+  std::string entry_reason;
 };
 
 struct ProgramDiff {
@@ -70,6 +80,8 @@ struct ProgramDiff {
   std::vector<DiffPlace> worst;         ///< the worst places, largest first (at most `top`)
   double max_rapid_mm = 0;              ///< rapid end points
   DiffPlace worst_rapid;
+  double max_entry_mm = 0;              ///< end points of feed moves from an unknown position
+  DiffPlace worst_entry;
   double max_feed_difference_pct = 0;   ///< F at B's moves against A's nearest move
   DiffPlace worst_feed;                 ///< deviation_mm holds nothing here; lines only
   double max_extrusion_difference_mm = 0;     ///< E total per section
@@ -84,8 +96,20 @@ struct ProgramDiff {
   /// helices are followed by.
   double arc_chord_mm = 0;
 
-  bool same(double tolerance_mm) const {
-    return max_deviation_mm <= tolerance_mm && max_rapid_mm <= tolerance_mm && findings.empty();
+  /// Whether every feed move of both programs was placed, and so compared.
+  bool compared_all() const { return a.unplaced_feed_moves == 0 && b.unplaced_feed_moves == 0; }
+  /// Whether what was compared agrees within the band.
+  bool agrees(double tolerance_mm) const {
+    return max_deviation_mm <= tolerance_mm && max_rapid_mm <= tolerance_mm && max_entry_mm <= tolerance_mm &&
+           findings.empty();
+  }
+  /// The programs are the same: everything compared, and it agrees. A check never passes
+  /// what it did not compare.
+  bool same(double tolerance_mm) const { return compared_all() && agrees(tolerance_mm); }
+  enum class Verdict { Same, Different, Incomplete };
+  /// Different where what was compared differs; else incomplete where not all was compared.
+  Verdict verdict(double tolerance_mm) const {
+    return !agrees(tolerance_mm) ? Verdict::Different : compared_all() ? Verdict::Same : Verdict::Incomplete;
   }
 };
 

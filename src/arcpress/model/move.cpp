@@ -1,0 +1,30 @@
+#include "arcpress/model/move.hpp"
+
+namespace arcpress {
+
+const char* describe(Unfit why) {
+  switch (why) {
+    case Unfit::None: return "a lone G1 move: no fittable move beside it to make a run with";
+    case Unfit::UnknownAtStart: return "position unknown: an axis it moves was never set before it";
+    case Unfit::UnknownAfterHoming: return "position unknown after homing (G28/G30)";
+    case Unfit::UnknownAfterMachine: return "position unknown after a machine-coordinate move (G53)";
+    case Unfit::UnknownAfterCycle: return "position unknown after a cycle, probe, spline or G10";
+    case Unfit::UnknownAfterExpression: return "position unknown after an expression";
+    case Unfit::UnknownAfterControl: return "position unknown after flow control, a subprogram or a host command";
+    case Unfit::UnknownAfterOffset: return "position unknown after a work-offset change";
+    case Unfit::UnknownAfterUnmodelled: return "position unknown after a G-code arcpress does not model";
+    case Unfit::NotLine: return "not a G1 move";
+    case Unfit::OtherWords: return "other words in the block (modal codes, M, T, arc words)";
+    case Unfit::Comment: return "comment in the block";
+    case Unfit::Expression: return "expression in the block";
+    case Unfit::BlockDelete: return "block delete ('/')";
+    case Unfit::Checksum: return "checksum in the block";
+    case Unfit::InverseTime: return "inverse-time feed (G93)";
+    case Unfit::DiameterMode: return "lathe diameter mode (G7): left as it is";
+    case Unfit::FeedUnknown: return "no feed rate in force";
+    case Unfit::NoPathAxis: return "moves only E or extra axes";
+  }
+  return "?";
+}
+
+}  // namespace arcpress
