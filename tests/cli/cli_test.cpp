@@ -177,6 +177,44 @@ TEST_CASE("diff passes a compressed program within the band and fails it outside
   CHECK(moved.out.find("moved.nc") != std::string::npos);
 }
 
+TEST_CASE("diff of a 2-D arc against its chord fails with the sagitta; what it could not place is never a pass",
+          "[cli][diff][2d]") {
+  auto d = arcpress::test::temp_dir("diff-2d");
+  arcpress::test::write_file(d / "arc.nc", "G21 G90\nG0 X10 Y0\nG2 X0 Y-10 I-10 J0 F100\nM2\n");
+  arcpress::test::write_file(d / "chord.nc", "G21 G90\nG0 X10 Y0\nG1 X0 Y-10 F100\nM2\n");
+  auto apart = run_arcpress("diff '" + (d / "arc.nc").string() + "' '" + (d / "chord.nc").string() + "'");
+  CHECK(apart.exit_code == 1);
+  CHECK(apart.out.find("DIFFERENT: max deviation 2.928932 mm outside the 0.01 mm band") != std::string::npos);
+  auto json = run_arcpress("diff --json '" + (d / "arc.nc").string() + "' '" + (d / "chord.nc").string() + "'");
+  CHECK(json.exit_code == 1);
+  CHECK(json.out.find("\"verdict\": \"different\"") != std::string::npos);
+  CHECK(json.out.find("\"max_deviation_mm\": 2.92893") != std::string::npos);
+  // Moves set by expressions cannot be placed: the verdict is incomplete, exit 2, with the line.
+  arcpress::test::write_file(d / "expr.nc", "G21 G90\nG0 X0 Y0\n#1=3\nG1 X[#1] F100\nG1 Y[#1]\nM2\n");
+  auto open = run_arcpress("diff '" + (d / "expr.nc").string() + "' '" + (d / "expr.nc").string() + "'");
+  CHECK(open.exit_code == 2);
+  CHECK(open.out.find("2 feed move(s) not compared: their position is not known (first at line 4: position unknown "
+                      "after flow control, a macro or parameter line, a subprogram or a host command at line 3)") !=
+        std::string::npos);
+  CHECK(open.out.find("INCOMPLETE: ") != std::string::npos);
+  auto open_json = run_arcpress("diff --json '" + (d / "expr.nc").string() + "' '" + (d / "expr.nc").string() + "'");
+  CHECK(open_json.exit_code == 2);
+  CHECK(open_json.out.find("\"verdict\": \"incomplete\"") != std::string::npos);
+  CHECK(open_json.out.find("\"unplaced_feed_moves\": 2, \"first_unplaced_line\": 4") != std::string::npos);
+}
+
+TEST_CASE("the stats list the G1 moves not fitted, by reason, and a program with none fitted is warned about",
+          "[cli][stats]") {
+  std::string t = "G21 G90\nG0 X0 Y0\n";
+  for (int k = 1; k <= 10; ++k) t += fmt::format("G1 X{} Y{} F100 (step {})\n", k, k % 2, k);
+  auto c = run_arcpress("--stats", t);
+  CHECK(c.exit_code == 0);
+  CHECK(c.out == t);
+  CHECK(c.err.find("<stdin>:3:1: warning: W-FIT-NONE: none of the 10 G1 moves could be fitted; 10 of them: comment "
+                   "in the block") != std::string::npos);
+  CHECK(c.err.find("  not fitted     10 G1 moves: comment in the block (first at line 3)") != std::string::npos);
+}
+
 TEST_CASE("compression measures its own output and reports the deviation", "[cli]") {
   fs::path in = fs::path(ARCPRESS_SOURCE_DIR) / "samples" / "contour.nc";
   auto c = run_arcpress("'" + in.string() + "' --stats");

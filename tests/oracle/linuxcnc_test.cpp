@@ -276,3 +276,75 @@ TEST_CASE("LinuxCNC's rs274 takes arcs that turn the A axis as they go, ending e
   CHECK(arcs == r.stats.arcs_out);
   CHECK(at_change);
 }
+
+namespace {
+
+/// Compresses `g` for LinuxCNC and checks that rs274 accepts both programs and reads the
+/// compressed one's path within the band of the original's; returns the compression.
+CompressResult check_read_alike(const std::string& g, const std::string& tag) {
+  auto dir = rs274_folder(tag);
+  test::write_file(dir / "in.ngc", g);
+  Rs274 original = run_rs274(dir, dir / "in.ngc");
+  INFO("original: " << original.error);
+  REQUIRE(original.exit_code == 0);
+  CompressResult r = compressed_for_linuxcnc(tag + ".ngc", g);
+  test::write_file(dir / "out.ngc", r.output);
+  Rs274 ours = run_rs274(dir, dir / "out.ngc");
+  INFO("compressed: " << ours.error << r.output);
+  REQUIRE(ours.exit_code == 0);
+  DiagnosticSink sa("rs274(original)"), sb("rs274(compressed)");
+  Program pa = lex("rs274(original)", canon_to_gcode(original.canon), sa);
+  Program pb = lex("rs274(compressed)", canon_to_gcode(ours.canon), sb);
+  Interpretation ia = interpret(pa, sa), ib = interpret(pb, sb);
+  CompareOptions co;
+  co.tolerance_mm = r.band_mm;
+  PathComparison c = compare_paths(pa, ia, pb, ib, co);
+  INFO(c.mismatch);
+  CHECK(c.matched);
+  CHECK(c.max_deviation_mm <= r.band_mm + 0.00015);
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("LinuxCNC's rs274 reads the G18 arcs of a lathe program that never writes Y within the band",
+          "[oracle][linuxcnc][lathe]") {
+  RS274_OR_SKIP();
+  // Radius mode (G8): a convex profile of two quarter circles, 1° steps, X and Z only.
+  std::string g = "G21 G18 G8 G90\nG0 X0 Z1\nG1 Z0 F50\n";
+  for (int k = 1; k <= 90; ++k)
+    g += fmt::format("G1 X{:.4f} Z{:.4f}\n", 6 * std::sin(deg_to_rad(k)), 6 * std::cos(deg_to_rad(k)) - 6);
+  for (int k = 1; k <= 90; ++k)
+    g += fmt::format("G1 X{:.4f} Z{:.4f}\n", 6 + 4 * (1 - std::cos(deg_to_rad(k))), -6 - 4 * std::sin(deg_to_rad(k)));
+  g += "G0 X12\nM2\n";
+  CompressResult r = check_read_alike(g, "rs274-lathe");
+  CHECK(r.stats.arcs_out >= 2);
+  CHECK(r.stats.arcs_out + r.stats.lines_out <= 5);
+  CHECK(r.output.find('Y') == std::string::npos);
+}
+
+TEST_CASE("LinuxCNC's rs274 reads a compressed 2-D laser program that never writes Z within the band",
+          "[oracle][linuxcnc][2d]") {
+  RS274_OR_SKIP();
+  // A rounded rectangle, 30 x 20 mm with 5 mm corners in 3° steps, power on every move.
+  std::string g = "G21 G90\nG0 X5 Y0\nM4 S0\n";
+  auto corner = [&](double cx, double cy, int from_deg) {
+    for (int k = 1; k <= 30; ++k) {
+      const double a = deg_to_rad(from_deg + 3 * k);
+      g += fmt::format("G1 X{:.4f} Y{:.4f} F1500 S700\n", cx + 5 * std::cos(a), cy + 5 * std::sin(a));
+    }
+  };
+  g += "G1 X25 Y0 F1500 S700\n";
+  corner(25, 5, -90);
+  g += "G1 X30 Y15 F1500 S700\n";
+  corner(25, 15, 0);
+  g += "G1 X5 Y20 F1500 S700\n";
+  corner(5, 15, 90);
+  g += "G1 X0 Y5 F1500 S700\n";
+  corner(5, 5, 180);
+  g += "M5\nM2\n";
+  CompressResult r = check_read_alike(g, "rs274-laser");
+  CHECK(r.stats.arcs_out == 4);
+  CHECK(r.stats.lines_out == 4);
+  CHECK(r.output.find('Z') == std::string::npos);
+}

@@ -472,3 +472,82 @@ TEST_CASE("compression checks its feed move by move, so a path no wider than its
   verify_output(prog, in, opt, v);
   CHECK_FALSE(v.within_band());
 }
+
+// Programs that never write an axis (2-D laser, plasma and router programs never write Z;
+// lathes never write Y) are compared like any other: an axis that is not moved stays where
+// it is, and nothing the diff could not place is ever passed.
+
+TEST_CASE("a 2-D program's arc and its chord differ by the arc's sagitta", "[diff][2d]") {
+  // A quarter turn of radius 10 mm: sagitta 10 (1 - cos 45°) = 2.928932 mm.
+  const std::string arc = "G21 G90\nG0 X10 Y0\nG2 X0 Y-10 I-10 J0 F100\nM2\n";
+  const std::string chord = "G21 G90\nG0 X10 Y0\nG1 X0 Y-10 F100\nM2\n";
+  ProgramDiff d = diff_of(arc, chord);
+  CHECK(d.compared_all());
+  CHECK(d.a.feed_moves == 1);
+  CHECK(d.b.feed_moves == 1);
+  CHECK(d.max_deviation_mm == Approx(10 * (1 - std::cos(kPi / 4))).margin(d.arc_chord_mm));
+  CHECK(d.verdict(0.01) == ProgramDiff::Verdict::Different);
+}
+
+TEST_CASE("a 2-D program with one vertex moved 0.1 mm differs by that much at that line", "[diff][2d]") {
+  auto contour = [](double moved) {
+    std::string t = "G21 G90\nG0 X0 Y0\nM3 S100\n";
+    for (int k = 1; k <= 20; ++k) t += fmt::format("G1 X{} Y{:.4f} F600\n", k, k == 12 ? moved : 0.0);
+    return t + "M5\nM2\n";
+  };
+  ProgramDiff d = diff_of(contour(0), contour(0.1));
+  CHECK(d.max_deviation_mm == Approx(0.1).margin(1e-9));
+  REQUIRE_FALSE(d.worst.empty());
+  CHECK(d.worst[0].line_b == 15);  // "G1 X12 Y0.1000"
+  CHECK(d.verdict(0.01) == ProgramDiff::Verdict::Different);
+  CHECK(d.verdict(0.11) == ProgramDiff::Verdict::Same);
+}
+
+TEST_CASE("after homing in the middle, the moves until the position is known again are compared by their end "
+          "points, never as if from zero", "[diff][unknown]") {
+  auto program = [](double after_home_x) {
+    return fmt::format("G21 G90\nG0 X0 Y0 Z1\nG1 Z0 F300\nG1 X10\nG1 X10 Y10\nG28\n"
+                       "G1 X{} Y5 F300\nG1 Z-1\nG1 X20 Y20\nG1 X25\nM2\n", after_home_x);
+  };
+  ProgramDiff same = diff_of(program(5), program(5));
+  // From home: "G1 X5 Y5" (X and Y), "G1 Z-1" (Z); the two after them are placed.
+  CHECK(same.a.entry_moves == 2);
+  CHECK(same.a.first_entry_line == 7);
+  CHECK(same.a.entry_reason == "position unknown after homing (G28/G30) at line 6");
+  CHECK(same.a.feed_moves == 5);
+  CHECK(same.compared_all());
+  CHECK(same.verdict(0.01) == ProgramDiff::Verdict::Same);
+  // The first move after homing ends 0.5 mm away: found at its line.
+  ProgramDiff moved = diff_of(program(5), program(5.5));
+  CHECK(moved.max_entry_mm == Approx(0.5));
+  CHECK(moved.worst_entry.line_a == 7);
+  CHECK(moved.verdict(0.01) == ProgramDiff::Verdict::Different);
+}
+
+TEST_CASE("feed moves whose end cannot be placed make the verdict incomplete, never same", "[diff][unknown]") {
+  const std::string a = "G21 G90\nG0 X0 Y0 Z0\nG1 X[#1] F100\nG1 X5 Y1\nM2\n";
+  const std::string b = "G21 G90\nG0 X0 Y0 Z0\nG1 X[#1] F100\nG1 X5 Y1\nM2\n";
+  ProgramDiff d = diff_of(a, b);
+  CHECK(d.a.unplaced_feed_moves == 1);  // X[#1]; "G1 X5 Y1" starts from it but ends known
+  CHECK(d.a.first_unplaced_line == 3);
+  CHECK(d.a.unplaced_reason == "position unknown after an expression at line 3");
+  CHECK_FALSE(d.compared_all());
+  CHECK_FALSE(d.same(0.01));
+  CHECK(d.verdict(0.01) == ProgramDiff::Verdict::Incomplete);
+  // A difference in what was compared still says different.
+  ProgramDiff e = diff_of(a, "G21 G90\nG0 X0 Y0 Z0\nG1 X[#1] F100\nG1 X5 Y2\nM2\n");
+  CHECK(e.verdict(0.01) == ProgramDiff::Verdict::Different);
+}
+
+TEST_CASE("the laser power (S) along the path is compared", "[diff][laser]") {
+  auto contour = [](int power) {
+    std::string t = "G21 G90\nG0 X0 Y0\nM4 S0\n";
+    for (int k = 1; k <= 10; ++k) t += fmt::format("G1 X{} Y0 F1000 S{}\n", k, k <= 5 ? 300 : power);
+    return t + "M5\nM2\n";
+  };
+  CHECK(diff_of(contour(300), contour(300)).same(0.01));
+  ProgramDiff d = diff_of(contour(300), contour(400));
+  REQUIRE(d.findings.size() == 1);
+  CHECK(d.findings[0].find("S (spindle speed or laser power) differs") != std::string::npos);
+  CHECK(d.verdict(0.01) == ProgramDiff::Verdict::Different);
+}

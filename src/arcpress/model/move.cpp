@@ -10,7 +10,8 @@ const char* describe(Unfit why) {
     case Unfit::UnknownAfterMachine: return "position unknown after a machine-coordinate move (G53)";
     case Unfit::UnknownAfterCycle: return "position unknown after a cycle, probe, spline or G10";
     case Unfit::UnknownAfterExpression: return "position unknown after an expression";
-    case Unfit::UnknownAfterControl: return "position unknown after flow control, a subprogram or a host command";
+    case Unfit::UnknownAfterControl:
+      return "position unknown after flow control, a macro or parameter line, a subprogram or a host command";
     case Unfit::UnknownAfterOffset: return "position unknown after a work-offset change";
     case Unfit::UnknownAfterUnmodelled: return "position unknown after a G-code arcpress does not model";
     case Unfit::NotLine: return "not a G1 move";

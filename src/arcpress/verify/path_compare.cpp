@@ -105,15 +105,19 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
       }
     if (is_feed(mb.kind) && mb.known) {
       ++r.moves_b;
-      // The output move keeps the feed of every input move it stands for.
-      for (size_t q = i; q <= k; ++q)
-        if (is_feed(ia.moves[q].kind) && ia.moves[q].feed_mm_min != mb.feed_mm_min) {
-          r.matched = false;
-          r.mismatch = fmt::format("output line {} moves at F{} where input line {} moves at F{}",
-                                   b.blocks[mb.block].line, mb.feed_mm_min, a.blocks[ia.moves[q].block].line,
-                                   ia.moves[q].feed_mm_min);
-          return r;
-        }
+      // The output move keeps the feed and the S (spindle speed, laser power) of every input
+      // move it stands for.
+      for (size_t q = i; q <= k; ++q) {
+        const Move& ma = ia.moves[q];
+        if (!is_feed(ma.kind) || (ma.feed_mm_min == mb.feed_mm_min && ma.spindle == mb.spindle)) continue;
+        r.matched = false;
+        r.mismatch = ma.feed_mm_min != mb.feed_mm_min
+                         ? fmt::format("output line {} moves at F{} where input line {} moves at F{}",
+                                       b.blocks[mb.block].line, mb.feed_mm_min, a.blocks[ma.block].line, ma.feed_mm_min)
+                         : fmt::format("output line {} moves at S{} where input line {} moves at S{}",
+                                       b.blocks[mb.block].line, mb.spindle, a.blocks[ma.block].line, ma.spindle);
+        return r;
+      }
       // The input stretch i..k as points in the output move's plane.
       pts.clear();
       pts.push_back(in_plane(ia.from(i), mb.plane));

@@ -359,10 +359,12 @@ class Directed {
 };
 
 /// True when p lies within `radius_mm` of a joint of move i with a neighbouring feed move
-/// of another feed rate: which of the two moves p belongs to is ambiguous there.
+/// of another feed rate or S: which of the two moves p belongs to is ambiguous there.
 bool near_feed_change(const Interpretation& in, uint32_t i, const Vec3& p, double radius_mm) {
   const Move& m = in.moves[i];
-  auto differs = [&](size_t j) { return is_feed(in.moves[j].kind) && in.moves[j].feed_mm_min != m.feed_mm_min; };
+  auto differs = [&](size_t j) {
+    return is_feed(in.moves[j].kind) && (in.moves[j].feed_mm_min != m.feed_mm_min || in.moves[j].spindle != m.spindle);
+  };
   return (i > 0 && differs(i - 1) && (xyz(in.from(i)) - p).norm() <= radius_mm) ||
          (i + 1 < in.moves.size() && differs(i + 1) && (xyz(m.to) - p).norm() <= radius_mm);
 }
@@ -460,6 +462,7 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
   };
   SegmentIndex index_a(pa.points, pa.first, pieces(pa), pa.max_sagitta_mm),
       index_b(pb.points, pb.first, pieces(pb), pb.max_sagitta_mm);
+  bool spindle_differs = false;
   if (pa.size() > 0 && pb.size() > 0) {
     const size_t share_count = (std::max(pa.size(), pb.size()) + kShareSegments - 1) / kShareSegments;
     const size_t workers = worker_count(opt.threads, share_count);
@@ -498,6 +501,12 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
       if (pct > d.max_feed_difference_pct) {
         d.max_feed_difference_pct = pct;
         d.worst_feed = {0, at, a.blocks[ma.block].line, b.blocks[mb.block].line};
+      }
+      if (ma.spindle != mb.spindle && !spindle_differs) {
+        spindle_differs = true;
+        d.findings.push_back(fmt::format("S (spindle speed or laser power) differs along the path: A line {} S{}, "
+                                         "B line {} S{}",
+                                         a.blocks[ma.block].line, ma.spindle, b.blocks[mb.block].line, mb.spindle));
       }
     });
   } else if ((pa.size() == 0) != (pb.size() == 0)) {

@@ -1,0 +1,171 @@
+// Every program, every axis: 2-D laser, plasma and router programs that never write Z,
+// lathe programs that never write Y, laser programs that carry S on every move, and what
+// arcpress says about the G1 moves it leaves as they are.
+#include <catch2/catch.hpp>
+#include <fmt/format.h>
+
+#include <cmath>
+#include <regex>
+#include <sstream>
+
+#include "arcpress/api/arcpress.hpp"
+#include "arcpress/dialect/dialect_loader.hpp"
+#include "support.hpp"
+
+using namespace arcpress;
+
+namespace {
+
+CompressResult compressed(const std::string& text, DiagnosticSink& sink, const std::string& dialect = "rs274") {
+  CompressOptions opt;
+  opt.fit.tolerance_mm = 0.01;
+  opt.dialect = load_dialect_file(ARCPRESS_SOURCE_DIR "/dialects/" + dialect + ".toml");
+  CompressResult r = compress("t.nc", text, opt, sink);
+  REQUIRE(r.ok);
+  REQUIRE(r.verified);
+  INFO(r.comparison.mismatch);
+  REQUIRE(r.within_band());
+  return r;
+}
+
+/// Xu's first test curve (a cubic Bézier through (0,0), (1,4), (5,-2), (6,3) scaled to mm)
+/// as 1000 G1 moves, with `z_word` written on the rapid to its start ("" for a 2-D program).
+std::string bezier_program(const std::string& z_word) {
+  std::string t = fmt::format("G21 G90\nG0 X0 Y0{}\nG1 F600\n", z_word);
+  const double px[4] = {0, 10, 50, 60}, py[4] = {0, 40, -20, 30};
+  for (int k = 1; k <= 1000; ++k) {
+    const double s = k / 1000.0, u = 1 - s;
+    const double w[4] = {u * u * u, 3 * u * u * s, 3 * u * s * s, s * s * s};
+    t += fmt::format("G1 X{:.4f} Y{:.4f}\n", w[0] * px[0] + w[1] * px[1] + w[2] * px[2] + w[3] * px[3],
+                     w[0] * py[0] + w[1] * py[1] + w[2] * py[2] + w[3] * py[3]);
+  }
+  return t + "M2\n";
+}
+
+size_t count_of(const std::string& text, const std::regex& line) {
+  std::istringstream in(text);
+  size_t n = 0;
+  for (std::string l; std::getline(in, l);) n += std::regex_search(l, line);
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("a 2-D curve that never writes Z is fitted with arcs, as the same curve with Z is", "[api][2d]") {
+  DiagnosticSink s2("2d"), s3("3d");
+  const CompressResult flat = compressed(bezier_program(""), s2);
+  const CompressResult with_z = compressed(bezier_program(" Z0"), s3);
+  CHECK(flat.stats.moves_in == 1000);
+  CHECK(flat.stats.arcs_out >= 3);
+  CHECK(flat.stats.arcs_out + flat.stats.lines_out <= 12);
+  CHECK(flat.stats.arcs_out == with_z.stats.arcs_out);
+  CHECK(flat.stats.lines_out == with_z.stats.lines_out);
+  // Z is never printed where the input did not print it.
+  CHECK(flat.output.find('Z') == std::string::npos);
+}
+
+TEST_CASE("a Z-less laser program from the corpus is compressed within the band", "[api][2d][corpus]") {
+  const auto file = std::filesystem::path(ARCPRESS_CORPUS_DIR) / "laser" / "jscut_jsdc-laser.gcode";
+  if (!std::filesystem::exists(file)) {
+    WARN(file.string() << " is absent: skipped");
+    return;
+  }
+  const std::string text = test::read_file(file);
+  REQUIRE(text.find('Z') == std::string::npos);
+  DiagnosticSink sink(file.string());
+  const CompressResult r = compressed(text, sink);
+  CHECK(r.stats.moves_in > 2000);
+  CHECK(r.stats.arcs_out > 50);
+  CHECK(r.stats.arcs_out + r.stats.lines_out < r.stats.moves_in / 10);
+  CHECK(r.check.max_deviation_mm <= 0.01);
+  CHECK(r.output.find('Z') == std::string::npos);
+}
+
+TEST_CASE("a lathe program in G18 that never writes Y is fitted with G18 arcs", "[api][lathe]") {
+  // A radius-mode (G8) finishing pass: a quarter circle of radius 8 mm in XZ, in 1° steps.
+  std::string t = "G21 G18 G8 G90\nG0 X0 Z1\nG1 Z0 F50\n";
+  for (int k = 1; k <= 90; ++k)
+    t += fmt::format("G1 X{:.4f} Z{:.4f}\n", 8 * std::sin(deg_to_rad(k)), 8 * std::cos(deg_to_rad(k)) - 8);
+  t += "G0 X10\nM2\n";
+  DiagnosticSink sink("lathe");
+  const CompressResult r = compressed(t, sink, "linuxcnc");
+  CHECK(r.stats.moves_in == 91);  // the plunge and the quarter circle
+  CHECK(r.stats.arcs_out >= 1);
+  CHECK(r.stats.arcs_out + r.stats.lines_out <= 2);
+  CHECK(r.stats.plane_words_added == 0);  // the program's own G18
+  CHECK(count_of(r.output, std::regex("^G[23] X[-0-9.]+ Z[-0-9.]+ I[-0-9.]+ K[-0-9.]+")) == r.stats.arcs_out);
+  CHECK(r.output.find('Y') == std::string::npos);
+}
+
+TEST_CASE("a lathe program in diameter mode (G7) is left as it is, and --stats says why", "[api][lathe]") {
+  std::string t = "G21 G18 G7 G90\nG0 X0 Z1\nG1 Z0 F50\n";
+  for (int k = 1; k <= 30; ++k)
+    t += fmt::format("G1 X{:.4f} Z{:.4f}\n", 16 * std::sin(deg_to_rad(k)), 8 * std::cos(deg_to_rad(k)) - 8);
+  DiagnosticSink sink("lathe-g7");
+  const CompressResult r = compressed(t, sink, "linuxcnc");
+  CHECK(r.output == t);
+  REQUIRE_FALSE(r.not_fitted.empty());
+  CHECK(r.not_fitted[0].why == Unfit::DiameterMode);
+  CHECK(r.not_fitted[0].moves == 31);
+  CHECK(r.not_fitted[0].first_line == 3);
+}
+
+TEST_CASE("a laser contour with S on every move is fitted with arcs that carry its S, never across an S change",
+          "[api][laser]") {
+  // Grbl laser mode: a circle of radius 10 mm in 2° steps, S300 on the first half's moves,
+  // S500 on the second's.
+  std::string t = "G21 G90\nG0 X10 Y0\nM4 S0\n";
+  for (int k = 1; k <= 180; ++k)
+    t += fmt::format("G1 X{:.4f} Y{:.4f} F1200 S{}\n", 10 * std::cos(deg_to_rad(2 * k)), 10 * std::sin(deg_to_rad(2 * k)),
+                     k <= 90 ? 300 : 500);
+  t += "M5\nM2\n";
+  DiagnosticSink sink("laser");
+  const CompressResult r = compressed(t, sink, "grbl");
+  CHECK(r.stats.moves_in == 180);
+  CHECK(r.stats.arcs_out >= 2);
+  CHECK(r.stats.arcs_out + r.stats.lines_out <= 6);
+  // Every new block carries the S of the moves it replaces; S500 starts where the input's does.
+  CHECK(count_of(r.output, std::regex("^G[123] .* S300$")) + count_of(r.output, std::regex("^G[123] .* S500$")) ==
+        r.stats.arcs_out + r.stats.lines_out);
+  CHECK(count_of(r.output, std::regex("^G[123] .* S300$")) >= 1);
+  CHECK(count_of(r.output, std::regex("^G[123] .* S500$")) >= 1);
+  CHECK(count_of(r.output, std::regex("X-10(\\.0+)? Y0(\\.0+)? .*S300$")) == 1);  // the half turn ends at S300's last move
+}
+
+TEST_CASE("the G1 moves left as they are are counted by reason, with the first line of each", "[api][stats]") {
+  const std::string t =
+      "G21 G90\nG0 X0 Y0 Z0\nG1 X1 F100\nG1 X2\nG1 X3 (comment)\nG1 X4\nG1 X[#1]\nG1 X6\nG1 X7\nG93\nG1 X8 F2\nG94\n";
+  DiagnosticSink sink("t.nc");
+  const CompressResult r = compressed(t, sink);
+  CHECK(r.g1_moves == 8);
+  CHECK(r.stats.moves_in == 2);  // X1 X2
+  auto group = [&](Unfit why) {
+    for (const NotFitted& n : r.not_fitted)
+      if (n.why == why) return n;
+    return NotFitted{};
+  };
+  CHECK(group(Unfit::Comment).moves == 1);
+  CHECK(group(Unfit::Comment).first_line == 5);
+  CHECK(group(Unfit::None).moves == 2);  // X4 and X7, each alone beside moves that are no run
+  CHECK(group(Unfit::None).first_line == 6);
+  CHECK(group(Unfit::UnknownAfterExpression).moves == 2);  // X[#1], and X6 from where it left X
+  CHECK(group(Unfit::UnknownAfterExpression).first_line == 7);
+  CHECK(group(Unfit::UnknownAfterExpression).cause_line == 7);
+  CHECK(group(Unfit::InverseTime).moves == 1);
+  CHECK(group(Unfit::InverseTime).first_line == 11);
+}
+
+TEST_CASE("a program with G1 moves of which none could be fitted gets one warning saying why", "[api][stats]") {
+  std::string t = "G21 G90\n#1=2\nG0 X0 Y0 Z[#1]\n";
+  for (int k = 1; k <= 20; ++k) t += fmt::format("G1 X{} Y[#1*{}] F100\n", k, k);
+  DiagnosticSink sink("t.nc");
+  const CompressResult r = compressed(t, sink);
+  CHECK(r.stats.moves_in == 0);
+  CHECK(sink.warning_count("W-FIT-NONE") == 1);
+  const std::string said = sink.format_all();
+  CHECK(said.find("t.nc:4:1: warning: W-FIT-NONE: none of the 20 G1 moves could be fitted") != std::string::npos);
+  // Nothing is said where something was fitted.
+  DiagnosticSink quiet("2d");
+  compressed(bezier_program(""), quiet);
+  CHECK(quiet.warning_count("W-FIT-NONE") == 0);
+}
