@@ -27,6 +27,14 @@ constexpr const char* kExitCodesHelp =
     "  2  usage error, or input that cannot be read (see the diagnostics)\n"
     "  3  I/O error: a file could not be read or written\n";
 
+constexpr const char* kDiffExitCodesHelp =
+    "Exit codes:\n"
+    "  0  SAME: every feed move of both programs was compared, and they agree within the band\n"
+    "  1  DIFFERENT: what was compared differs (the worst place and its lines are listed)\n"
+    "  2  INCOMPLETE: some feed moves could not be placed and were not compared; or a usage\n"
+    "     error, or input that cannot be read\n"
+    "  3  I/O error: a file could not be read or written\n";
+
 std::string real_path(const std::string& p) {
   char buf[PATH_MAX];
   return ::realpath(p.c_str(), buf) ? std::string(buf) : std::string();
@@ -267,7 +275,7 @@ int main(int argc, char** argv) {
   CLI::App* diff_cmd = app.add_subcommand(
       "diff",
       "Compare two programs: feed paths (both ways, exactly), rapids, M/T/S/dwell/comment blocks, feed and "
-      "extrusion; exit 0 when they agree within the band, 1 when not");
+      "extrusion; exit 0 when they agree within the band, 1 when not, 2 when not all could be compared");
   diff_cmd->add_option("A", diff.a, "Reference program")->required();
   diff_cmd->add_option("B", diff.b, "Program to check against A")->required();
   diff_cmd->add_option("--tolerance", diff.tolerance_mm, "Band in mm")->check(CLI::PositiveNumber)->capture_default_str();
@@ -282,7 +290,7 @@ int main(int argc, char** argv) {
   diff_cmd->add_option("-j,--threads", diff.threads, "Threads measuring the two directions at once; 0: as the "
                                                     "machine has (the result is the same for any count)")
       ->check(CLI::Range(0u, 1024u))->capture_default_str();
-  diff_cmd->footer(kExitCodesHelp);
+  diff_cmd->footer(kDiffExitCodesHelp);
 
   CLI::App* dialects_cmd = app.add_subcommand("dialects", "List the controller dialects, one line each");
 
