@@ -61,4 +61,17 @@ Command run_arcpress(const std::string& args, const std::string& stdin_text) {
   return c;
 }
 
+Command run_shell(const std::string& script) {
+  TempDir d("sh");
+  write_file(d / "script.sh", script);
+  std::string cmd = std::string("ARCPRESS='") + ARCPRESS_EXE + "' bash '" + (d / "script.sh").string() + "' < /dev/null > '" +
+                    (d / "stdout").string() + "' 2> '" + (d / "stderr").string() + "'";
+  int status = std::system(cmd.c_str());
+  Command c;
+  c.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  c.out = read_file(d / "stdout");
+  c.err = read_file(d / "stderr");
+  return c;
+}
+
 }  // namespace arcpress::test

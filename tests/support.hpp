@@ -18,6 +18,9 @@ struct Command {
 };
 /// Runs the arcpress executable with `args` (shell words), feeding `stdin_text`.
 Command run_arcpress(const std::string& args, const std::string& stdin_text = "");
+/// Runs `script` with bash, the arcpress executable's path in $ARCPRESS; its standard
+/// output and error are captured unless the script redirects them itself.
+Command run_shell(const std::string& script);
 
 /// A fresh empty folder under the system temp dir, removed with all it holds when the
 /// test is done with it (when this goes out of scope).

@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <iostream>
 #include <string>
 
 #include "arcpress/api/arcpress.hpp"
@@ -202,8 +203,7 @@ int run_diff(const DiffArgs& d) {
     Plane pl = d.plane == "zx" ? Plane::ZX : d.plane == "yz" ? Plane::YZ : Plane::XY;
     cli::write_output(d.plot, diff_svg(ia, ib, r, pl, d.tolerance_mm, names));
   }
-  std::string out = d.json ? diff_json(r, names, d.tolerance_mm) : diff_text(r, names, d.tolerance_mm);
-  std::fputs(out.c_str(), stdout);
+  cli::write_stdout(d.json ? diff_json(r, names, d.tolerance_mm) : diff_text(r, names, d.tolerance_mm));
   switch (r.verdict(d.tolerance_mm)) {
     case ProgramDiff::Verdict::Same: return kExitOk;
     case ProgramDiff::Verdict::Different: return kExitVerifyFailed;
@@ -215,6 +215,7 @@ int run_diff(const DiffArgs& d) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  cli::remove_temporary_files_on_signals();
   CLI::App app{
       "arcpress: replaces runs of short G1 moves in a G-code program with the fewest\n"
       "tangent-continuous lines and arcs (G2/G3) that stay within --tolerance of the\n"
@@ -294,14 +295,21 @@ int main(int argc, char** argv) {
 
   CLI::App* dialects_cmd = app.add_subcommand("dialects", "List the controller dialects, one line each");
 
+  // Help and version go to standard output; a write that fails there is an I/O error.
+  auto printed = [](int code) {
+    std::cout.flush();
+    if (std::cout.good()) return code;
+    std::fputs("arcpress: cannot write standard output\n", stderr);
+    return int(kExitIo);
+  };
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
+    return printed(app.exit(e));
   } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
+    return printed(app.exit(e));
   } catch (const CLI::Success& e) {
-    return app.exit(e);
+    return printed(app.exit(e));
   } catch (const CLI::ParseError& e) {
     app.exit(e);
     return kExitInput;
@@ -312,7 +320,9 @@ int main(int argc, char** argv) {
     if (*diff_cmd) return run_diff(diff);
     if (*dialects_cmd) {
       auto path = dialect_search_path(exe_dir());
-      for (const Dialect& d : list_dialects(path)) fmt::print("{:<16}{}\n", d.name, d.description);
+      std::string list;
+      for (const Dialect& d : list_dialects(path)) list += fmt::format("{:<16}{}\n", d.name, d.description);
+      cli::write_stdout(list);
       return kExitOk;
     }
     return run_compress(a);

@@ -143,10 +143,12 @@ CompressResult compress(const std::string& name, std::string text, const Compres
       if (g.cause_block >= 0) n.cause_line = prog.blocks[size_t(g.cause_block)].line;
       r.not_fitted.push_back(n);
     }
-    // A program with G1 moves of which none could be fitted is told why.
-    if (r.g1_moves > 0 && runs.empty()) {
-      const auto most = std::max_element(r.not_fitted.begin(), r.not_fitted.end(),
-                                         [](const NotFitted& x, const NotFitted& y) { return x.moves < y.moves; });
+    // A program with G1 moves of which none could be fitted is told why, where something
+    // kept them from it (not where each is alone already, as in a program fitted before).
+    const auto most = std::max_element(r.not_fitted.begin(), r.not_fitted.end(), [](const NotFitted& x, const NotFitted& y) {
+      return (x.why == Unfit::None ? 0 : x.moves) < (y.why == Unfit::None ? 0 : y.moves);
+    });
+    if (r.g1_moves > 0 && runs.empty() && most != r.not_fitted.end() && most->why != Unfit::None) {
       sink.warning({most->first_line, 1}, "W-FIT-NONE",
                    fmt::format("none of the {} G1 moves could be fitted; {} of them: {}{} (see --stats)", r.g1_moves,
                                most->moves, describe(most->why),
