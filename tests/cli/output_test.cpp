@@ -82,7 +82,7 @@ TEST_CASE("devices, FIFOs and /dev/stdout are written directly, never replaced",
   CHECK(temporaries_in(d) == 0);
 }
 
-TEST_CASE("--in-place through a symbolic link rewrites its target and keeps the link", "[cli][output]") {
+TEST_CASE("in place through a symbolic link, arcpress rewrites its target and keeps the link", "[cli][output]") {
   auto d = arcpress::test::temp_dir("symlink");
   fs::copy_file(kSample, d / "real.nc");
   fs::create_symlink("real.nc", d / "link.nc");
@@ -100,7 +100,7 @@ TEST_CASE("--in-place through a symbolic link rewrites its target and keeps the 
   CHECK(temporaries_in(d) == 0);
 }
 
-TEST_CASE("--in-place keeps the file's mode, owner and group", "[cli][output]") {
+TEST_CASE("in place, arcpress keeps the file's mode, owner and group", "[cli][output]") {
   auto d = arcpress::test::temp_dir("owner");
   fs::copy_file(kSample, d / "part.nc");
   REQUIRE(::chmod((d / "part.nc").c_str(), 0640) == 0);
