@@ -5,6 +5,8 @@
 #include <stdlib.h>
 
 #include <chrono>
+#include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -35,6 +37,29 @@ constexpr const char* kDiffExitCodesHelp =
     "  2  INCOMPLETE: some feed moves could not be placed and were not compared; or a usage\n"
     "     error, or input that cannot be read\n"
     "  3  I/O error: a file could not be read or written\n";
+
+/// A floating option's check: a finite number from `lo` to `hi` (above `lo` where
+/// `above_lo`), in `unit`. The message names the range and what was given, and no
+/// option can bring a NaN, an infinity or a value no search is bounded for into the fit.
+CLI::Validator finite_in(double lo, bool above_lo, double hi, const std::string& unit) {
+  auto text = [](double v) {  // plain decimals, never an exponent
+    std::string t = fmt::format("{:.6f}", v);
+    while (t.back() == '0') t.pop_back();
+    if (t.back() == '.') t.pop_back();
+    return t;
+  };
+  const std::string range = above_lo ? fmt::format("> {} and <= {} {}", text(lo), text(hi), unit)
+                                     : fmt::format("from {} to {} {}", text(lo), text(hi), unit);
+  return CLI::Validator(
+      [=](std::string& given) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(given.c_str(), &end);
+        const bool number = end != given.c_str() && *end == '\0';
+        if (number && std::isfinite(v) && (above_lo ? v > lo : v >= lo) && v <= hi) return {};
+        return fmt::format("must be a finite number {}, got '{}'", range, given);
+      },
+      range, "FINITE");
+}
 
 std::string real_path(const std::string& p) {
   char buf[PATH_MAX];
@@ -77,6 +102,9 @@ int run_compress(const CompressArgs& a) {
              real_path(out_path) == real_path(a.input)) {
     throw Error(kExitInput, fmt::format("output '{}' is the input file; use --in-place to overwrite it", out_path));
   }
+  if (a.opt.fit.min_radius_mm > a.opt.fit.max_radius_mm)
+    throw Error(kExitInput, fmt::format("--min-radius {} mm is larger than --max-radius {} mm", a.opt.fit.min_radius_mm,
+                                        a.opt.fit.max_radius_mm));
   CompressOptions opt = a.opt;
   opt.fit.method = a.method == "keep"     ? FitOptions::Method::Keep
                    : a.method == "global" ? FitOptions::Method::Global
@@ -232,7 +260,7 @@ int main(int argc, char** argv) {
   app.add_flag("--in-place", a.in_place, "Rewrite the input file (atomically)");
   app.add_option("--tolerance", a.opt.fit.tolerance_mm,
                  "Max distance in mm between output and input path, both ways")
-      ->check(CLI::PositiveNumber)->capture_default_str();
+      ->check(finite_in(kMinToleranceMm, false, kMaxToleranceMm, "mm"))->capture_default_str();
   app.add_option("--dialect", a.dialect, "Target controller dialect (see 'arcpress dialects')")->capture_default_str();
   app.add_option("--dialect-file", a.dialect_file, "Load the dialect from this TOML file instead");
   app.add_option("--arc-format", a.arc_format, "ijk: centre words; r: radius words where the dialect reads them "
@@ -247,20 +275,20 @@ int main(int argc, char** argv) {
                  "of them, joints made tangent afterwards where the band allows (seed method)")
       ->check(CLI::IsMember({"keep", "arcs", "global", "greedy", "stream", "lowe"}))->capture_default_str();
   app.add_option("--g1-angle", a.opt.fit.g1_angle_deg, "Max tangent change in degrees at smooth joints")
-      ->check(CLI::PositiveNumber)->capture_default_str();
+      ->check(finite_in(0, true, 90, "degrees"))->capture_default_str();
   app.add_option("--corner-angle", a.opt.fit.corner_angle_deg,
                  "Input turns sharper than this (degrees) are corners, kept sharp")
-      ->check(CLI::Range(0.0, 180.0))->capture_default_str();
+      ->check(finite_in(0, false, 180, "degrees"))->capture_default_str();
   app.add_flag("--spikes", a.opt.fit.spikes,
                "Treat a lone sharp jag within half the band of its neighbours' chord as noise, not a corner");
   app.add_option("--min-radius", a.opt.fit.min_radius_mm, "Arcs with a smaller radius (mm) become lines")
-      ->check(CLI::NonNegativeNumber)->capture_default_str();
+      ->check(finite_in(0, false, 1e6, "mm"))->capture_default_str();
   app.add_option("--max-radius", a.opt.fit.max_radius_mm, "Arcs with a larger radius (mm) become lines")
-      ->check(CLI::PositiveNumber)->capture_default_str();
+      ->check(finite_in(0, true, 1e6, "mm"))->capture_default_str();
   app.add_option("--max-sweep", a.opt.fit.max_sweep_deg, "Max degrees one arc block may sweep")
-      ->check(CLI::Range(1.0, 359.0))->capture_default_str();
+      ->check(finite_in(1, false, 359, "degrees"))->capture_default_str();
   app.add_option("--min-arc-length", a.opt.fit.min_arc_length_mm, "Shorter arcs (mm) become lines")
-      ->check(CLI::NonNegativeNumber)->capture_default_str();
+      ->check(finite_in(0, false, 1e4, "mm"))->capture_default_str();
   bool no_helical = false;
   app.add_flag("--no-helical", no_helical, "Never move the plane's normal axis inside an arc");
   app.add_flag("--passthrough", a.opt.passthrough, "Read and write the program back unchanged");
@@ -279,7 +307,9 @@ int main(int argc, char** argv) {
       "extrusion; exit 0 when they agree within the band, 1 when not, 2 when not all could be compared");
   diff_cmd->add_option("A", diff.a, "Reference program")->required();
   diff_cmd->add_option("B", diff.b, "Program to check against A")->required();
-  diff_cmd->add_option("--tolerance", diff.tolerance_mm, "Band in mm")->check(CLI::PositiveNumber)->capture_default_str();
+  diff_cmd->add_option("--tolerance", diff.tolerance_mm, "Band in mm")
+      ->check(finite_in(kMinToleranceMm, false, kMaxToleranceMm, "mm"))
+      ->capture_default_str();
   diff_cmd->add_option("--dialect", diff.dialect, "How both programs are read")->capture_default_str();
   diff_cmd->add_option("--dialect-file", diff.dialect_file, "Read both programs with this dialect file");
   diff_cmd->add_flag("--json", diff.json, "Print one JSON document instead of text");

@@ -263,3 +263,30 @@ TEST_CASE("R-form arcs for a controller that rejects them is a usage error", "[c
   CHECK(c.exit_code == 2);
   CHECK(c.err.find("klipper does not read R-form arcs") != std::string::npos);
 }
+
+TEST_CASE("every floating option must be a finite number in its range, and says so in one short line", "[cli][options]") {
+  struct Case {
+    std::string option, value, range;
+  };
+  const std::vector<Case> cases = {
+      {"--tolerance", "nan", "from 0.00001 to 100 mm"},        {"--tolerance", "1e-300", "from 0.00001 to 100 mm"},
+      {"--tolerance", "abc", "from 0.00001 to 100 mm"},        {"--tolerance", "-1", "from 0.00001 to 100 mm"},
+      {"--g1-angle", "nan", "> 0 and <= 90 degrees"},          {"--corner-angle", "inf", "from 0 to 180 degrees"},
+      {"--min-radius", "nan", "from 0 to 1000000 mm"},         {"--max-radius", "1e308", "> 0 and <= 1000000 mm"},
+      {"--max-sweep", "nan", "from 1 to 359 degrees"},         {"--min-arc-length", "-inf", "from 0 to 10000 mm"},
+  };
+  for (const Case& c : cases) {
+    INFO(c.option << " " << c.value);
+    auto r = run_arcpress(c.option + " " + c.value, kProgram);
+    CHECK(r.exit_code == 2);
+    CHECK(r.out.empty());
+    CHECK(r.err.find(c.option + ": must be a finite number " + c.range + ", got '" + c.value + "'") != std::string::npos);
+    CHECK(r.err.size() < 200);
+  }
+  auto diff = run_arcpress("diff --tolerance nan a b");
+  CHECK(diff.exit_code == 2);
+  CHECK(diff.err.find("--tolerance: must be a finite number from 0.00001 to 100 mm, got 'nan'") != std::string::npos);
+  auto crossed = run_arcpress("--min-radius 5 --max-radius 1", kProgram);
+  CHECK(crossed.exit_code == 2);
+  CHECK(crossed.err.find("--min-radius 5 mm is larger than --max-radius 1 mm") != std::string::npos);
+}

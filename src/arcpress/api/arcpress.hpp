@@ -72,6 +72,11 @@ struct CompressResult {
   double band_mm = 0;
 };
 
+/// Throws Error(kExitInput) unless every number of `o` is finite and in its documented range
+/// (the CLI's options table); compress() calls it, so no search is ever asked to run for a
+/// band it cannot reach.
+void check_options(const FitOptions& o);
+
 /// The fit options for one run: the user's, tightened by what the dialect's controller
 /// accepts in that run's frame and plane.
 FitOptions fit_options_for(const FitOptions& user, const Dialect& dialect, const Frame& frame, Plane plane);

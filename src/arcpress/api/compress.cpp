@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <iterator>
 #include <numeric>
 
@@ -107,8 +108,24 @@ std::vector<FitResult> fit_runs(const Interpretation& in, const std::vector<Run>
 
 }  // namespace
 
+void check_options(const FitOptions& o) {
+  auto check = [](const char* what, double v, double lo, bool above_lo, double hi) {
+    if (std::isfinite(v) && (above_lo ? v > lo : v >= lo) && v <= hi) return;
+    throw Error(kExitInput, fmt::format("{} must be a finite number {} {} and <= {}, got {}", what, above_lo ? ">" : ">=",
+                                        lo, hi, v));
+  };
+  check("the tolerance (mm)", o.tolerance_mm, kMinToleranceMm, false, kMaxToleranceMm);
+  check("the G1 angle (degrees)", o.g1_angle_deg, 0, true, 90);
+  check("the corner angle (degrees)", o.corner_angle_deg, 0, false, 180);
+  check("the minimum radius (mm)", o.min_radius_mm, 0, false, 1e6);
+  check("the maximum radius (mm)", o.max_radius_mm, 0, true, 1e6);
+  check("the maximum sweep (degrees)", o.max_sweep_deg, 1, false, 359);
+  check("the minimum arc length (mm)", o.min_arc_length_mm, 0, false, 1e4);
+}
+
 CompressResult compress(const std::string& name, std::string text, const CompressOptions& opt,
                         DiagnosticSink& sink) {
+  check_options(opt.fit);
   sink.set_strict(opt.strict);
   CompressResult r;
   r.bytes_in = text.size();

@@ -7,6 +7,7 @@
 #include <cctype>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <tuple>
 
 #include "arcpress/core/deviation.hpp"
@@ -422,6 +423,11 @@ void compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, cons
 
 ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Program& b, const Interpretation& ib,
                           const DiffOptions& opt) {
+  // The measure's searches end at a share of the band: a band that is no positive number,
+  // or one far below any machine's resolution, would keep them splitting for ever.
+  if (!(opt.tolerance_mm >= kMinToleranceMm && opt.tolerance_mm <= kMaxToleranceMm))
+    throw std::invalid_argument(fmt::format("diff tolerance must be from {} to {} mm, got {}", kMinToleranceMm,
+                                            kMaxToleranceMm, opt.tolerance_mm));
   ProgramDiff d;
   d.arc_chord_mm = std::max(opt.tolerance_mm * kReadingShare / 2, 1e-7);
   const double precision_mm = opt.tolerance_mm * kReadingShare / 2;

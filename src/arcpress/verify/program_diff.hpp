@@ -37,6 +37,10 @@
 
 namespace arcpress {
 
+/// The bands a caller may ask for, mm: below 10 nm no controller moves, and no measure
+/// needs to. diff_programs() throws std::invalid_argument outside them.
+inline constexpr double kMinToleranceMm = 0.00001, kMaxToleranceMm = 100;
+
 struct DiffOptions {
   double tolerance_mm = 0.01;  ///< the band B's path must stay in around A's
   size_t top = 5;              ///< how many worst places to report
