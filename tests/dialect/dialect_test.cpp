@@ -20,7 +20,7 @@ using namespace arcpress;
 
 namespace {
 
-const std::vector<std::string> kShipped = {"rs274",   "linuxcnc", "fanuc",  "haas",  "mach3",
+const std::vector<std::string> kShipped = {"rs274",   "linuxcnc", "fanuc",  "haas",  "haas-lathe", "mach3",
                                            "mach4",   "grbl",     "grblhal", "siemens", "heidenhain-iso",
                                            "okuma",   "marlin",   "klipper", "reprapfirmware",
                                            "smoothieware", "prusa"};
@@ -158,7 +158,8 @@ TEST_CASE("every dialect writes the arc snippets so that its controller reads th
         CHECK(r.comparison.matched);
         CHECK(r.comparison.max_deviation_mm <= 0.01);
         CHECK(worst_radius_error_share(d, r.output) <= 1.0);
-        bool arcs_allowed = d.plane_allowed(s.plane) && (d.helical || !s.helical);
+        // (Where X words are diameters, moves are read and compared, not fitted.)
+        bool arcs_allowed = d.plane_allowed(s.plane) && (d.helical || !s.helical) && !d.diameter_x;
         CHECK((r.stats.arcs_out > 0) == arcs_allowed);
         for (const auto& l : lines_of(r.output)) {
           CHECK(l.size() <= d.max_line_length);
@@ -295,4 +296,16 @@ TEST_CASE("words a dialect refuses are reported where the input has them, and pa
   std::string all = sink.format_all();
   CHECK(all.find("p.nc:1:1: warning: W-DIALECT-REFUSED: '%' is refused by grbl") != std::string::npos);
   CHECK(all.find("4 more") == std::string::npos);
+}
+
+TEST_CASE("a lathe dialect reads X words as diameters from the start, and G8 as radii", "[dialect][lathe]") {
+  DiagnosticSink sink;
+  Program p = lex("t.nc", "G18 G21 G90\nG0 X20. Z1.\nG1 Z0. F50.\nG8\nG1 X12.\n", sink);
+  Interpretation in = interpret(p, sink, shipped("haas-lathe"));
+  REQUIRE(in.moves.size() == 3);
+  CHECK(in.moves[0].to[kX] == 10.0);  // a diameter of 20 mm
+  CHECK(in.moves[1].unfit == Unfit::DiameterMode);
+  CHECK(in.moves[2].to[kX] == 12.0);  // G8: radius
+  Interpretation mill = interpret(p, sink, shipped("haas"));
+  CHECK(mill.moves[0].to[kX] == 20.0);
 }

@@ -159,3 +159,34 @@ TEST_CASE("canned cycles, homing and work-offset changes are barriers", "[model]
   CHECK(r.in.moves[4].known);
   CHECK_FALSE(r.in.moves.back().known);
 }
+
+TEST_CASE("blocks no controller runs are diagnosed with their place and never read as something else", "[model]") {
+  DiagnosticSink sink("t.nc");
+  Program p = lex("t.nc", "G21 G90\nG0 X0 Y0 Z0\nG2 X10 Y0 F100\nG3 X0 Y0 R2\nG1 X5 X6\nG1 X7\nG3 X0 Y0 R-5.001\n", sink);
+  Interpretation in = interpret(p, sink);
+  REQUIRE(in.moves.size() == 6);
+  // G2 without a centre: not a line, not placed.
+  CHECK_FALSE(in.moves[1].known);
+  CHECK(in.moves[1].unfit == Unfit::UnreadableArc);
+  // R 2 mm for a 10 mm chord: no circle joins the ends.
+  CHECK_FALSE(in.moves[2].known);
+  CHECK(in.moves[2].unfit == Unfit::UnreadableArc);
+  // X twice.
+  CHECK_FALSE(in.moves[3].known);
+  CHECK(in.moves[3].unfit == Unfit::RepeatedWord);
+  // What follows is placed again.
+  CHECK(in.moves[4].known);
+  // An R a hair short of half the chord (within the controller's check) is the half circle.
+  CHECK(in.moves[5].known);
+  const std::string said = sink.format_all();
+  CHECK(said.find("t.nc:3:1: warning: E-MODEL-ARC-CENTRE: G2 has no centre") != std::string::npos);
+  CHECK(said.find("t.nc:4:1: warning: E-MODEL-ARC-RADIUS: R 2.0000 mm is shorter than half the chord, 5.0000 mm") !=
+        std::string::npos);
+  CHECK(said.find("t.nc:5:7: warning: E-MODEL-REPEATED-WORD: X appears twice in the block ('X6')") != std::string::npos);
+  // Under --strict each is an error.
+  DiagnosticSink strict("t.nc");
+  strict.set_strict(true);
+  Program q = lex("t.nc", "G0 X0 Y0 Z0\nG2 X10 Y0 F100\n", strict);
+  interpret(q, strict);
+  CHECK(strict.error_count() == 1);
+}

@@ -64,6 +64,11 @@ struct Dialect {
   double radius_abs_mm = 0.0283;
   double radius_rel = 0.001;
 
+  // --- machine ----------------------------------------------------------------------
+  /// X words are diameters from the start, as on lathes that power up in diameter mode
+  /// (Haas, Fanuc); G7/G8 still switch where the program writes them.
+  bool diameter_x = false;
+
   // --- numbers ----------------------------------------------------------------------
   NumberDigits mm{4, 4, 6, 1, 5};
   NumberDigits inch{5, 5, 7, 2, 5};

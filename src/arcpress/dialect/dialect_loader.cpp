@@ -197,6 +197,11 @@ Dialect parse_dialect(const std::string& text, const std::string& path) {
     if (d.format == ArcFormat::Radius && !d.radius_word)
       top.fail(t->source(), "arcs.format", "\"radius\" needs radius_word = true");
   }
+  if (const toml::table* t = top.table("lathe")) {
+    TableReader r(*t, path, "lathe.");
+    r.boolean("diameter", d.diameter_x);
+    r.finish();
+  }
   if (const toml::table* t = top.table("numbers")) {
     TableReader r(*t, path, "numbers.");
     r.boolean("decimal_point", d.decimal_point);

@@ -36,6 +36,7 @@ constexpr double kSpindleUnknown = -1;
 class Interpreter {
  public:
   Interpreter(const Program& p, const Dialect& d, DiagnosticSink& sink) : p_(p), d_(d), sink_(sink) {
+    frame_.diameter_mode = d.diameter_x;
     out_.frames.push_back(frame_);
     out_.move_of_block.assign(p.blocks.size(), -1);
     out_.moves.reserve(p.blocks.size());
@@ -89,8 +90,19 @@ class Interpreter {
     double feed = 0;
     bool feed_set = false;
 
+    bool repeated = false;  // a word the controller refuses to see twice
+    uint32_t letters_seen = 0;
     for (auto* w = p_.words_begin(b); w != p_.words_end(b); ++w) {
       char L = w->letter;
+      if (std::string_view("XYZABCUVWEIJKRFP").find(L) != std::string_view::npos && !w->flag) {
+        const uint32_t bit = 1u << (L - 'A');
+        if (letters_seen & bit) {
+          repeated = true;
+          sink_.problem({b.line, w->col}, "E-MODEL-REPEATED-WORD",
+                        fmt::format("{} appears twice in the block ('{}'); controllers refuse it", L, p_.raw(b, *w)));
+        }
+        letters_seen |= bit;
+      }
       if (int ax = axis_of_letter(L); ax >= 0) {
         if (w->flag) {
           flag_axis[ax] = true;
@@ -316,8 +328,19 @@ class Interpreter {
     Move& m = add_move(bi, kind, target, known, turns);
     m.unknown_axes = uint16_t(kAllAxes & ~(known_ & known_after));
     m.end_known = known || (moved & ~known_after) == 0;
+    if (repeated && m.known) {
+      m.known = false;
+      unplaced_why = Unfit::RepeatedWord;
+      cause_block_ = bi;
+    }
     if (kind == MoveKind::ArcCW || kind == MoveKind::ArcCCW) {
-      m.center = arc_center(b, fr, target, ijk, ijk_seen, r_seen, r_value, kind, m.known);
+      bool readable = true;
+      m.center = arc_center(b, fr, target, ijk, ijk_seen, r_seen, r_value, kind, readable);
+      if (!readable && m.known) {
+        m.known = false;
+        unplaced_why = Unfit::UnreadableArc;
+        cause_block_ = bi;
+      }
     }
     // A move along X, Y or Z, or one that goes nowhere at all (which the fitter steps over);
     // not one that moves only E or the extra axes (a retraction, a rotary index).
@@ -365,6 +388,17 @@ class Interpreter {
         known = false;
         return c;
       }
+      // A radius shorter than half the chord reaches no circle through both ends; controllers
+      // take one within their radius check as the half circle and refuse the rest.
+      const double allowance_mm = d_.radius_abs_mm > 0 ? d_.radius_abs_mm : kRadiusAimMm;
+      if (std::abs(r) < d / 2 - allowance_mm) {
+        sink_.problem({b.line, 1}, "E-MODEL-ARC-RADIUS",
+                      fmt::format("R {:.4f} mm is shorter than half the chord, {:.4f} mm (allowed {:.4f} mm less); "
+                                  "no circle joins the end points",
+                                  std::abs(r), d / 2, allowance_mm));
+        known = false;
+        return c;
+      }
       double h2 = r * r - d * d / 4;
       double h = h2 > 0 ? std::sqrt(h2) : 0.0;
       Vec2 n = left_normal(chord / d);
@@ -377,6 +411,13 @@ class Interpreter {
     }
     // RS274 reads I/J/K as offsets from the start unless G90.1; a dialect that reads them
     // as the absolute centre does so unless the program is in incremental mode (G91).
+    if (!ijk_seen[a.first] && !ijk_seen[a.second]) {
+      sink_.problem({b.line, 1}, "E-MODEL-ARC-CENTRE",
+                    fmt::format("G{} has no centre: neither {} nor {} nor R is given; it is kept and not measured",
+                                kind == MoveKind::ArcCW ? 2 : 3, char('I' + a.first), char('I' + a.second)));
+      known = false;
+      return c;
+    }
     bool absolute = d_.centre == CentreReading::Absolute ? fr.absolute : fr.arc_absolute;
     for (int k = 0; k < 3; ++k) {
       if (k == a.normal) continue;

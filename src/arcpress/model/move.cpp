@@ -14,6 +14,8 @@ const char* describe(Unfit why) {
       return "position unknown after flow control, a macro or parameter line, a subprogram or a host command";
     case Unfit::UnknownAfterOffset: return "position unknown after a work-offset change";
     case Unfit::UnknownAfterUnmodelled: return "position unknown after a G-code arcpress does not model";
+    case Unfit::UnreadableArc: return "an arc the controller cannot run: no centre, or R too short for its chord";
+    case Unfit::RepeatedWord: return "a word repeated in the block";
     case Unfit::NotLine: return "not a G1 move";
     case Unfit::OtherWords: return "other words in the block (modal codes, M, T, arc words)";
     case Unfit::Comment: return "comment in the block";

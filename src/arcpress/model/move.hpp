@@ -70,6 +70,9 @@ enum class Unfit : uint8_t {
   UnknownAfterControl,  ///< flow control, a subprogram, a macro or host command ran
   UnknownAfterOffset,   ///< a work offset (G54..) changed under it
   UnknownAfterUnmodelled,  ///< a G-code arcpress does not model
+  // The block cannot be read as a path: no controller runs it as written.
+  UnreadableArc,    ///< G2/G3 without a centre (no I/J/K in its plane, no R), or R shorter than half its chord
+  RepeatedWord,     ///< an axis, centre, R, F or P word twice in one block
   // Placed, and kept as it is.
   NotLine,          ///< G0, G2/G3 or another motion: only G1 is fitted
   OtherWords,       ///< the block carries words besides G1, axes, F, S and N (modal codes, M, T, ...)
@@ -85,8 +88,8 @@ enum class Unfit : uint8_t {
 
 /// A few words on `why`, for reports: "comment in the block", ...
 const char* describe(Unfit why);
-/// True for the reasons that say the move could not be placed.
-inline bool is_unplaced(Unfit why) { return why >= Unfit::UnknownAtStart && why <= Unfit::UnknownAfterUnmodelled; }
+/// True for the reasons that say the move's position was not known (an axis it moves).
+inline bool is_position_unknown(Unfit why) { return why >= Unfit::UnknownAtStart && why <= Unfit::UnknownAfterUnmodelled; }
 
 struct Move {
   AxisValues to{};            ///< absolute end position (mm for linear axes, degrees for A/B/C)
@@ -103,7 +106,7 @@ struct Move {
   uint16_t unknown_axes = 0;
   MoveKind kind = MoveKind::Line;
   Plane plane = Plane::XY;
-  bool known = true;          ///< the path is known: no axis of unknown position moves
+  bool known = true;          ///< the path is known: no axis of unknown position moves, and the block reads as one
   /// Every axis it moves ends at a known position, so its end point is known even where
   /// its start is not (the move into the first known position after homing).
   bool end_known = true;
@@ -119,7 +122,11 @@ struct UnplacedMove {
   int64_t cause_block = -1; ///< the block that made the axis unknown; -1: never set
 };
 
-inline bool is_unplaced_feed(const Move& m) { return is_feed(m.kind) && !m.known; }
+/// A feed move from an unknown position into a known one (the first move after homing):
+/// its path is not known, its end point is, and it is compared by that.
+inline bool enters_from_unknown(const Move& m) {
+  return is_feed(m.kind) && !m.known && m.end_known && is_position_unknown(m.unfit);
+}
 
 /// Everything the interpreter learned about a program.
 struct Interpretation {

@@ -80,7 +80,7 @@ Path path_of(const Interpretation& in, double chord_mm, double tolerance_mm) {
     const Move& m = in.moves[i];
     if (!is_feed(m.kind) || !m.known) {
       if (m.kind == MoveKind::Rapid && m.end_known) p.rapids.push_back(uint32_t(i));
-      if (is_feed(m.kind) && m.end_known) p.entries.push_back(uint32_t(i));
+      if (enters_from_unknown(m)) p.entries.push_back(uint32_t(i));
       in_section = false;
       continue;
     }
@@ -436,12 +436,14 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
     ProgramSummary s;
     for (const UnplacedMove& u : in.unplaced) {
       const Move& m = in.moves[u.move];
-      size_t& count = m.end_known ? s.entry_moves : s.unplaced_feed_moves;
+      const bool entry = enters_from_unknown(m);
+      size_t& count = entry ? s.entry_moves : s.unplaced_feed_moves;
       if (count++ > 0) continue;
       std::string why = describe(m.unfit);
-      if (u.cause_block >= 0) why += fmt::format(" at line {}", p.blocks[size_t(u.cause_block)].line);
-      (m.end_known ? s.first_entry_line : s.first_unplaced_line) = p.blocks[m.block].line;
-      (m.end_known ? s.entry_reason : s.unplaced_reason) = std::move(why);
+      if (u.cause_block >= 0 && is_position_unknown(m.unfit))
+        why += fmt::format(" at line {}", p.blocks[size_t(u.cause_block)].line);
+      (entry ? s.first_entry_line : s.first_unplaced_line) = p.blocks[m.block].line;
+      (entry ? s.entry_reason : s.unplaced_reason) = std::move(why);
     }
     s.blocks = p.blocks.size();
     s.bytes = p.text.size();
