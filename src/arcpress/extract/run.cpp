@@ -21,25 +21,89 @@ bool within_spread(double lo, double hi, double spread_mm) {
 /// The principal plane whose normal is `axis` (0 X, 1 Y, 2 Z).
 Plane plane_with_normal(int axis) { return axis == 2 ? Plane::XY : axis == 1 ? Plane::ZX : Plane::YZ; }
 
-/// The end of the longest stretch of moves from `i` (before `j`) whose vertices keep `axis`
-/// within `spread_mm` of each other.
-size_t flat_until(const Interpretation& in, size_t i, size_t j, int axis, double spread_mm) {
-  double lo = in.from(i)[axis], hi = lo;
-  size_t t = i;
-  for (; t < j; ++t) {
-    const double v = in.moves[t].to[axis];
-    const double nlo = std::min(lo, v), nhi = std::max(hi, v);
-    if (!within_spread(nlo, nhi, spread_mm)) break;
-    lo = nlo;
-    hi = nhi;
-  }
-  return t;
+/// Whether the path has a corner at vertex k (the start of move k): is_corner() in the plane
+/// of move k, with the vertices beside it past moves that go nowhere; so where the feed path
+/// ends on either side.
+bool corner_at(const Interpretation& in, size_t k, double band_mm, double corner_angle_deg) {
+  const Plane pl = in.moves[std::min(k, in.moves.size() - 1)].plane;
+  auto point = [&](size_t v) {  // vertex v in the plane's coordinates, as the verifier reads it
+    const auto& a = in.from(v);
+    const auto ax = axes_of(pl);
+    return Vec3(a[ax.first], a[ax.second], a[ax.normal]);
+  };
+  const auto b = in.vertex_beside(k, -1), a = in.vertex_beside(k, +1);
+  return !b || !a || is_corner(point(*b), point(k), point(*a), band_mm, corner_angle_deg);
 }
 
-/// Whether the vertices of moves [i, t) spread along `axis` by more than `spread_mm`.
-bool moves_along(const Interpretation& in, size_t i, size_t t, int axis, double spread_mm) {
-  return flat_until(in, i, t, axis, spread_mm) < t;
-}
+/// What split_by_plane() asks of the moves [i, j) again and again, worked out once in a pass
+/// or two over them, so that trying every start costs the same at each: linear in the moves.
+class Stretch {
+ public:
+  Stretch(const Interpretation& in, size_t i, size_t j, const PlaneChoice& choice) : in_(in), i_(i), j_(j) {
+    const size_t n = j - i;
+    going_.assign(n + 1, 0);
+    for (size_t k = 0; k < n; ++k) going_[k + 1] = going_[k] + !in.goes_nowhere(i + k);
+    corner_after_.assign(n + 1, j);
+    for (size_t k = j; k-- > i + 1;)
+      corner_after_[k - 1 - i] =
+          !in.goes_nowhere(k - 1) && corner_at(in, k, choice.band_mm, choice.corner_angle_deg) ? k : corner_after_[k - i];
+    for (int axis = 0; axis < 3; ++axis) {
+      flat_until(axis, 0, exact_[axis]);
+      flat_until(axis, choice.spread_mm, near_[axis]);
+    }
+  }
+
+  /// How many of the moves [m, t) go somewhere.
+  size_t moves_going(size_t m, size_t t) const { return going_[t - i_] - going_[m - i_]; }
+  /// The end of the longest stretch of moves from m (before j) whose vertices keep `axis`
+  /// exactly (`exact`) or within the spread.
+  size_t flat_until(int axis, size_t m, bool exact) const { return (exact ? exact_ : near_)[axis][m - i_]; }
+  /// Whether the vertices of moves [m, t) spread along `axis` by more than the spread.
+  bool moves_along(int axis, size_t m, size_t t) const { return near_[axis][m - i_] < t; }
+  /// The first vertex k in (m, t) where the path has a corner (corner_at()), else t.
+  size_t smooth_until(size_t m, size_t t) const { return std::min(corner_after_[m - i_], t); }
+
+ private:
+  /// ends[m - i] = the end of the longest stretch from m whose vertices keep `axis` within
+  /// `spread_mm` (within_spread()): a window slid along the moves, its lowest and highest
+  /// values kept in two monotone queues.
+  void flat_until(int axis, double spread_mm, std::vector<size_t>& ends) const {
+    const size_t n = j_ - i_;
+    ends.assign(n, j_);
+    auto value = [&](size_t v) { return in_.from(i_ + v)[axis]; };  // vertex v of the stretch (0 .. n)
+    std::vector<size_t> lows, highs;  // vertex numbers, values rising / falling
+    size_t lo_head = 0, hi_head = 0;
+    size_t t = 0;  // the window holds vertices m .. t
+    for (size_t m = 0; m < n; ++m) {
+      if (t < m) t = m;
+      auto push = [&](size_t v) {
+        while (lows.size() > lo_head && value(lows.back()) >= value(v)) lows.pop_back();
+        lows.push_back(v);
+        while (highs.size() > hi_head && value(highs.back()) <= value(v)) highs.pop_back();
+        highs.push_back(v);
+      };
+      if (lows.size() == lo_head) push(m);
+      while (lo_head < lows.size() && lows[lo_head] < m) ++lo_head;
+      while (hi_head < highs.size() && highs[hi_head] < m) ++hi_head;
+      if (lo_head == lows.size()) push(m);
+      // Grow the window while vertex t + 1 keeps it within the spread.
+      while (t < n) {
+        const double v = value(t + 1);
+        const double lo = std::min(value(lows[lo_head]), v), hi = std::max(value(highs[hi_head]), v);
+        if (!within_spread(lo, hi, spread_mm)) break;
+        ++t;
+        push(t);
+      }
+      ends[m] = i_ + t;  // moves m .. t - 1 keep it
+    }
+  }
+
+  const Interpretation& in_;
+  size_t i_, j_;
+  std::vector<uint32_t> going_;        // prefix counts of moves that go somewhere
+  std::vector<size_t> corner_after_;   // per vertex m - i: the first corner after it
+  std::vector<size_t> exact_[3], near_[3];
+};
 
 /// Whether a vertex of moves [i, t) lies more than `band_mm` off the chord from the first to
 /// the last, seen in `plane`: whether arcs in that plane have a curve to follow there.
@@ -55,28 +119,6 @@ bool curves_in(const Interpretation& in, size_t i, size_t t, Plane plane, double
     if ((p - (a + s * d)).norm() > band_mm) return true;
   }
   return false;
-}
-
-/// Whether the path has a corner at vertex k (the start of move k): is_corner() in the plane
-/// of move k, with the vertices beside it past moves that go nowhere; so where the feed path
-/// ends on either side.
-bool corner_at(const Interpretation& in, size_t k, double band_mm, double corner_angle_deg) {
-  const Plane pl = in.moves[std::min(k, in.moves.size() - 1)].plane;
-  auto point = [&](size_t v) {  // vertex v in the plane's coordinates, as the verifier reads it
-    const auto& a = in.from(v);
-    const auto ax = axes_of(pl);
-    return Vec3(a[ax.first], a[ax.second], a[ax.normal]);
-  };
-  const auto b = in.vertex_beside(k, -1), a = in.vertex_beside(k, +1);
-  return !b || !a || is_corner(point(*b), point(k), point(*a), band_mm, corner_angle_deg);
-}
-
-/// The first vertex k in (i, t) where the path has a corner (corner_at()), else t: the end of
-/// the smooth stretch of moves [i, t) from i.
-size_t smooth_until(const Interpretation& in, size_t i, size_t t, const PlaneChoice& choice) {
-  for (size_t k = i + 1; k < t; ++k)
-    if (!in.goes_nowhere(k - 1) && corner_at(in, k, choice.band_mm, choice.corner_angle_deg)) return k;
-  return t;
 }
 
 void add_run(const Interpretation& in, size_t i, size_t j, Plane plane, uint32_t min_moves, std::vector<Run>& runs) {
@@ -106,13 +148,21 @@ void add_run(const Interpretation& in, size_t i, size_t j, Plane plane, uint32_t
 /// a 3D surface path) the program's plane stays, with helical arcs or lines.
 void split_by_plane(const Interpretation& in, size_t i, size_t j, uint32_t min_moves, const PlaneChoice& choice,
                     std::vector<Run>& runs) {
-  const double spread_mm = choice.spread_mm;
   const Plane own = in.moves[i].plane;
   const int own_normal = axes_of(own).normal;
-  if (!moves_along(in, i, j, own_normal, spread_mm)) {  // flat in the program's plane: the common case
+  // Flat in the program's plane, the common case: by one pass over the moves.
+  double lo = in.from(i)[own_normal], hi = lo;
+  bool flat = true;
+  for (size_t t = i; t < j && flat; ++t) {
+    lo = std::min(lo, in.moves[t].to[own_normal]);
+    hi = std::max(hi, in.moves[t].to[own_normal]);
+    flat = within_spread(lo, hi, choice.spread_mm);
+  }
+  if (flat) {
     add_run(in, i, j, own, min_moves, runs);
     return;
   }
+  const Stretch st(in, i, j, choice);
   size_t piece = i;  // start of the stretch left in the program's plane
   // Per axis, the first start worth trying: a stretch [m, t) that is no piece because it is
   // too short or flat in the program's plane makes every start in (m, t) fail the same way;
@@ -125,14 +175,14 @@ void split_by_plane(const Interpretation& in, size_t i, size_t j, uint32_t min_m
       if (axis == own_normal || m < blocked[axis]) continue;
       // (A move that goes nowhere lies in every plane: it neither makes a piece nor ends one.)
       auto piece_to = [&](size_t t) {
-        return in.moves_going(m, t) >= kMinPlanePieceMoves && moves_along(in, m, t, own_normal, spread_mm) &&
+        return st.moves_going(m, t) >= kMinPlanePieceMoves && st.moves_along(own_normal, m, t) &&
                curves_in(in, m, t, plane_with_normal(axis), choice.band_mm);
       };
       // Where the axis keeps its very value, the piece runs as far as that, corners and all
       // (a plunge into a raster pass belongs to it); where it only stays within the spread,
       // the piece also ends at a corner (microns of wander around a plunge are chance).
-      const size_t exact = flat_until(in, m, j, axis, 0);
-      const size_t near = smooth_until(in, m, flat_until(in, m, j, axis, spread_mm), choice);
+      const size_t exact = st.flat_until(axis, m, true);
+      const size_t near = st.smooth_until(m, st.flat_until(axis, m, false));
       const size_t t = near > exact && piece_to(near) ? near : piece_to(exact) ? exact : m;
       if (t == m) {
         blocked[axis] = std::min(exact, near);

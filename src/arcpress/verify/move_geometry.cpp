@@ -61,16 +61,18 @@ Vec3 on_circle(const FlatArc& arc, const Vec2& v) {
 }  // namespace
 
 std::optional<FlatArc> arc_pieces(const Interpretation& in, size_t i, double max_sagitta_mm, double max_sweep_rad,
-                                  double max_piece_mm, std::vector<Vec3>& out, bool& straight_end) {
+                                  double max_piece_mm, size_t max_pieces, std::vector<Vec3>& out, bool& straight_end) {
   const Move& m = in.moves[i];
   straight_end = false;
   if (!is_arc(m.kind) || m.turns > 1) return std::nullopt;
   const ArcGeom g = arc_of_move(in, i);
   const double r = g.radius_mm;
   if (g.h1 != g.h0 || !(r > kLengthEpsMm) || !std::isfinite(r)) return std::nullopt;
-  double step = std::min(max_sweep_rad, 2 * std::acos(std::clamp(1 - max_sagitta_mm / r, -1.0, 1.0)));
-  step = std::min(step, 2 * std::asin(std::min(1.0, max_piece_mm / (2 * r))));
-  const size_t n = std::clamp<size_t>(size_t(std::ceil(std::abs(g.sweep) / std::max(step, 1e-9))), 1, 1000000);
+  const double fine = std::min(2 * std::acos(std::clamp(1 - max_sagitta_mm / r, -1.0, 1.0)),
+                               2 * std::asin(std::min(1.0, max_piece_mm / (2 * r))));
+  const double by_sweep = std::ceil(std::abs(g.sweep) / max_sweep_rad);
+  const double by_size = std::min(std::ceil(std::abs(g.sweep) / std::max(fine, 1e-300)), double(max_pieces));
+  const size_t n = size_t(std::max({1.0, by_sweep, by_size}));
   for (size_t k = 1; k <= n; ++k) out.push_back(from_plane(g.point_at(double(k) / double(n)), m.plane));
   if (!(out.back() == m.xyz())) {
     out.push_back(m.xyz());

@@ -30,12 +30,13 @@ struct FlatArc {
 
 /// Move i as pieces of a flat arc, when it is one (an arc whose normal axis does not move,
 /// of one turn at most): appends the points after its start, each on the circle, the pieces
-/// between them sweeping at most `max_sweep_rad`, no longer than `max_piece_mm`, lying no
-/// farther than `max_sagitta_mm` from their chords, then the end point exactly as read
-/// (a last straight step where rounding left it off the circle: `straight_end` is set).
+/// between them sweeping at most `max_sweep_rad`, and no longer than `max_piece_mm` and
+/// lying no farther than `max_sagitta_mm` from their chords where `max_pieces` pieces allow
+/// it (a huge radius gets longer pieces, never more of them), then the end point exactly as
+/// read (a last straight step where rounding left it off the circle: `straight_end` is set).
 /// Returns the arc, or nothing (and appends nothing) for other moves.
 std::optional<FlatArc> arc_pieces(const Interpretation& in, size_t i, double max_sagitta_mm, double max_sweep_rad,
-                                  double max_piece_mm, std::vector<Vec3>& out, bool& straight_end);
+                                  double max_piece_mm, size_t max_pieces, std::vector<Vec3>& out, bool& straight_end);
 
 /// The point nearest `p` on the piece of `arc` from `a` to `b` (both on the circle, the
 /// piece less than half a turn, in the arc's direction): exact.

@@ -61,6 +61,12 @@ struct Path {
 
 /// Longest piece of a path put into the index, mm.
 constexpr double kPieceMm = 10.0;
+/// Most pieces one straight segment is cut into: past this a segment's pieces grow longer
+/// than kPieceMm, so that its length never sets how much there is to measure.
+constexpr int kMaxPiecesPerSegment = 64;
+/// Most pieces (beyond those its sweep needs) one flat arc is cut into: past this its pieces
+/// lie farther from their chords than the sagitta share, and the index reaches as much further.
+constexpr size_t kMaxPiecesPerArc = 4096;
 /// Largest sweep of a flat arc's piece: its chord runs within half of it of the arc's
 /// direction, as the feed pairing's direction tests read it.
 constexpr double kPieceSweepRad = 5 * kPi / 180;
@@ -101,7 +107,8 @@ Path path_of(const Interpretation& in, double chord_mm, double tolerance_mm) {
     pts.clear();
     bool straight_end = false;
     const std::optional<FlatArc> arc =
-        arc_pieces(in, i, tolerance_mm * kPieceSagittaShare, kPieceSweepRad, kPieceMm, pts, straight_end);
+        arc_pieces(in, i, tolerance_mm * kPieceSagittaShare, kPieceSweepRad, kPieceMm, kMaxPiecesPerArc, pts,
+                   straight_end);
     if (arc) p.arcs.push_back(*arc);
     if (!arc) move_path(in, i, chord_mm, pts);
     for (size_t k = 0; k < pts.size(); ++k) {
@@ -115,7 +122,7 @@ Path path_of(const Interpretation& in, double chord_mm, double tolerance_mm) {
       // Long segments are cut into pieces: an AABB over a long diagonal box is hit by
       // nearly every query (travel moves across a printed layer). (An arc's pieces are cut
       // short enough already.)
-      int pieces = piece ? 1 : std::max(1, int(std::ceil(len / kPieceMm)));
+      int pieces = piece ? 1 : int(std::clamp(std::ceil(len / kPieceMm), 1.0, double(kMaxPiecesPerSegment)));
       for (int c = 1; c <= pieces; ++c) {
         Vec3 r = c == pieces ? q : Vec3(prev + (q - prev) * (double(c) / pieces));
         p.first.push_back(uint32_t(p.points.size() - 1));
@@ -330,17 +337,23 @@ class Directed {
       return bound ? std::min(*bound + stray_mm, lipschitz) : lipschitz;
     }
     if ((i < j ? j - i : i - j) > kMaxChain) return lipschitz;
+    // The walk along `to_` from one nearest point to the other. Where it runs far longer
+    // than the stretch it is paired with (it goes round a loop the path retraces, or back
+    // and forth), the pairing bounds nothing the Lipschitz bound does not: it stops there,
+    // so its cost follows the stretch's own length, never the distance between the two
+    // nearest segments' places in the path.
+    const double longest = 2 * (length_mm + n0.distance_mm + n1.distance_mm) + precision_mm_;
     walk_.clear();
     walk_.push_back(n0.point);
-    double stray = 0;
-    if (i < j)
-      for (uint32_t k = i; k < j; ++k) walk_.push_back(to_.b(k));
-    else
-      for (uint32_t k = i; k > j; --k) walk_.push_back(to_.a(k));
-    for (uint32_t k = std::min(i, j); k <= std::max(i, j); ++k) stray = std::max(stray, to_.sagitta(k));
+    double stray = to_.sagitta(j), total = 0;
+    for (uint32_t k = i; k != j; k = i < j ? k + 1 : k - 1) {
+      walk_.push_back(i < j ? to_.b(k) : to_.a(k));
+      stray = std::max(stray, to_.sagitta(k));
+      total += (walk_.back() - walk_[walk_.size() - 2]).norm();
+      if (total > longest) return lipschitz;
+    }
     walk_.push_back(n1.point);
-    double total = 0;
-    for (size_t k = 1; k < walk_.size(); ++k) total += (walk_[k] - walk_[k - 1]).norm();
+    total += (walk_.back() - walk_[walk_.size() - 2]).norm();
     double run = 0, bound = std::max(n0.distance_mm, n1.distance_mm);
     for (size_t k = 1; k + 1 < walk_.size(); ++k) {
       run += (walk_[k] - walk_[k - 1]).norm();
