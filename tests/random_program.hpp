@@ -25,8 +25,9 @@ RandomCase random_case(std::span<const uint8_t> bytes);
 
 /// The first promise `r` (compressed with verification) breaks, or empty when it keeps
 /// them all: it reads, its output reads back move by move onto the input path, stays
-/// within the band and keeps every non-motion block (as `arcpress diff` judges), and every
-/// smooth joint that turns by more than the G1 angle is one the fit reported as forced.
+/// within the band and keeps every non-motion block (as `arcpress diff` judges) without
+/// writing any run back as its input for the check's sake, and every smooth joint that
+/// turns by more than the G1 angle is one the fit reported as forced.
 std::string broken_promise(const CompressResult& r);
 
 }  // namespace arcpress::test

@@ -156,7 +156,8 @@ int run_compress(const CompressArgs& a) {
                "  G1 moves       {} in the input, {} in {} runs\n"
                "  dialect        {}\n"
                "  written        {} G1 + {} G2/G3 ({} blocks for {} moves, {:.1f} %)\n"
-               "  kept as input  {} arcs that would not print inside the dialect's rules, {} over-long lines\n"
+               "  kept as input  {} arcs that would not print inside the dialect's rules, {} over-long lines, {} runs "
+               "the check refused\n"
                "  planes         {} G17/G18/G19 blocks around runs fitted in another plane\n"
                "  time           {:.3f} s\n",
                name, out_path == "-" ? "<stdout>" : out_path, r.blocks_in, r.bytes_in, r.output.size(),
@@ -164,7 +165,7 @@ int run_compress(const CompressArgs& a) {
                opt.dialect.source.empty() ? opt.dialect.name : opt.dialect.name + " (" + opt.dialect.source + ")",
                st.lines_out, st.arcs_out, st.lines_out + st.arcs_out, st.moves_in,
                st.moves_in ? 100.0 * double(st.lines_out + st.arcs_out) / double(st.moves_in) : 100.0,
-               st.arcs_unprintable, st.long_lines_kept, st.plane_words_added, s);
+               st.arcs_unprintable, st.long_lines_kept, r.runs_kept_as_input, st.plane_words_added, s);
     // The G1 moves left as they are, by reason, with the first place of each.
     for (const NotFitted& n : r.not_fitted)
       fmt::print(stderr, "  not fitted     {} G1 move{}: {}{} (first at line {})\n", n.moves, n.moves == 1 ? "" : "s",

@@ -52,6 +52,9 @@ struct CompressResult {
   /// Where they are: the input line of the move that starts at each, in order.
   std::vector<uint32_t> forced_kink_lines;
   size_t g1_moves = 0;       ///< G1 moves in the input
+  /// Runs written as the input's own moves because the check refused their fit (a fitter or
+  /// rounding fault on extreme input): the rest of the program is still compressed.
+  size_t runs_kept_as_input = 0;
   /// The G1 moves in no run, grouped by reason (empty with `passthrough`).
   std::vector<NotFitted> not_fitted;
   bool verified = false;     ///< `check` and `comparison` hold measurements of the output

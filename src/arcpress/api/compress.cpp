@@ -76,6 +76,37 @@ void verify_output(const Program& input, const Interpretation& in, const Compres
 
 namespace {
 
+/// Rounds of writing refused runs as their input before every run is.
+constexpr int kFallbackRounds = 4;
+
+/// A run written as its input moves: one line primitive per move.
+FitResult kept(const Run& run) {
+  FitResult f;
+  for (uint32_t v = 1; v <= run.move_count; ++v) f.prims.push_back({v, Primitive::Kind::Line});
+  return f;
+}
+bool is_kept(const FitResult& f, const Run& run) {
+  if (f.prims.size() != run.move_count) return false;
+  for (uint32_t v = 0; v < run.move_count; ++v)
+    if (f.prims[v].end_vertex != v + 1 || f.prims[v].kind != Primitive::Kind::Line) return false;
+  return true;
+}
+
+/// The output lines at which the checks of `r` found the output outside the band or off
+/// the input's path (0 for a finding that names no place in the output's path).
+std::vector<uint32_t> refused_output_lines(const CompressResult& r) {
+  std::vector<uint32_t> lines;
+  const PathComparison& c = r.comparison;
+  if (!c.matched) lines.push_back(c.mismatch_line_b);
+  if (c.max_deviation_mm > r.band_mm) lines.push_back(c.worst_line_b);
+  for (const DiffPlace& p : r.check.worst)
+    if (p.deviation_mm > r.band_mm) lines.push_back(p.line_b);
+  if (r.check.max_rapid_mm > r.band_mm) lines.push_back(r.check.worst_rapid.line_b);
+  if (r.check.max_entry_mm > r.band_mm) lines.push_back(r.check.worst_entry.line_b);
+  if (!r.check.findings.empty()) lines.push_back(0);
+  return lines;
+}
+
 /// Fits every run, chain by chain (see chain_runs()), with `opt.threads` threads.
 std::vector<FitResult> fit_runs(const Interpretation& in, const std::vector<Run>& runs, const CompressOptions& opt) {
   const std::vector<RunChain> chains = chain_runs(in, runs, opt.fit.tolerance_mm, opt.fit.corner_angle_deg);
@@ -149,9 +180,6 @@ CompressResult compress(const std::string& name, std::string text, const Compres
     choice.corner_angle_deg = opt.fit.corner_angle_deg;
     runs = extract_runs(in, 2, choice);
     fits = fit_runs(in, runs, opt);
-    for (size_t k = 0; k < runs.size(); ++k)
-      for (uint32_t v : fits[k].forced_at)
-        r.forced_kink_lines.push_back(prog.blocks[in.moves[in.joint_move(runs[k].first_move + v)].block].line);
   }
   for (const Move& m : in.moves) r.g1_moves += m.kind == MoveKind::Line;
   if (!opt.passthrough) {
@@ -181,7 +209,44 @@ CompressResult compress(const std::string& name, std::string text, const Compres
   r.output = emit_program(prog, in, runs, fits, eo, &r.stats);
   r.ok = true;
   r.band_mm = opt.fit.tolerance_mm;
-  if (opt.verify && !opt.passthrough) verify_output(prog, in, opt, r, runs);
+  if (opt.verify && !opt.passthrough) {
+    verify_output(prog, in, opt, r, runs);
+    // A run whose output the check refuses is written as the input's own moves, and the
+    // program checked again, so that one odd stretch never costs the whole program: the runs
+    // at the places the checks name, for a few rounds; then, or where a finding names no
+    // place in a run, every run (the input itself, which reads as itself).
+    for (int round = 0; !r.within_band() && round < kFallbackRounds; ++round) {
+      bool named = false;
+      const std::vector<uint32_t> lines = refused_output_lines(r);
+      for (uint32_t line : lines)
+        for (size_t k = 0; k < runs.size(); ++k) {
+          const auto [first, last] = r.stats.run_lines[k];
+          if (line < first || line > last || is_kept(fits[k], runs[k])) continue;
+          fits[k] = kept(runs[k]);
+          ++r.runs_kept_as_input;
+          named = true;
+        }
+      const bool everything = !named || lines.size() != size_t(std::count_if(lines.begin(), lines.end(), [&](uint32_t l) {
+                                return std::any_of(r.stats.run_lines.begin(), r.stats.run_lines.end(),
+                                                   [&](const auto& span) { return l >= span.first && l <= span.second; });
+                              })) || round + 1 == kFallbackRounds;
+      if (everything)
+        for (size_t k = 0; k < runs.size(); ++k)
+          if (!is_kept(fits[k], runs[k])) {
+            fits[k] = kept(runs[k]);
+            ++r.runs_kept_as_input;
+          }
+      const size_t kept_so_far = r.runs_kept_as_input;
+      r.stats = EmitStats{};
+      r.output = emit_program(prog, in, runs, fits, eo, &r.stats);
+      r.runs_kept_as_input = kept_so_far;
+      verify_output(prog, in, opt, r, runs);
+      if (everything) break;
+    }
+  }
+  for (size_t k = 0; k < runs.size(); ++k)
+    for (uint32_t v : fits[k].forced_at)
+      r.forced_kink_lines.push_back(prog.blocks[in.moves[in.joint_move(runs[k].first_move + v)].block].line);
   // Joints beside blocks the dialect's rules changed (an arc whose printed centre could not
   // keep its end tangents, a primitive written back as its input moves) are forced by the
   // digits: those that turn too far as read back, or all where the output was not read back.

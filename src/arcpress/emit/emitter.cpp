@@ -53,14 +53,28 @@ class Emitter {
   std::string run(const std::vector<Run>& runs, const std::vector<FitResult>& fits) {
     compose_all(runs, fits);
     size_t r = 0;
+    std::vector<std::pair<size_t, size_t>> spans;  // per run, its bytes in out_
     for (size_t bi = 0; bi < p_.blocks.size(); ++bi) {
       if (r < runs.size() && in_.moves[runs[r].first_move].block == bi) {
+        const size_t from = out_.size();
         emit_run(runs[r], fits[r], composed_[r]);
+        spans.emplace_back(from, out_.size());
         bi = in_.moves[runs[r].first_move + runs[r].move_count - 1].block;
         ++r;
         continue;
       }
       copy_block(p_.blocks[bi]);
+    }
+    if (stats_) {  // bytes to lines, in one pass
+      size_t line = 1, at = 0;
+      auto line_of = [&](size_t offset) {
+        for (; at < offset && at < out_.size(); ++at) line += out_[at] == '\n';
+        return uint32_t(line);
+      };
+      for (const auto& [from, to] : spans) {
+        const uint32_t first = line_of(from);
+        stats_->run_lines.emplace_back(first, to > from ? line_of(to - 1) : first);
+      }
     }
     return std::move(out_);
   }

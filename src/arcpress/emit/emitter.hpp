@@ -30,6 +30,8 @@ struct EmitStats {
   /// primitives written back as their input moves (arcs_unprintable, long_lines_kept). The
   /// input moves starting at them, start and end of each such block.
   std::vector<uint32_t> rule_joints;
+  /// Per run: the 1-based output lines its blocks take, first and last.
+  std::vector<std::pair<uint32_t, uint32_t>> run_lines;
 };
 
 struct EmitOptions {

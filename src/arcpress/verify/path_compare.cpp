@@ -78,6 +78,7 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
     while (k < ia.moves.size() && !same_point(ia.moves[k].to, mb.to)) ++k;
     if (k >= ia.moves.size()) {
       r.matched = false;
+      r.mismatch_line_b = b.blocks[mb.block].line;
       r.mismatch = fmt::format("output line {} ends at X{:.4f} Y{:.4f} Z{:.4f}, which is not on the input path after input line {}",
                                b.blocks[mb.block].line, mb.to[kX], mb.to[kY], mb.to[kZ],
                                i < ia.moves.size() ? a.blocks[ia.moves[i].block].line : 0);
@@ -111,6 +112,7 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
         const Move& ma = ia.moves[q];
         if (!is_feed(ma.kind) || (ma.feed_mm_min == mb.feed_mm_min && ma.spindle == mb.spindle)) continue;
         r.matched = false;
+        r.mismatch_line_b = b.blocks[mb.block].line;
         r.mismatch = ma.feed_mm_min != mb.feed_mm_min
                          ? fmt::format("output line {} moves at F{} where input line {} moves at F{}",
                                        b.blocks[mb.block].line, mb.feed_mm_min, a.blocks[ma.block].line, ma.feed_mm_min)

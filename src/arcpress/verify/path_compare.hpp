@@ -28,6 +28,7 @@ struct CompareOptions {
 struct PathComparison {
   bool matched = true;              ///< every output move ends on the input path
   std::string mismatch;             ///< what did not match, with line numbers
+  uint32_t mismatch_line_b = 0;     ///< ... the output's line there
   double max_deviation_mm = 0;      ///< largest two-sided distance of feed moves
   uint32_t worst_line_a = 0;        ///< 1-based lines (input, output) where it occurs
   uint32_t worst_line_b = 0;
