@@ -7,7 +7,10 @@
 #include <iterator>
 #include <vector>
 
+#include "arcpress/core/error.hpp"
 #include "arcpress/dialect/dialect_loader.hpp"
+#include "arcpress/lex/lexer.hpp"
+#include "arcpress/model/interpreter.hpp"
 
 namespace arcpress::test {
 
@@ -96,6 +99,46 @@ std::string broken_promise(const CompressResult& r) {
   if (!unreported.empty())
     return fmt::format("tangent breaks at smooth joints not reported as forced, at input lines {}",
                        fmt::join(unreported, " "));
+  return {};
+}
+
+std::string text_promise(const std::string& text) {
+  CompressOptions opt;
+  opt.threads = 1;
+  {
+    DiagnosticSink sink("fuzz.nc");
+    CompressOptions keep = opt;
+    keep.passthrough = true;
+    const CompressResult r = compress("fuzz.nc", text, keep, sink);
+    if (r.ok && r.output != text) return "passed through, the program came back changed";
+  }
+  DiagnosticSink sink("fuzz.nc");
+  CompressResult r;
+  try {
+    r = compress("fuzz.nc", text, opt, sink);
+  } catch (const Error&) {
+    return {};  // a clear refusal (a measure past its budget) is a kept promise
+  }
+  if (r.ok) {
+    if (!r.verified) return "the output was not verified";
+    if (!r.within_band())
+      return fmt::format("the output was refused by its own check: {}; {}", r.comparison.mismatch,
+                         fmt::join(r.check.findings, "; "));
+  }
+  DiagnosticSink sa("a.nc"), sb("b.nc");
+  const Program pa = lex("a.nc", text, sa), pb = lex("b.nc", text, sb);
+  const Interpretation ia = interpret(pa, sa), ib = interpret(pb, sb);
+  DiffOptions dopt;
+  dopt.threads = 1;
+  ProgramDiff d;
+  try {
+    d = diff_programs(pa, ia, pb, ib, dopt);
+  } catch (const Error&) {
+    return {};  // a clear refusal (a measure past its budget) is a kept promise
+  }
+  if (d.verdict(dopt.tolerance_mm) == ProgramDiff::Verdict::Different)
+    return fmt::format("the program differs from itself: max deviation {} mm; {}", d.max_deviation_mm,
+                       fmt::join(d.findings, "; "));
   return {};
 }
 

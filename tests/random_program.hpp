@@ -30,4 +30,10 @@ RandomCase random_case(std::span<const uint8_t> bytes);
 /// turns by more than the G1 angle is one the fit reported as forced.
 std::string broken_promise(const CompressResult& r);
 
+/// The first promise that `text`, taken as a program whatever its bytes, breaks, or empty:
+/// passed through it comes back byte for byte; compressed (with verification) it is either
+/// refused with diagnostics or written inside the band; and `arcpress diff` never finds it
+/// different from itself (the same, or incomplete where moves cannot be placed).
+std::string text_promise(const std::string& text);
+
 }  // namespace arcpress::test

@@ -58,8 +58,8 @@ struct CompressResult {
   /// The G1 moves in no run, grouped by reason (empty with `passthrough`).
   std::vector<NotFitted> not_fitted;
   bool verified = false;     ///< `check` and `comparison` hold measurements of the output
-  /// The feed moves of input and output that could not be placed (and so not measured) are
-  /// the same moves, one for one: written back as they were.
+  /// The feed moves of input and output that could not be placed, and the arcs too big to
+  /// measure, (and so not measured) are the same moves, one for one: written back as they were.
   bool unplaced_kept = false;
   /// The output against the input by diff_programs(), the code of `arcpress diff`: the
   /// verdict on the output and its measured deviation.

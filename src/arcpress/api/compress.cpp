@@ -70,6 +70,12 @@ void verify_output(const Program& input, const Interpretation& in, const Compres
     r.check.findings.push_back(fmt::format("feed moves whose position is not known: {} in the input, {} in the output, "
                                            "not the same moves",
                                            in.unplaced.size(), out_in.unplaced.size()));
+  // Arcs too big to follow within the band are the input's own too (no fit writes one).
+  if (r.check.a.unmeasured_arcs != r.check.b.unmeasured_arcs) {
+    r.unplaced_kept = false;
+    r.check.findings.push_back(fmt::format("arcs too big to measure: {} in the input, {} in the output",
+                                           r.check.a.unmeasured_arcs, r.check.b.unmeasured_arcs));
+  }
   r.band_mm = opt.fit.tolerance_mm;
   r.verified = true;
 }

@@ -30,10 +30,11 @@ std::string summary_json(const ProgramSummary& s, const std::string& name) {
   return fmt::format(
       "{{\"file\": {}, \"blocks\": {}, \"bytes\": {}, \"feed_moves\": {}, \"rapids\": {}, \"sections\": {}, "
       "\"non_motion_blocks\": {}, \"path_mm\": {:.6f}, \"unplaced_feed_moves\": {}, \"first_unplaced_line\": {}, "
-      "\"unplaced_reason\": {}, \"entry_moves\": {}, \"first_entry_line\": {}, \"entry_reason\": {}}}",
+      "\"unplaced_reason\": {}, \"entry_moves\": {}, \"first_entry_line\": {}, \"entry_reason\": {}, "
+      "\"unmeasured_arcs\": {}, \"first_unmeasured_line\": {}}}",
       json_string(name), s.blocks, s.bytes, s.feed_moves, s.rapids, s.sections, s.non_motion, s.path_mm,
       s.unplaced_feed_moves, s.first_unplaced_line, json_string(s.unplaced_reason), s.entry_moves,
-      s.first_entry_line, json_string(s.entry_reason));
+      s.first_entry_line, json_string(s.entry_reason), s.unmeasured_arcs, s.first_unmeasured_line);
 }
 
 const char* verdict_word(ProgramDiff::Verdict v, bool upper) {
@@ -55,6 +56,9 @@ std::string diff_text(const ProgramDiff& d, const DiffNames& n, double tol) {
     if (s.entry_moves > 0)
       t += fmt::format("{}: {} feed move(s) from an unknown position, compared by their end points (first at line {}: {})\n",
                        name, s.entry_moves, s.first_entry_line, s.entry_reason);
+    if (s.unmeasured_arcs > 0)
+      t += fmt::format("{}: {} arc(s) too big to follow within a tenth of the band, not compared (first at line {})\n",
+                       name, s.unmeasured_arcs, s.first_unmeasured_line);
     if (s.unplaced_feed_moves > 0)
       t += fmt::format("{}: {} feed move(s) not compared: their position is not known (first at line {}: {})\n", name,
                        s.unplaced_feed_moves, s.first_unplaced_line, s.unplaced_reason);
@@ -79,7 +83,8 @@ std::string diff_text(const ProgramDiff& d, const DiffNames& n, double tol) {
   t += fmt::format("non-motion blocks (M, T, S, dwell, comments): {} in A, {} in B, {} differ\n", d.a.non_motion,
                    d.b.non_motion, d.non_motion_differences);
   for (const auto& f : d.findings) t += "difference: " + f + "\n";
-  const size_t unplaced = d.a.unplaced_feed_moves + d.b.unplaced_feed_moves;
+  const size_t unplaced =
+      d.a.unplaced_feed_moves + d.b.unplaced_feed_moves + d.a.unmeasured_arcs + d.b.unmeasured_arcs;
   t += fmt::format("{}: max deviation {:.6f} mm {} the {} mm band{}{}\n", verdict_word(d.verdict(tol), true),
                    d.max_deviation_mm, d.max_deviation_mm <= tol ? "within" : "outside", tol,
                    d.findings.empty() ? "" : fmt::format(", {} other difference(s)", d.findings.size()),

@@ -29,19 +29,21 @@ ArcGeom arc_of_move(const Interpretation& in, size_t i) {
   return g;
 }
 
-void move_path(const Interpretation& in, size_t i, double chord_mm, std::vector<Vec3>& out) {
+double move_path(const Interpretation& in, size_t i, double chord_mm, std::vector<Vec3>& out) {
   const Move& m = in.moves[i];
   if (m.kind != MoveKind::ArcCW && m.kind != MoveKind::ArcCCW) {
     out.push_back(m.xyz());
-    return;
+    return 0;
   }
   ArcGeom g = arc_of_move(in, i);
   double r = std::max(g.radius_mm, kLengthEpsMm);
   double step = 2 * std::acos(std::clamp(1 - chord_mm / r, -1.0, 1.0));
-  size_t n = std::clamp<size_t>(size_t(std::ceil(std::abs(g.sweep) / std::max(step, 1e-6))), 1, 200000);
+  const double wanted = std::ceil(std::abs(g.sweep) / std::max(step, 1e-300));
+  size_t n = size_t(std::clamp(wanted, 1.0, double(kMaxChordsPerMove)));
   if (n % 2) ++n;
   for (size_t k = 1; k < n; ++k) out.push_back(from_plane(g.point_at(double(k) / double(n)), m.plane));
   out.push_back(m.xyz());  // the end point exactly as read
+  return r * (1 - std::cos(std::min(kPi, std::abs(g.sweep) / double(n)) / 2));
 }
 
 namespace {

@@ -14,9 +14,14 @@ namespace arcpress {
 /// coincide in the plane make a full turn; a P word adds turns.
 ArcGeom arc_of_move(const Interpretation& in, size_t i);
 
+/// Most chords one arc is followed by: its radius and turns never set more work than this.
+inline constexpr size_t kMaxChordsPerMove = 16384;
+
 /// Appends the points of move i after its start, in XYZ: the end point for lines, chords of
-/// sagitta at most `chord_mm` for arcs (an even count, so the arc's middle is a point).
-void move_path(const Interpretation& in, size_t i, double chord_mm, std::vector<Vec3>& out);
+/// sagitta at most `chord_mm` for arcs (an even count, so the arc's middle is a point) where
+/// kMaxChordsPerMove allow it. Returns how far the chords lie from the arc at most, mm (0
+/// for lines): above `chord_mm` only for an arc that big.
+double move_path(const Interpretation& in, size_t i, double chord_mm, std::vector<Vec3>& out);
 
 /// An arc that keeps its plane's normal axis still, for measuring exactly against pieces of
 /// it: centre and height in XYZ (the normal axis's coordinate is the height), radius from

@@ -29,11 +29,13 @@ Vec3 in_plane(const AxisValues& v, Plane pl) {
   return {v[a.first], v[a.second], v[a.normal]};
 }
 
-/// Appends the path of move i to `pts`, in `pl` coordinates.
-void append_path(const Interpretation& in, size_t i, Plane pl, double chord_mm, std::vector<Vec3>& pts) {
+/// Appends the path of move i to `pts`, in `pl` coordinates; returns how far its chords lie
+/// from it (see move_path()).
+double append_path(const Interpretation& in, size_t i, Plane pl, double chord_mm, std::vector<Vec3>& pts) {
   size_t first = pts.size();
-  move_path(in, i, chord_mm, pts);
+  const double sagitta_mm = move_path(in, i, chord_mm, pts);
   for (size_t k = first; k < pts.size(); ++k) pts[k] = in_plane(pts[k], pl);
+  return sagitta_mm;
 }
 
 Vec2 start_tangent(const Interpretation& in, size_t i) {
@@ -127,11 +129,13 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
       bool input_is_same_arc = !replaced && is_arc(ia.moves[i].kind) && is_arc(mb.kind) &&
                                ia.moves[i].kind == mb.kind &&
                                (ia.moves[i].center - mb.center).norm() <= kSamePointMm;
+      double sagitta_mm = 0;  // how far the input's chords lie from its arcs
       for (size_t q = i; q <= k; ++q) {
         if (is_feed(ia.moves[q].kind)) ++r.moves_a;
         // (A repeat adds no point: the fit steps over it, and a vertex twice would read as
         // the path turning back.)
-        if (!input_is_same_arc && !ia.goes_nowhere(q)) append_path(ia, q, mb.plane, chord_mm, pts);
+        if (!input_is_same_arc && !ia.goes_nowhere(q))
+          sagitta_mm = std::max(sagitta_mm, append_path(ia, q, mb.plane, chord_mm, pts));
         move_of_point.resize(pts.size(), q);
       }
       Deviation d;
@@ -143,6 +147,9 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
         d = line_deviation(pts);
       }
       if (!d.ordered) d.max_mm = std::max(d.max_mm, opt.tolerance_mm * 2 + 1.0);  // the path runs backwards
+      // Input arcs too big for their chords to follow at the measure's precision: the
+      // chords' distance counted against the output, as the arc could lie that much away.
+      if (sagitta_mm > chord_mm) d.max_mm += sagitta_mm;
       if (d.max_mm > r.max_deviation_mm) {
         r.max_deviation_mm = d.max_mm;
         r.worst_line_b = b.blocks[mb.block].line;

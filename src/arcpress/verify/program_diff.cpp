@@ -11,6 +11,7 @@
 #include <tuple>
 
 #include "arcpress/core/deviation.hpp"
+#include "arcpress/core/error.hpp"
 #include "arcpress/core/workers.hpp"
 #include "arcpress/verify/segment_index.hpp"
 
@@ -39,6 +40,12 @@ struct Path {
   /// Per section, how far floating rounding can carry its E sum (mm): E is a running
   /// position, so each move's E is the difference of two numbers as large as that.
   std::vector<double> section_e_rounding_mm;
+  /// Arcs whose chords lie farther than kRoughShare of the band from them (too big to follow
+  /// within the measure's precision): not measured. The first one's move.
+  size_t rough_arcs = 0;
+  uint32_t first_rough_move = 0;
+  /// How much farther than the measure's precision the chords of any other arc lie, mm.
+  double chord_excess_mm = 0;
   std::vector<uint32_t> rapids;                      ///< move indices of rapids whose end is known
   /// Move indices of feed moves from an unknown position to a known one.
   std::vector<uint32_t> entries;
@@ -59,6 +66,12 @@ struct Path {
   double sagitta(size_t s) const { return curved(s) ? piece_sagitta_mm(arc(s), a(s), b(s)) : 0.0; }
 };
 
+/// An arc whose chords (kMaxChordsPerMove of them) lie farther than this share of the band
+/// from it is not measured: its own distance could not be told within the band.
+constexpr double kRoughShare = 0.1;
+/// Two arcs' centres this close (a share of the radius, and of 1 mm) are one centre: the
+/// floating noise of reading the same numbers two ways, a floating-point epsilon.
+constexpr double kSameCentreShare = 1e-12;
 /// Longest piece of a path put into the index, mm.
 constexpr double kPieceMm = 10.0;
 /// Most pieces one straight segment is cut into: past this a segment's pieces grow longer
@@ -110,7 +123,16 @@ Path path_of(const Interpretation& in, double chord_mm, double tolerance_mm) {
         arc_pieces(in, i, tolerance_mm * kPieceSagittaShare, kPieceSweepRad, kPieceMm, kMaxPiecesPerArc, pts,
                    straight_end);
     if (arc) p.arcs.push_back(*arc);
-    if (!arc) move_path(in, i, chord_mm, pts);
+    if (!arc) {
+      const double sagitta_mm = move_path(in, i, chord_mm, pts);
+      if (sagitta_mm > chord_mm) {
+        // An arc too big (its radius, its turns) to follow within the measure's precision:
+        // within a tenth of the band, its chords' distance is counted against the verdict;
+        // beyond, it is not measured at all.
+        if (sagitta_mm > kRoughShare * tolerance_mm && p.rough_arcs++ == 0) p.first_rough_move = uint32_t(i);
+        p.chord_excess_mm = std::max(p.chord_excess_mm, std::min(sagitta_mm, kRoughShare * tolerance_mm) - chord_mm);
+      }
+    }
     for (size_t k = 0; k < pts.size(); ++k) {
       const Vec3& q = pts[k];
       const bool piece = arc && !(straight_end && k + 1 == pts.size());
@@ -247,6 +269,7 @@ class Directed {
   template <class Visit>
   void run(size_t begin, size_t end, Visit&& visit) {
     if (index_.empty()) return;
+    points_left_ = kPointsPerSegment * (end - begin) + kPointsBase;
     SegmentIndex::Nearest n0{};
     Vec3 last(NAN, NAN, NAN);
     for (size_t s = begin; s < end; ++s) {
@@ -309,8 +332,13 @@ class Directed {
       stray = piece_sagitta_mm(from_.arc(s), p0, p1);
       length = 2 * r * std::asin(std::min(1.0, length / (2 * r)));
     }
-    double bound = chain_bound(p0, n0, p1, n1, stray, length);
+    double bound = chain_bound(p0, n0, p1, n1, stray, length, curved ? &from_.arc(s) : nullptr);
     if (bound <= top_.max() + precision_mm_ || depth > 40 || (p1 - p0).norm() <= precision_mm_) return;
+    if (points_left_-- == 0)
+      throw Error(kExitInput, fmt::format("measuring the paths would take more than {} points per segment near "
+                                          "X{:.4f} Y{:.4f} Z{:.4f} (an arc far bigger than the band); measure with a "
+                                          "larger tolerance",
+                                          kPointsPerSegment, p0.x(), p0.y(), p0.z()));
     Vec3 m = curved ? point_on_piece(from_.arc(s), p0, p1, 0.5) : Vec3((p0 + p1) / 2);
     SegmentIndex::Nearest nm = locate(m, n0.segment);
     visit(s, nm, m);
@@ -325,7 +353,8 @@ class Directed {
   /// one of them, and where the walk follows an arc's pieces it strays from its chords by no
   /// more than their sagittas. Unpaired: Lipschitz.
   double chain_bound(const Vec3& p0, const SegmentIndex::Nearest& n0, const Vec3& p1,
-                     const SegmentIndex::Nearest& n1, double stray_mm, double length_mm) const {
+                     const SegmentIndex::Nearest& n1, double stray_mm, double length_mm,
+                     const FlatArc* from_arc = nullptr) const {
     double lipschitz = (n0.distance_mm + n1.distance_mm + length_mm) / 2;
     uint32_t i = n0.segment, j = n1.segment;
     if (to_.section_of[i] != to_.section_of[j]) return lipschitz;
@@ -333,7 +362,21 @@ class Directed {
       // Distance to a segment is convex along p0 -> p1; to a piece of an arc it is bounded
       // where both ends face the piece.
       if (!to_.curved(i)) return std::min(std::max(n0.distance_mm, n1.distance_mm) + stray_mm, lipschitz);
-      const auto bound = segment_to_piece_bound(to_.arc(i), to_.a(i), to_.b(i), p0, p1);
+      // A piece of an arc about the same centre, in the same plane, facing the piece: every
+      // point of it lies as far from it as the radii and heights differ (an arc written back
+      // as it was is no distance from itself, however big).
+      const FlatArc& to_arc = to_.arc(i);
+      if (from_arc && from_arc->plane == to_arc.plane &&
+          (project(from_arc->center, to_arc.plane) - project(to_arc.center, to_arc.plane)).norm() <=
+              kSameCentreShare * std::max(1.0, to_arc.radius_mm) &&
+          in_wedge(to_arc, to_.a(i), to_.b(i), p0) && in_wedge(to_arc, to_.a(i), to_.b(i), p1)) {
+        const int normal = axes_of(to_arc.plane).normal;
+        const double apart = (project(from_arc->center, to_arc.plane) - project(to_arc.center, to_arc.plane)).norm();
+        return std::min(
+            std::hypot(from_arc->radius_mm - to_arc.radius_mm, from_arc->center[normal] - to_arc.center[normal]) + apart,
+            lipschitz);
+      }
+      const auto bound = segment_to_piece_bound(to_arc, to_.a(i), to_.b(i), p0, p1);
       return bound ? std::min(*bound + stray_mm, lipschitz) : lipschitz;
     }
     if ((i < j ? j - i : i - j) > kMaxChain) return lipschitz;
@@ -370,6 +413,11 @@ class Directed {
   double precision_mm_;
   const TopPlaces& top_;
   mutable std::vector<Vec3> walk_;
+  /// The points the splitting may still measure: no input makes it run on. A segment needs
+  /// a few dozen where a path meets another at a narrow angle; the base pays for a few
+  /// segments that need far more.
+  static constexpr size_t kPointsPerSegment = 256, kPointsBase = size_t(1) << 22;
+  size_t points_left_ = 0;
 };
 
 /// True when p lies within `radius_mm` of a joint of move i with a neighbouring feed move
@@ -447,6 +495,8 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
   Path pa = path_of(ia, d.arc_chord_mm, opt.tolerance_mm), pb = path_of(ib, d.arc_chord_mm, opt.tolerance_mm);
   auto summary = [](const Program& p, const Interpretation& in, const Path& path) {
     ProgramSummary s;
+    s.unmeasured_arcs = path.rough_arcs;
+    if (path.rough_arcs > 0) s.first_unmeasured_line = p.blocks[in.moves[path.first_rough_move].block].line;
     for (const UnplacedMove& u : in.unplaced) {
       const Move& m = in.moves[u.move];
       const bool entry = enters_from_unknown(m);
@@ -468,6 +518,9 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
   };
   d.a = summary(a, ia, pa);
   d.b = summary(b, ib, pb);
+  // Both paths' chords may lie that much off their arcs: a distance read that much short.
+  d.chord_excess_mm = 2 * std::max(pa.chord_excess_mm, pb.chord_excess_mm);
+  d.arc_chord_mm += d.chord_excess_mm;
   d.deviation_of_b.assign(ib.moves.size(), 0.0);
 
   // Feed paths, both ways: the maximum, the worst places, and each B move's deviation.
