@@ -6,11 +6,6 @@
 // the input). Prints megabytes and the ratio to the input's size.
 //   bench_memory [copies]
 #include <fmt/format.h>
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -20,7 +15,7 @@
 #include <string>
 #include <vector>
 
-extern char** environ;
+#include "child_process.hpp"
 
 namespace fs = std::filesystem;
 
@@ -31,21 +26,9 @@ namespace {
 std::optional<double> peak_mib(const fs::path& file, const std::vector<std::string>& args) {
   std::vector<std::string> words = {ARCPRESS_BINARY, file.string(), "-o", "-"};
   words.insert(words.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& w : words) argv.push_back(w.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
-  pid_t pid = 0;
-  const int err = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (err != 0) return std::nullopt;
-  int status = 0;
-  struct rusage use {};
-  if (wait4(pid, &status, 0, &use) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0) return std::nullopt;
-  return double(use.ru_maxrss) / 1024.0;  // kilobytes on Linux
+  const arcpress::bench::ChildRun r = arcpress::bench::run_child(words);
+  if (r.exit_code != 0) return std::nullopt;
+  return r.peak_mib;
 }
 
 void measure(const std::string& name, const fs::path& file) {

@@ -228,11 +228,12 @@ int run_diff(const DiffArgs& d) {
   opt.threads = d.threads;
   ProgramDiff r = diff_programs(pa, ia, pb, ib, opt);
   DiffNames names{d.a, d.b};
+  // The report first: a plot that cannot be written (exit 3) never costs the verdict.
+  cli::write_stdout(d.json ? diff_json(r, names, d.tolerance_mm) : diff_text(r, names, d.tolerance_mm));
   if (!d.plot.empty()) {
     Plane pl = d.plane == "zx" ? Plane::ZX : d.plane == "yz" ? Plane::YZ : Plane::XY;
     cli::write_output(d.plot, diff_svg(ia, ib, r, pl, d.tolerance_mm, names));
   }
-  cli::write_stdout(d.json ? diff_json(r, names, d.tolerance_mm) : diff_text(r, names, d.tolerance_mm));
   switch (r.verdict(d.tolerance_mm)) {
     case ProgramDiff::Verdict::Same: return kExitOk;
     case ProgramDiff::Verdict::Different: return kExitVerifyFailed;

@@ -162,3 +162,16 @@ TEST_CASE("a signal during the write leaves no temporary file and ends the progr
     WARN("every run finished before its signal arrived: the removal itself was not exercised");
   CHECK(temporaries_in(d) == 0);
 }
+
+TEST_CASE("diff prints its verdict before a plot that cannot be written, and a folder is no dialect file",
+          "[cli][output]") {
+  auto d = arcpress::test::temp_dir("plot");
+  const std::string in = "'" + kSample.string() + "'";
+  auto c = run_arcpress("diff " + in + " " + in + " --plot '" + (d / "no" / "such" / "plot.svg").string() + "'");
+  CHECK(c.exit_code == 3);
+  CHECK(c.out.find("SAME: max deviation") != std::string::npos);
+  CHECK(c.err.find("plot.svg") != std::string::npos);
+  auto folder = run_arcpress(in + " --dialect-file '" + d.string() + "'");
+  CHECK(folder.exit_code == 3);
+  CHECK(folder.err.find("it is a folder") != std::string::npos);
+}

@@ -1,4 +1,5 @@
 #include <catch2/catch.hpp>
+#include <sstream>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -155,4 +156,29 @@ TEST_CASE("blocks composed on several threads read the same as on one: the motio
   // Read back, the path is the input's: no block lost its motion word, none gained a wrong one.
   CHECK(one.check.same(0.01));
   CHECK(one.comparison.max_deviation_mm <= 0.01);
+}
+
+TEST_CASE("an arc that continues the modal motion starts with its first word, as the input's blocks do", "[emit]") {
+  // Two quarter circles the same way round, written as modal continuations ("X.. Y.."):
+  // the second arc leaves out its G2, and its separator with it.
+  std::string t = "G21 G90 G17\nG0 X10 Y0 Z0\nG1 F300\n";
+  for (int k = 1; k <= 90; ++k)
+    t += fmt::format("X{:.4f} Y{:.4f}\n", 10 * std::cos(-k * M_PI / 180), 10 * std::sin(-k * M_PI / 180));
+  for (int k = 1; k <= 90; ++k)
+    t += fmt::format("X{:.4f} Y{:.4f}\n", 5 * std::cos(M_PI / 2 - k * M_PI / 180), -15 + 5 * std::sin(M_PI / 2 - k * M_PI / 180));
+  t += "M30\n";
+  CompressOptions opt;
+  DiagnosticSink sink;
+  const CompressResult r = compress("t.nc", t, opt, sink);
+  REQUIRE(r.ok);
+  REQUIRE(r.within_band());
+  REQUIRE(r.stats.arcs_out >= 2);
+  std::istringstream out(r.output);
+  size_t continuations = 0;
+  for (std::string line; std::getline(out, line);) {
+    INFO(line);
+    CHECK((line.empty() || line[0] != ' '));
+    continuations += line.rfind("X", 0) == 0 && line.find(" I") != std::string::npos;
+  }
+  CHECK(continuations >= 1);
 }

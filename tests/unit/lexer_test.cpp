@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 
+#include "arcpress/api/arcpress.hpp"
 #include "arcpress/lex/lexer.hpp"
 
 using namespace arcpress;
@@ -147,4 +148,19 @@ TEST_CASE("repeated warnings of one kind are kept once and counted", "[lex]") {
   CHECK(sink.all().size() == 1);
   CHECK(sink.warning_count("E-LEX-NUMBER") == 3);
   CHECK(sink.format_all().find("2 more E-LEX-NUMBER") != std::string::npos);
+}
+
+TEST_CASE("a word longer than 65535 bytes keeps its block as it is, with its place", "[lex]") {
+  const std::string text = "G0 X0 Y0 Z0\nG1 X1." + std::string(70000, '0') + "1 F100\nG1 X2\n";
+  DiagnosticSink sink("long.nc");
+  const Program p = lex("long.nc", text, sink);
+  REQUIRE(p.blocks.size() == 3);
+  CHECK(p.blocks[1].kind == BlockKind::Opaque);
+  CHECK(sink.format_all().find("long.nc:2:4: warning: E-LEX-WORD-LENGTH: word 'X' is 70004 bytes long") !=
+        std::string::npos);
+  CompressOptions opt;
+  DiagnosticSink again("long.nc");
+  const CompressResult r = compress("long.nc", text, opt, again);
+  REQUIRE(r.ok);
+  CHECK(r.output == text);
 }

@@ -228,6 +228,7 @@ Dialect parse_dialect(const std::string& text, const std::string& path) {
 }
 
 Dialect load_dialect_file(const std::string& path) {
+  if (fs::is_directory(path)) throw Error(kExitIo, fmt::format("cannot read dialect file '{}': it is a folder", path));
   std::ifstream f(path, std::ios::binary);
   if (!f) throw Error(kExitIo, fmt::format("cannot read dialect file '{}'", path));
   std::stringstream ss;

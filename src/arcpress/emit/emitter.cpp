@@ -375,6 +375,10 @@ class Emitter {
       }
     }
     s += axis_words;
+    // A block that starts with its motion word leaves it out with the separator after it,
+    // so a modal continuation starts with its first word (" X1" would not be the input's style).
+    if (out.motion_at == 0 && s.size() > out.motion_length && s.compare(out.motion_length, sep.size(), sep) == 0)
+      out.motion_length += uint32_t(sep.size());
     if (arc) {
       PrintedArc c = print_centre(run, fr, a, pr, end, st, sep, scratch);
       if (!c.ok) return std::nullopt;

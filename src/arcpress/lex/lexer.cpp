@@ -173,8 +173,7 @@ class LineLexer {
           while (k < n_ && (is_digit(s_[k]) || s_[k] == '.')) ++k;
         }
       }
-      push(w, k);
-      return true;
+      return push(w, k);
     }
     uint64_t mant = 0;
     int digits = 0, decimals = 0;
@@ -204,8 +203,7 @@ class LineLexer {
     }
     if (digits == 0 && (i + 1 >= n_ || is_space(s_[i + 1]) || s_[i + 1] == ';') && allows_flags()) {
       w.flag = true;  // Marlin-style axis flag: M84 X Y E, G28 X Y
-      push(w, k);
-      return true;
+      return push(w, k);
     }
     if (digits == 0) {
       std::string found = k < n_ ? fmt::format("'{}'", printable(s_[k])) : std::string("end of line");
@@ -223,8 +221,7 @@ class LineLexer {
     if (negative) w.value = -w.value;
     w.has_point = point;
     w.decimals = uint8_t(decimals > 255 ? 255 : decimals);
-    push(w, k);
-    return true;
+    return push(w, k);
   }
 
   /// Letters without numbers are flags after an M-code or G28/G29 (firmware syntax).
@@ -236,12 +233,21 @@ class LineLexer {
     return false;
   }
 
-  void push(const Word& w, size_t after) {
+  /// Adds word `w`, whose text ends at `after`; false (and the block kept as it is) for a
+  /// word too long for Word::length, which a rewritten block could not copy whole.
+  bool push(const Word& w, size_t after) {
+    const size_t length = after - (w.col - 1);
+    if (length > UINT16_MAX) {
+      opaque(w.col - 1, "E-LEX-WORD-LENGTH",
+             fmt::format("word '{}' is {} bytes long; at most {} are read", w.letter, length, UINT16_MAX));
+      return false;
+    }
     if (b_.word_count == 0) b_.first_word = uint32_t(p_.words.size());
     p_.words.push_back(w);
-    p_.words.back().length = uint16_t(after - (w.col - 1));
+    p_.words.back().length = uint16_t(length);
     ++b_.word_count;
     after_ = after;
+    return true;
   }
 
   Program& p_;
