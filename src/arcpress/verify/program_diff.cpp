@@ -217,10 +217,13 @@ NonMotion non_motion_of(const Program& p, const Interpretation& in) {
 /// largest first. Below floor() nothing can enter.
 class TopPlaces {
  public:
-  explicit TopPlaces(size_t size) : size_(std::max<size_t>(size, 1)) {}
+  /// `least_mm`: distances at or below it are of no interest (DiffOptions::least_mm).
+  explicit TopPlaces(size_t size, double least_mm = 0) : size_(std::max<size_t>(size, 1)), least_mm_(least_mm) {}
 
-  double floor() const { return places_.size() < size_ ? 0.0 : places_.back().deviation_mm; }
+  double floor() const { return std::max(least_mm_, places_.size() < size_ ? 0.0 : places_.back().deviation_mm); }
   double max() const { return places_.empty() ? 0.0 : places_.front().deviation_mm; }
+  /// What a bound must exceed to be worth splitting for: the maximum, or the least of interest.
+  double reach() const { return std::max(least_mm_, max()); }
 
   void offer(const DiffPlace& p) {
     auto same = std::find_if(places_.begin(), places_.end(), [&](const DiffPlace& q) {
@@ -246,6 +249,7 @@ class TopPlaces {
 
  private:
   size_t size_;
+  double least_mm_;
   std::vector<DiffPlace> places_;
 };
 
@@ -333,7 +337,7 @@ class Directed {
       length = 2 * r * std::asin(std::min(1.0, length / (2 * r)));
     }
     double bound = chain_bound(p0, n0, p1, n1, stray, length, curved ? &from_.arc(s) : nullptr);
-    if (bound <= top_.max() + precision_mm_ || depth > 40 || (p1 - p0).norm() <= precision_mm_) return;
+    if (bound <= top_.reach() + precision_mm_ || depth > 40 || (p1 - p0).norm() <= precision_mm_) return;
     if (points_left_-- == 0)
       throw Error(kExitInput, fmt::format("measuring the paths would take more than {} points per segment near "
                                           "X{:.4f} Y{:.4f} Z{:.4f} (an arc far bigger than the band); measure with a "
@@ -540,7 +544,7 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
   if (pa.size() > 0 && pb.size() > 0) {
     const size_t share_count = (std::max(pa.size(), pb.size()) + kShareSegments - 1) / kShareSegments;
     const size_t workers = worker_count(opt.threads, share_count);
-    std::vector<TopPlaces> shares(share_count, TopPlaces(opt.top));
+    std::vector<TopPlaces> shares(share_count, TopPlaces(opt.top, opt.least_mm));
     std::vector<std::vector<double>> deviation_of_b(workers, std::vector<double>(ib.moves.size(), 0.0));
     std::atomic<size_t> next_share{0};
     auto measure = [&](size_t w) {

@@ -52,6 +52,13 @@ struct DiffOptions {
   /// band is as wide as the path's own features, pairing by place can take a stretch for
   /// another pass with another feed.
   bool feed = true;
+  /// Distances of the paths at or below this are of no interest (mm): the measure makes
+  /// exact only what exceeds it, so the maximum and worst places are exact where above it,
+  /// and where the paths lie no farther apart anywhere it reports at most this. A caller
+  /// that knows the paths' distance to be about some value already (the compressor's own
+  /// check, from its move-by-move measure) spares the measure most of its work, above all on
+  /// a path that retraces itself many times.
+  double least_mm = 0;
 };
 
 /// One place where the paths are apart.
