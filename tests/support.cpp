@@ -48,11 +48,13 @@ TempDir::~TempDir() {
   if (!empty()) fs::remove_all(*this, ignored);
 }
 
-Command run_arcpress(const std::string& args, const std::string& stdin_text) {
-  TempDir d("cmd");
-  write_file(d / "stdin", stdin_text);
-  std::string cmd = std::string("'") + ARCPRESS_EXE + "' " + args + " < '" + (d / "stdin").string() + "' > '" +
-                    (d / "stdout").string() + "' 2> '" + (d / "stderr").string() + "'";
+namespace {
+
+/// Runs `command` with the shell, standard input from `stdin_path`, standard output and error
+/// into files of `d`, and reads them back.
+Command run_redirected(const std::string& command, const fs::path& stdin_path, const TempDir& d) {
+  const std::string cmd = command + " < '" + stdin_path.string() + "' > '" + (d / "stdout").string() + "' 2> '" +
+                          (d / "stderr").string() + "'";
   int status = std::system(cmd.c_str());
   Command c;
   c.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -61,17 +63,19 @@ Command run_arcpress(const std::string& args, const std::string& stdin_text) {
   return c;
 }
 
+}  // namespace
+
+Command run_arcpress(const std::string& args, const std::string& stdin_text) {
+  TempDir d("cmd");
+  write_file(d / "stdin", stdin_text);
+  return run_redirected(std::string("'") + ARCPRESS_EXE + "' " + args, d / "stdin", d);
+}
+
 Command run_shell(const std::string& script) {
   TempDir d("sh");
   write_file(d / "script.sh", script);
-  std::string cmd = std::string("ARCPRESS='") + ARCPRESS_EXE + "' bash '" + (d / "script.sh").string() + "' < /dev/null > '" +
-                    (d / "stdout").string() + "' 2> '" + (d / "stderr").string() + "'";
-  int status = std::system(cmd.c_str());
-  Command c;
-  c.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  c.out = read_file(d / "stdout");
-  c.err = read_file(d / "stderr");
-  return c;
+  return run_redirected(std::string("ARCPRESS='") + ARCPRESS_EXE + "' bash '" + (d / "script.sh").string() + "'",
+                        "/dev/null", d);
 }
 
 }  // namespace arcpress::test

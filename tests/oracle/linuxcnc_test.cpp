@@ -121,6 +121,22 @@ test::TempDir rs274_folder(const std::string& tag, int tools = 1) {
   return dir;
 }
 
+/// The path rs274 reads from the compressed program against the path it reads from the
+/// original: move by move within the band. rs274 prints 4 decimals: end points and centres
+/// each move by up to 0.00005 per axis, which moves an arc by up to 0.00015 mm.
+void check_read_within_band(const Rs274& original, const Rs274& ours, double band_mm) {
+  DiagnosticSink sa("rs274(original)"), sb("rs274(compressed)");
+  Program pa = lex("rs274(original)", canon_to_gcode(original.canon), sa);
+  Program pb = lex("rs274(compressed)", canon_to_gcode(ours.canon), sb);
+  Interpretation ia = interpret(pa, sa), ib = interpret(pb, sb);
+  CompareOptions co;
+  co.tolerance_mm = band_mm;
+  PathComparison c = compare_paths(pa, ia, pb, ib, co);
+  INFO(c.mismatch);
+  CHECK(c.matched);
+  CHECK(c.max_deviation_mm <= band_mm + 0.00015);
+}
+
 }  // namespace
 
 TEST_CASE("LinuxCNC's rs274 accepts every compressed CNC corpus program and reads it within the band",
@@ -148,18 +164,7 @@ TEST_CASE("LinuxCNC's rs274 accepts every compressed CNC corpus program and read
       if (original.exit_code == 0) ++judged;
 
       // The path rs274 reads from our output against the path it reads from the original.
-      DiagnosticSink sa("rs274(original)"), sb("rs274(compressed)");
-      Program pa = lex("rs274(original)", canon_to_gcode(original.canon), sa);
-      Program pb = lex("rs274(compressed)", canon_to_gcode(ours.canon), sb);
-      Interpretation ia = interpret(pa, sa), ib = interpret(pb, sb);
-      CompareOptions co;
-      co.tolerance_mm = tol;
-      PathComparison c = compare_paths(pa, ia, pb, ib, co);
-      INFO(c.mismatch);
-      CHECK(c.matched);
-      // rs274 prints 4 decimals: end points and centres each move by up to 0.00005 per axis,
-      // which moves an arc by up to 0.00015 mm.
-      CHECK(c.max_deviation_mm <= tol + 0.00015);
+      check_read_within_band(original, ours, tol);
     }
   }
   CHECK(judged >= 5);
@@ -211,17 +216,7 @@ void check_raster_planes(const std::string& g, const std::string& tag) {
   REQUIRE(ours.exit_code == 0);
   CHECK(ours.canon.find("SELECT_PLANE(CANON_PLANE_XZ)") != std::string::npos);
   CHECK(ours.canon.find("SELECT_PLANE(CANON_PLANE_YZ)") != std::string::npos);
-
-  DiagnosticSink sa("rs274(original)"), sb("rs274(compressed)");
-  Program pa = lex("rs274(original)", canon_to_gcode(original.canon), sa);
-  Program pb = lex("rs274(compressed)", canon_to_gcode(ours.canon), sb);
-  Interpretation ia = interpret(pa, sa), ib = interpret(pb, sb);
-  CompareOptions co;
-  co.tolerance_mm = r.band_mm;
-  PathComparison c = compare_paths(pa, ia, pb, ib, co);
-  INFO(c.mismatch);
-  CHECK(c.matched);
-  CHECK(c.max_deviation_mm <= r.band_mm + 0.00015);
+  check_read_within_band(original, ours, r.band_mm);
 }
 
 }  // namespace
@@ -292,16 +287,7 @@ CompressResult check_read_alike(const std::string& g, const std::string& tag) {
   Rs274 ours = run_rs274(dir, dir / "out.ngc");
   INFO("compressed: " << ours.error << r.output);
   REQUIRE(ours.exit_code == 0);
-  DiagnosticSink sa("rs274(original)"), sb("rs274(compressed)");
-  Program pa = lex("rs274(original)", canon_to_gcode(original.canon), sa);
-  Program pb = lex("rs274(compressed)", canon_to_gcode(ours.canon), sb);
-  Interpretation ia = interpret(pa, sa), ib = interpret(pb, sb);
-  CompareOptions co;
-  co.tolerance_mm = r.band_mm;
-  PathComparison c = compare_paths(pa, ia, pb, ib, co);
-  INFO(c.mismatch);
-  CHECK(c.matched);
-  CHECK(c.max_deviation_mm <= r.band_mm + 0.00015);
+  check_read_within_band(original, ours, r.band_mm);
   return r;
 }
 
