@@ -1,8 +1,11 @@
 #!/usr/bin/env bash
-# Installs what is missing, configures and builds arcpress (Release) into ./build.
-# --test: also install what the test suite checks output against (see install-deps.sh).
+# Installs what is missing, configures and builds arcpress (Release) into ./build: the
+# command-line program alone, or with --test also the test suite and the benchmarks, and
+# what the tests check output against (see install-deps.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh "$@"
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+everything=OFF
+[ "${1:-}" = "--test" ] && everything=ON
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DARCPRESS_BUILD_TESTS=$everything -DARCPRESS_BUILD_BENCH=$everything >/dev/null
 cmake --build build -j"$(nproc)"

@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <limits.h>
+#include <unistd.h>
 #include <stdlib.h>
 
 #include <chrono>
@@ -356,6 +357,12 @@ int main(int argc, char** argv) {
       for (const Dialect& d : list_dialects(path)) list += fmt::format("{:<16}{}\n", d.name, d.description);
       cli::write_stdout(list);
       return kExitOk;
+    }
+    // Nothing to read but a terminal: say how to use it rather than wait for typing.
+    if (a.input == "-" && ::isatty(STDIN_FILENO)) {
+      std::fputs(app.help().c_str(), stderr);
+      std::fputs("arcpress: no input: give a program file, or pipe one into standard input\n", stderr);
+      return kExitInput;
     }
     return run_compress(a);
   } catch (const Error& e) {

@@ -290,3 +290,16 @@ TEST_CASE("every floating option must be a finite number in its range, and says 
   CHECK(crossed.exit_code == 2);
   CHECK(crossed.err.find("--min-radius 5 mm is larger than --max-radius 1 mm") != std::string::npos);
 }
+
+TEST_CASE("with no input and a terminal on standard input, arcpress says how to use it instead of waiting",
+          "[cli]") {
+  if (std::system("command -v script > /dev/null 2>&1") != 0) {
+    WARN("script (util-linux) is not installed: no terminal to test with, skipped");
+    return;
+  }
+  // script(1) gives the program a terminal for its standard input.
+  auto c = arcpress::test::run_shell("script -qec '\"$ARCPRESS\"' /dev/null");
+  CHECK(c.exit_code == 2);
+  CHECK(c.out.find("arcpress: no input: give a program file, or pipe one into standard input") != std::string::npos);
+  CHECK(c.out.find("Usage:") != std::string::npos);
+}
