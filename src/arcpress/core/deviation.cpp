@@ -63,7 +63,10 @@ Vec3 nearest_on_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
   const Vec3 d = b - a;
   const double len2 = d.squaredNorm();
   if (len2 <= kLengthEpsMm * kLengthEpsMm) return a;
-  return a + std::clamp((p - a).dot(d) / len2, 0.0, 1.0) * d;
+  // From the nearer end, so that an end is returned exactly (from the other, a + (b - a)
+  // can lose b entirely where a is far bigger: a segment from 1e100 to 1 ending at 0).
+  const double t = std::clamp((p - a).dot(d) / len2, 0.0, 1.0);
+  return t <= 0.5 ? Vec3(a + t * d) : Vec3(b - (1 - t) * d);
 }
 
 double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
