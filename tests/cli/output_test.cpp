@@ -175,3 +175,13 @@ TEST_CASE("diff prints its verdict before a plot that cannot be written, and a f
   CHECK(folder.exit_code == 3);
   CHECK(folder.err.find("it is a folder") != std::string::npos);
 }
+
+TEST_CASE("a diff report whose quoted blocks hold a NUL byte still ends with its verdict", "[cli][output]") {
+  auto d = arcpress::test::temp_dir("nul");
+  arcpress::test::write_file(d / "a.nc", std::string("G0 X0 Y0 Z0\n(note \0 one)\nG1 X1 F100\nM2\n", 39));
+  arcpress::test::write_file(d / "b.nc", std::string("G0 X0 Y0 Z0\n(note \0 two)\nG1 X1 F100\nM2\n", 39));
+  auto c = run_arcpress("diff '" + (d / "a.nc").string() + "' '" + (d / "b.nc").string() + "'");
+  CHECK(c.exit_code == 1);
+  CHECK(c.out.find("DIFFERENT: ") != std::string::npos);
+  CHECK(c.out.find(std::string("(NOTE \0 ONE)", 12)) != std::string::npos);
+}
