@@ -31,10 +31,11 @@ std::string summary_json(const ProgramSummary& s, const std::string& name) {
       "{{\"file\": {}, \"blocks\": {}, \"bytes\": {}, \"feed_moves\": {}, \"rapids\": {}, \"sections\": {}, "
       "\"non_motion_blocks\": {}, \"path_mm\": {:.6f}, \"unplaced_feed_moves\": {}, \"first_unplaced_line\": {}, "
       "\"unplaced_reason\": {}, \"entry_moves\": {}, \"first_entry_line\": {}, \"entry_reason\": {}, "
-      "\"unmeasured_arcs\": {}, \"first_unmeasured_line\": {}}}",
+      "\"unmeasured_arcs\": {}, \"first_unmeasured_line\": {}, \"far_moves\": {}, \"first_far_line\": {}}}",
       json_string(name), s.blocks, s.bytes, s.feed_moves, s.rapids, s.sections, s.non_motion, s.path_mm,
       s.unplaced_feed_moves, s.first_unplaced_line, json_string(s.unplaced_reason), s.entry_moves,
-      s.first_entry_line, json_string(s.entry_reason), s.unmeasured_arcs, s.first_unmeasured_line);
+      s.first_entry_line, json_string(s.entry_reason), s.unmeasured_arcs, s.first_unmeasured_line, s.far_moves,
+      s.first_far_line);
 }
 
 const char* verdict_word(ProgramDiff::Verdict v, bool upper) {
@@ -59,6 +60,10 @@ std::string diff_text(const ProgramDiff& d, const DiffNames& n, double tol) {
     if (s.unmeasured_arcs > 0)
       t += fmt::format("{}: {} arc(s) too big to follow within a tenth of the band, not compared (first at line {})\n",
                        name, s.unmeasured_arcs, s.first_unmeasured_line);
+    if (s.far_moves > 0)
+      t += fmt::format("{}: {} feed move(s) too far from the origin to measure within the band, not compared (first "
+                       "at line {})\n",
+                       name, s.far_moves, s.first_far_line);
     if (s.unplaced_feed_moves > 0)
       t += fmt::format("{}: {} feed move(s) not compared: their position is not known (first at line {}: {})\n", name,
                        s.unplaced_feed_moves, s.first_unplaced_line, s.unplaced_reason);
@@ -83,8 +88,7 @@ std::string diff_text(const ProgramDiff& d, const DiffNames& n, double tol) {
   t += fmt::format("non-motion blocks (M, T, S, dwell, comments): {} in A, {} in B, {} differ\n", d.a.non_motion,
                    d.b.non_motion, d.non_motion_differences);
   for (const auto& f : d.findings) t += "difference: " + f + "\n";
-  const size_t unplaced =
-      d.a.unplaced_feed_moves + d.b.unplaced_feed_moves + d.a.unmeasured_arcs + d.b.unmeasured_arcs;
+  const size_t unplaced = d.a.not_compared() + d.b.not_compared();
   t += fmt::format("{}: max deviation {:.6f} mm {} the {} mm band{}{}\n", verdict_word(d.verdict(tol), true),
                    d.max_deviation_mm, d.max_deviation_mm <= tol ? "within" : "outside", tol,
                    d.findings.empty() ? "" : fmt::format(", {} other difference(s)", d.findings.size()),

@@ -44,6 +44,9 @@ struct Path {
   /// within the measure's precision): not measured. The first one's move.
   size_t rough_arcs = 0;
   uint32_t first_rough_move = 0;
+  /// Feed moves too far from the origin to measure (kFarShare): not measured. The first one.
+  size_t far_moves = 0;
+  uint32_t first_far_move = 0;
   /// How much farther than the measure's precision the chords of any other arc lie, mm.
   double chord_excess_mm = 0;
   std::vector<uint32_t> rapids;                      ///< move indices of rapids whose end is known
@@ -72,6 +75,10 @@ constexpr double kRoughShare = 0.1;
 /// Two arcs' centres this close (a share of the radius, and of 1 mm) are one centre: the
 /// floating noise of reading the same numbers two ways, a floating-point epsilon.
 constexpr double kSameCentreShare = 1e-12;
+/// A feed move is measured only where its coordinates' rounding (a double's epsilon times
+/// their size, several times over in each distance) stays within this share of the band:
+/// for a band of 0.01 mm, within about 5.6e10 mm of the origin.
+constexpr double kFarShare = 1e-3 / 8;
 /// Longest piece of a path put into the index, mm.
 constexpr double kPieceMm = 10.0;
 /// Most pieces one straight segment is cut into: past this a segment's pieces grow longer
@@ -100,6 +107,14 @@ Path path_of(const Interpretation& in, double chord_mm, double tolerance_mm) {
     if (!is_feed(m.kind) || !m.known) {
       if (m.kind == MoveKind::Rapid && m.end_known) p.rapids.push_back(uint32_t(i));
       if (enters_from_unknown(m)) p.entries.push_back(uint32_t(i));
+      in_section = false;
+      continue;
+    }
+    // So far from the origin that a double holds its points more coarsely than the measure
+    // needs: not measured (a program would differ from itself by its rounding).
+    const double farthest = std::max(xyz(in.from(i)).cwiseAbs().maxCoeff(), xyz(m.to).cwiseAbs().maxCoeff());
+    if (!(farthest <= kFarShare * tolerance_mm / std::numeric_limits<double>::epsilon())) {
+      if (p.far_moves++ == 0) p.first_far_move = uint32_t(i);
       in_section = false;
       continue;
     }
@@ -501,6 +516,8 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
     ProgramSummary s;
     s.unmeasured_arcs = path.rough_arcs;
     if (path.rough_arcs > 0) s.first_unmeasured_line = p.blocks[in.moves[path.first_rough_move].block].line;
+    s.far_moves = path.far_moves;
+    if (path.far_moves > 0) s.first_far_line = p.blocks[in.moves[path.first_far_move].block].line;
     for (const UnplacedMove& u : in.unplaced) {
       const Move& m = in.moves[u.move];
       const bool entry = enters_from_unknown(m);

@@ -87,6 +87,12 @@ struct ProgramSummary {
   /// not measured. The first one's line.
   size_t unmeasured_arcs = 0;
   uint32_t first_unmeasured_line = 0;
+  /// Feed moves so far from the origin that a double holds them more coarsely than the
+  /// measure needs: not measured. The first one's line.
+  size_t far_moves = 0;
+  uint32_t first_far_line = 0;
+  /// Feed moves of either kind that were not compared.
+  size_t not_compared() const { return unplaced_feed_moves + unmeasured_arcs + far_moves; }
 };
 
 struct ProgramDiff {
@@ -112,9 +118,7 @@ struct ProgramDiff {
   double arc_chord_mm = 0;
 
   /// Whether every feed move of both programs was placed, and so compared.
-  bool compared_all() const {
-    return a.unplaced_feed_moves + b.unplaced_feed_moves + a.unmeasured_arcs + b.unmeasured_arcs == 0;
-  }
+  bool compared_all() const { return a.not_compared() + b.not_compared() == 0; }
   /// How much the measure of the paths may read short where big arcs' chords lie farther off
   /// them than its precision (0 for any ordinary program): counted against the band.
   double chord_excess_mm = 0;
