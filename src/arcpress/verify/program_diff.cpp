@@ -77,7 +77,7 @@ constexpr double kRoughShare = 0.1;
 constexpr double kSameCentreShare = 1e-12;
 /// A feed move is measured only where its coordinates' rounding (a double's epsilon times
 /// their size, several times over in each distance) stays within this share of the band:
-/// for a band of 0.01 mm, within about 5.6e10 mm of the origin.
+/// for a band of 0.01 mm, within about 5.6e9 mm (5 600 km) of the origin.
 constexpr double kFarShare = 1e-3 / 8;
 /// Longest piece of a path put into the index, mm.
 constexpr double kPieceMm = 10.0;
