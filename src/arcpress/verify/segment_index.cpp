@@ -71,8 +71,8 @@ constexpr double kSameDistanceMm = 1e-12;
 /// consecutive such chunks behind theirs.
 constexpr uint32_t kChunkSegments = 32;
 constexpr uint32_t kGroupChunks = 32;
-/// Boxes the linear scans visit, per segment of the path, before the tree pays for itself:
-/// building it costs about as much as visiting this many boxes per segment.
+/// Boxes the linear scans visit and segments they measure, per segment of the path, before
+/// the tree pays for itself: building it costs about as much as this many per segment.
 constexpr uint64_t kScanBudgetPerSegment = 64;
 
 struct Box {
@@ -96,7 +96,7 @@ struct SegmentIndex::Impl {
   double slack_mm = 0;
   std::vector<Box> chunks;  ///< kChunkSegments segments each
   std::vector<Box> groups;  ///< kGroupChunks chunks each
-  std::atomic<uint64_t> scanned{0};  ///< boxes the linear scans have visited
+  std::atomic<uint64_t> scanned{0};  ///< boxes the linear scans have visited, and segments measured
   std::once_flag built;
   std::atomic<bool> tree_ready{false};
   Tree tree;
@@ -141,6 +141,7 @@ struct SegmentIndex::Impl {
         ++boxes;
         if (chunks[c].squared_distance(p) > reach_mm * reach_mm) continue;
         const uint32_t end = std::min(count, (c + 1) * kChunkSegments);
+        boxes += end - c * kChunkSegments;  // (each segment measured costs as much as a box)
         for (uint32_t i = c * kChunkSegments; i < end && reach_mm >= 0; ++i) {
           const Vec3 q = nearest_on_segment(p, lines.a(i), lines.b(i));
           const double dist = (q - p).norm();
