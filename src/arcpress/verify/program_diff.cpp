@@ -469,16 +469,25 @@ void compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, cons
     Vec3 da = pa.b(sa) - pa.a(sa);
     return da.norm() > kLengthEpsMm ? db.normalized().dot(da.normalized()) : -1.0;
   };
+  // Where both paths have as many sections, a B segment's counterpart lies in the A section
+  // of the same number (one that retraces an earlier section is not taken for it), and the
+  // search starts no earlier than that section.
+  const size_t sections = pa.section_length_mm.size();
+  const bool same_sections = sections == pb.section_length_mm.size();
+  std::vector<size_t> section_start(sections + 1, pa.size());
+  for (size_t k = pa.size(); k-- > 0;) section_start[pa.section_of[k]] = k;
+  auto in_section = [&](size_t k, size_t sb) { return !same_sections || pa.section_of[k] == pb.section_of[sb]; };
   size_t cursor = 0;
   for (size_t sb = 0; sb < pb.size(); ++sb) {
     Vec3 db = pb.b(sb) - pb.a(sb);
     // (An arc's closing step is measured with the arc's pieces, which carry its feed.)
     if (db.norm() <= kLengthEpsMm || pb.arc_of[sb] == Path::kClosingStep) continue;
+    if (same_sections) cursor = std::max(cursor, section_start[pb.section_of[sb]]);
     Vec3 mid = pb.middle(sb);
     size_t found = pa.size();
     auto search = [&](size_t from, size_t to) {
       for (size_t k = from; k < std::min(pa.size(), to) && found == pa.size(); ++k)
-        if ((pa.nearest(k, mid) - mid).norm() <= tolerance_mm && cosine(k, db) >= along) found = k;
+        if (in_section(k, sb) && (pa.nearest(k, mid) - mid).norm() <= tolerance_mm && cosine(k, db) >= along) found = k;
     };
     // The first steps of the window, then whether any segment lies within the band at all:
     // where none does (B strays from A there), the rest of the window holds no counterpart.
@@ -489,7 +498,9 @@ void compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, cons
     }
     if (found == pa.size()) {
       SegmentIndex::Nearest n = index_a.nearest(mid, uint32_t(std::min(cursor, pa.size() - 1)));
-      if (n.segment < cursor || n.distance_mm > tolerance_mm || cosine(n.segment, db) < same_way) continue;
+      if (n.segment < cursor || !in_section(n.segment, sb) || n.distance_mm > tolerance_mm ||
+          cosine(n.segment, db) < same_way)
+        continue;
       found = n.segment;
     }
     cursor = found;
