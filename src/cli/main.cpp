@@ -15,6 +15,7 @@
 #include "arcpress/api/arcpress.hpp"
 #include "arcpress/core/error.hpp"
 #include "arcpress/dialect/dialect_loader.hpp"
+#include "arcpress/dialect/program_flavor.hpp"
 #include "arcpress/lex/lexer.hpp"
 #include "arcpress/model/interpreter.hpp"
 #include "arcpress/verify/diff_plot.hpp"
@@ -83,6 +84,7 @@ struct CompressArgs {
   std::string input = "-";
   std::string output;
   std::string dialect = "rs274";
+  bool dialect_given = false;  ///< --dialect on the command line
   std::string dialect_file;
   std::string arc_format;
   std::string method = "arcs";
@@ -113,13 +115,22 @@ int run_compress(const CompressArgs& a) {
                    : a.method == "stream" ? FitOptions::Method::Stream
                    : a.method == "lowe"   ? FitOptions::Method::Lowe
                                           : FitOptions::Method::Arcs;
-  opt.dialect = chosen_dialect(a.dialect, a.dialect_file);
   if (a.arc_format == "ijk") opt.arc_format = ArcFormat::Centre;
   if (a.arc_format == "r") opt.arc_format = ArcFormat::Radius;
 
   auto t0 = std::chrono::steady_clock::now();
   std::string text = cli::read_input(a.input);
   std::string name = a.input == "-" ? "<stdin>" : a.input;
+  // The dialect named, or else the one the program names for itself (a slicer's flavor).
+  std::string why_dialect = "the default";
+  std::string dialect_name = a.dialect;
+  if (a.dialect_given || !a.dialect_file.empty()) {
+    why_dialect = a.dialect_file.empty() ? "--dialect" : "--dialect-file";
+  } else if (const auto flavor = program_flavor(text)) {
+    dialect_name = flavor->dialect;
+    why_dialect = fmt::format("the program's '{}' at line {}", flavor->evidence, flavor->line);
+  }
+  opt.dialect = chosen_dialect(dialect_name, a.dialect_file);
   DiagnosticSink sink(name);
   CompressResult r = compress(name, std::move(text), opt, sink);
   std::string diags = sink.format_all();
@@ -155,7 +166,7 @@ int run_compress(const CompressArgs& a) {
                "  blocks in      {}\n"
                "  bytes in/out   {} / {} ({:.1f} %)\n"
                "  G1 moves       {} in the input, {} in {} runs\n"
-               "  dialect        {}\n"
+               "  dialect        {}, by {}\n"
                "  written        {} G1 + {} G2/G3 ({} blocks for {} moves, {:.1f} %)\n"
                "  kept as input  {} arcs that would not print inside the dialect's rules, {} over-long lines, {} runs "
                "the check refused\n"
@@ -164,6 +175,7 @@ int run_compress(const CompressArgs& a) {
                name, out_path == "-" ? "<stdout>" : out_path, r.blocks_in, r.bytes_in, r.output.size(),
                r.bytes_in ? 100.0 * double(r.output.size()) / double(r.bytes_in) : 100.0, r.g1_moves, st.moves_in, st.runs,
                opt.dialect.source.empty() ? opt.dialect.name : opt.dialect.name + " (" + opt.dialect.source + ")",
+               why_dialect,
                st.lines_out, st.arcs_out, st.lines_out + st.arcs_out, st.moves_in,
                st.moves_in ? 100.0 * double(st.lines_out + st.arcs_out) / double(st.moves_in) : 100.0,
                st.arcs_unprintable, st.long_lines_kept, r.runs_kept_as_input, st.plane_words_added, s);
@@ -264,7 +276,11 @@ int main(int argc, char** argv) {
   app.add_option("--tolerance", a.opt.fit.tolerance_mm,
                  "Max distance in mm between output and input path, both ways")
       ->check(finite_in(kMinToleranceMm, false, kMaxToleranceMm, "mm"))->capture_default_str();
-  app.add_option("--dialect", a.dialect, "Target controller dialect (see 'arcpress dialects')")->capture_default_str();
+  CLI::Option* dialect_option =
+      app.add_option("--dialect", a.dialect,
+                     "Target controller dialect (see 'arcpress dialects'); absent: the one the program names for "
+                     "itself (a slicer's gcode_flavor or FLAVOR line), else rs274")
+          ->capture_default_str();
   app.add_option("--dialect-file", a.dialect_file, "Load the dialect from this TOML file instead");
   app.add_option("--arc-format", a.arc_format, "ijk: centre words; r: radius words where the dialect reads them "
                                                 "(default: the dialect's choice)")
@@ -348,6 +364,7 @@ int main(int argc, char** argv) {
     return kExitInput;
   }
   a.opt.fit.helical = !no_helical;
+  a.dialect_given = dialect_option->count() > 0;
   a.opt.verify = !no_verify;
   try {
     if (*diff_cmd) return run_diff(diff);

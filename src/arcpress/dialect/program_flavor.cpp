@@ -1,0 +1,64 @@
+#include "arcpress/dialect/program_flavor.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <utility>
+
+namespace arcpress {
+namespace {
+
+std::string lower(std::string_view s) {
+  std::string out(s);
+  for (char& c : out) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
+
+std::string_view trimmed(std::string_view s) {
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+  return s;
+}
+
+/// The shipped dialect a slicer's flavor name maps to without doubt, or empty.
+std::string dialect_of_flavor(const std::string& flavor) {
+  static const std::pair<const char*, const char*> kMap[] = {
+      {"marlin", "marlin"},     {"marlin2", "marlin"},  {"marlinlegacy", "marlin"},
+      {"marlinfirmware", "marlin"},
+      {"klipper", "klipper"},   {"reprapfirmware", "reprapfirmware"},
+      {"smoothie", "smoothieware"}, {"smoothieware", "smoothieware"},
+  };
+  for (const auto& [name, dialect] : kMap)
+    if (flavor == name) return dialect;
+  return {};
+}
+
+}  // namespace
+
+std::optional<ProgramFlavor> program_flavor(std::string_view program) {
+  uint32_t line = 0;
+  size_t at = 0;
+  while (at < program.size()) {
+    const size_t end = std::min(program.find('\n', at), program.size());
+    const std::string_view text = trimmed(program.substr(at, end - at));
+    ++line;
+    at = end + 1;
+    if (text.empty() || text.front() != ';') continue;
+    const std::string l = lower(text);
+    std::string flavor;
+    if (l.rfind(";flavor:", 0) == 0) {  // Cura
+      flavor = lower(trimmed(std::string_view(l).substr(8)));
+    } else {
+      std::string_view rest = trimmed(std::string_view(l).substr(1));
+      if (rest.rfind("gcode_flavor", 0) != 0) continue;  // PrusaSlicer, SuperSlicer, OrcaSlicer, Slic3r
+      rest = trimmed(rest.substr(12));
+      if (rest.empty() || rest.front() != '=') continue;
+      flavor = std::string(trimmed(rest.substr(1)));
+    }
+    const std::string dialect = dialect_of_flavor(flavor);
+    if (dialect.empty()) return std::nullopt;  // a flavor, but not one that says which firmware
+    return ProgramFlavor{dialect, std::string(text), line};
+  }
+  return std::nullopt;
+}
+
+}  // namespace arcpress
