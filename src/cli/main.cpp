@@ -216,6 +216,7 @@ struct DiffArgs {
   std::string a, b;
   double tolerance_mm = 0.01;
   std::string dialect = "rs274";
+  bool dialect_given = false;  ///< --dialect on the command line
   std::string dialect_file;
   bool json = false;
   std::string plot;
@@ -227,10 +228,16 @@ struct DiffArgs {
 /// `arcpress diff A B`: any two programs, read the same way, compared by path, rapids,
 /// non-motion blocks, feed and extrusion. Exit 0 the same within the band, 1 different.
 int run_diff(const DiffArgs& d) {
-  Dialect dialect = chosen_dialect(d.dialect, d.dialect_file);
+  std::string text_a = cli::read_input(d.a), text_b = cli::read_input(d.b);
+  // Both programs are read the same way: the dialect named, or else the one A names for
+  // itself (as the compressor picks it), else rs274.
+  std::string dialect_name = d.dialect;
+  if (!d.dialect_given && d.dialect_file.empty())
+    if (const auto flavor = program_flavor(text_a)) dialect_name = flavor->dialect;
+  Dialect dialect = chosen_dialect(dialect_name, d.dialect_file);
   DiagnosticSink sa(d.a), sb(d.b);
-  Program pa = lex(d.a, cli::read_input(d.a), sa);
-  Program pb = lex(d.b, cli::read_input(d.b), sb);
+  Program pa = lex(d.a, std::move(text_a), sa);
+  Program pb = lex(d.b, std::move(text_b), sb);
   Interpretation ia = interpret(pa, sa, dialect), ib = interpret(pb, sb, dialect);
   std::string diags = sa.format_all() + sb.format_all();
   if (!diags.empty()) std::fputs(diags.c_str(), stderr);
@@ -329,7 +336,12 @@ int main(int argc, char** argv) {
   diff_cmd->add_option("--tolerance", diff.tolerance_mm, "Band in mm")
       ->check(finite_in(kMinToleranceMm, false, kMaxToleranceMm, "mm"))
       ->capture_default_str();
-  diff_cmd->add_option("--dialect", diff.dialect, "How both programs are read")->capture_default_str();
+  CLI::Option* diff_dialect_option =
+      diff_cmd
+          ->add_option("--dialect", diff.dialect,
+                       "How both programs are read; absent: the dialect A names for itself (a slicer's flavor "
+                       "line), else rs274")
+          ->capture_default_str();
   diff_cmd->add_option("--dialect-file", diff.dialect_file, "Read both programs with this dialect file");
   diff_cmd->add_flag("--json", diff.json, "Print one JSON document instead of text");
   diff_cmd->add_option("--plot", diff.plot, "Write an SVG picture of both paths, B coloured by deviation");
@@ -365,6 +377,7 @@ int main(int argc, char** argv) {
   }
   a.opt.fit.helical = !no_helical;
   a.dialect_given = dialect_option->count() > 0;
+  diff.dialect_given = diff_dialect_option->count() > 0;
   a.opt.verify = !no_verify;
   try {
     if (*diff_cmd) return run_diff(diff);

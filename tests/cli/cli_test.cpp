@@ -318,4 +318,18 @@ TEST_CASE("without --dialect a slicer's program is written for the firmware it n
   auto named = run_arcpress("--stats --dialect marlin", t);
   CHECK(named.err.find("dialect        marlin") != std::string::npos);
   CHECK(named.err.find("by --dialect") != std::string::npos);
+  // diff reads both programs as the first names itself: Klipper's G18 arcs turn the other
+  // way from RS274's, so A's G2 is B's quarter circle read as RS274 and three quarters read
+  // as Klipper.
+  auto d = arcpress::test::temp_dir("flavor-diff");
+  arcpress::test::write_file(d / "a.gcode",
+                             "G21 G90 G18\nG0 X10 Y0 Z0\nG2 X0 Z10 I-10 K0 F100\nM2\n; gcode_flavor = klipper\n");
+  std::string quarter = "G21 G90 G18\nG0 X10 Y0 Z0\nG1 F100\n";
+  for (int k = 1; k <= 90; ++k)
+    quarter += fmt::format("G1 X{:.4f} Z{:.4f}\n", 10 * std::cos(k * M_PI / 180), 10 * std::sin(k * M_PI / 180));
+  arcpress::test::write_file(d / "b.gcode", quarter + "M2\n; gcode_flavor = klipper\n");
+  const std::string files = " '" + (d / "a.gcode").string() + "' '" + (d / "b.gcode").string() + "' --tolerance 0.01";
+  CHECK(run_arcpress("diff --dialect rs274" + files).exit_code == 0);
+  CHECK(run_arcpress("diff --dialect klipper" + files).exit_code == 1);
+  CHECK(run_arcpress("diff" + files).exit_code == 1);  // as A names itself: Klipper
 }
