@@ -40,27 +40,26 @@ constexpr const char* kDiffExitCodesHelp =
     "     error, or input that cannot be read\n"
     "  3  I/O error: a file could not be read or written\n";
 
-/// A floating option's check: a finite number from `lo` to `hi` (above `lo` where
-/// `above_lo`), in `unit`. The message names the range and what was given, and no
-/// option can bring a NaN, an infinity or a value no search is bounded for into the fit.
-CLI::Validator finite_in(double lo, bool above_lo, double hi, const std::string& unit) {
+/// A floating option's check: a finite number in `range` (OptionRange, shared with the
+/// library's check_options()). The message names the range and what was given.
+CLI::Validator finite_in(const OptionRange& range) {
   auto text = [](double v) {  // plain decimals, never an exponent
     std::string t = fmt::format("{:.6f}", v);
     while (t.back() == '0') t.pop_back();
     if (t.back() == '.') t.pop_back();
     return t;
   };
-  const std::string range = above_lo ? fmt::format("> {} and <= {} {}", text(lo), text(hi), unit)
-                                     : fmt::format("from {} to {} {}", text(lo), text(hi), unit);
+  const std::string described = range.above_lo
+                                    ? fmt::format("> {} and <= {} {}", text(range.lo), text(range.hi), range.unit)
+                                    : fmt::format("from {} to {} {}", text(range.lo), text(range.hi), range.unit);
   return CLI::Validator(
       [=](std::string& given) -> std::string {
         char* end = nullptr;
         const double v = std::strtod(given.c_str(), &end);
-        const bool number = end != given.c_str() && *end == '\0';
-        if (number && std::isfinite(v) && (above_lo ? v > lo : v >= lo) && v <= hi) return {};
-        return fmt::format("must be a finite number {}, got '{}'", range, given);
+        if (end != given.c_str() && *end == '\0' && range.holds(v)) return {};
+        return fmt::format("must be a finite number {}, got '{}'", described, given);
       },
-      range, "FINITE");
+      described, "FINITE");
 }
 
 std::string real_path(const std::string& p) {
@@ -74,10 +73,20 @@ std::string exe_dir() {
   return slash == std::string::npos ? std::string() : self.substr(0, slash);
 }
 
-/// The dialect named on the command line: a file wins over a name.
-Dialect chosen_dialect(const std::string& name, const std::string& file) {
-  if (!file.empty()) return load_dialect_file(file);
-  return find_dialect(name, dialect_search_path(exe_dir()));
+/// The dialect to read `program` with: the one the command line names (`--dialect-file`,
+/// `--dialect` where `name_given`), or else the one the program names for itself (a
+/// slicer's flavor line), or else `name` (the default). `why` says which, for --stats.
+Dialect dialect_for(const std::string& name, bool name_given, const std::string& file, std::string_view program,
+                    std::string* why = nullptr) {
+  std::string reason = !file.empty() ? "--dialect-file" : name_given ? "--dialect" : "the default";
+  std::string picked = name;
+  if (file.empty() && !name_given)
+    if (const auto flavor = program_flavor(program)) {
+      picked = flavor->dialect;
+      reason = fmt::format("the program's '{}' at line {}", flavor->evidence, flavor->line);
+    }
+  if (why) *why = reason;
+  return !file.empty() ? load_dialect_file(file) : find_dialect(picked, dialect_search_path(exe_dir()));
 }
 
 struct CompressArgs {
@@ -121,16 +130,8 @@ int run_compress(const CompressArgs& a) {
   auto t0 = std::chrono::steady_clock::now();
   std::string text = cli::read_input(a.input);
   std::string name = a.input == "-" ? "<stdin>" : a.input;
-  // The dialect named, or else the one the program names for itself (a slicer's flavor).
-  std::string why_dialect = "the default";
-  std::string dialect_name = a.dialect;
-  if (a.dialect_given || !a.dialect_file.empty()) {
-    why_dialect = a.dialect_file.empty() ? "--dialect" : "--dialect-file";
-  } else if (const auto flavor = program_flavor(text)) {
-    dialect_name = flavor->dialect;
-    why_dialect = fmt::format("the program's '{}' at line {}", flavor->evidence, flavor->line);
-  }
-  opt.dialect = chosen_dialect(dialect_name, a.dialect_file);
+  std::string why_dialect;
+  opt.dialect = dialect_for(a.dialect, a.dialect_given, a.dialect_file, text, &why_dialect);
   DiagnosticSink sink(name);
   CompressResult r = compress(name, std::move(text), opt, sink);
   std::string diags = sink.format_all();
@@ -229,12 +230,8 @@ struct DiffArgs {
 /// non-motion blocks, feed and extrusion. Exit 0 the same within the band, 1 different.
 int run_diff(const DiffArgs& d) {
   std::string text_a = cli::read_input(d.a), text_b = cli::read_input(d.b);
-  // Both programs are read the same way: the dialect named, or else the one A names for
-  // itself (as the compressor picks it), else rs274.
-  std::string dialect_name = d.dialect;
-  if (!d.dialect_given && d.dialect_file.empty())
-    if (const auto flavor = program_flavor(text_a)) dialect_name = flavor->dialect;
-  Dialect dialect = chosen_dialect(dialect_name, d.dialect_file);
+  // Both programs are read the same way, in the dialect A would be compressed for.
+  const Dialect dialect = dialect_for(d.dialect, d.dialect_given, d.dialect_file, text_a);
   DiagnosticSink sa(d.a), sb(d.b);
   Program pa = lex(d.a, std::move(text_a), sa);
   Program pb = lex(d.b, std::move(text_b), sb);
@@ -282,7 +279,7 @@ int main(int argc, char** argv) {
   app.add_flag("--in-place", a.in_place, "Rewrite the input file (atomically)");
   app.add_option("--tolerance", a.opt.fit.tolerance_mm,
                  "Max distance in mm between output and input path, both ways")
-      ->check(finite_in(kMinToleranceMm, false, kMaxToleranceMm, "mm"))->capture_default_str();
+      ->check(finite_in(kToleranceRange))->capture_default_str();
   CLI::Option* dialect_option =
       app.add_option("--dialect", a.dialect,
                      "Target controller dialect (see 'arcpress dialects'); absent: the one the program names for "
@@ -301,20 +298,20 @@ int main(int argc, char** argv) {
                  "of them, joints made tangent afterwards where the band allows (seed method)")
       ->check(CLI::IsMember({"keep", "arcs", "global", "greedy", "stream", "lowe"}))->capture_default_str();
   app.add_option("--g1-angle", a.opt.fit.g1_angle_deg, "Max tangent change in degrees at smooth joints")
-      ->check(finite_in(0, true, 90, "degrees"))->capture_default_str();
+      ->check(finite_in(kG1AngleRange))->capture_default_str();
   app.add_option("--corner-angle", a.opt.fit.corner_angle_deg,
                  "Input turns sharper than this (degrees) are corners, kept sharp")
-      ->check(finite_in(0, false, 180, "degrees"))->capture_default_str();
+      ->check(finite_in(kCornerAngleRange))->capture_default_str();
   app.add_flag("--spikes", a.opt.fit.spikes,
                "Treat a lone sharp jag within half the band of its neighbours' chord as noise, not a corner");
   app.add_option("--min-radius", a.opt.fit.min_radius_mm, "Arcs with a smaller radius (mm) become lines")
-      ->check(finite_in(0, false, 1e6, "mm"))->capture_default_str();
+      ->check(finite_in(kMinRadiusRange))->capture_default_str();
   app.add_option("--max-radius", a.opt.fit.max_radius_mm, "Arcs with a larger radius (mm) become lines")
-      ->check(finite_in(0, true, 1e6, "mm"))->capture_default_str();
+      ->check(finite_in(kMaxRadiusRange))->capture_default_str();
   app.add_option("--max-sweep", a.opt.fit.max_sweep_deg, "Max degrees one arc block may sweep")
-      ->check(finite_in(1, false, 359, "degrees"))->capture_default_str();
+      ->check(finite_in(kMaxSweepRange))->capture_default_str();
   app.add_option("--min-arc-length", a.opt.fit.min_arc_length_mm, "Shorter arcs (mm) become lines")
-      ->check(finite_in(0, false, 1e4, "mm"))->capture_default_str();
+      ->check(finite_in(kMinArcLengthRange))->capture_default_str();
   bool no_helical = false;
   app.add_flag("--no-helical", no_helical, "Never move the plane's normal axis inside an arc");
   app.add_flag("--passthrough", a.opt.passthrough, "Read and write the program back unchanged");
@@ -334,7 +331,7 @@ int main(int argc, char** argv) {
   diff_cmd->add_option("A", diff.a, "Reference program")->required();
   diff_cmd->add_option("B", diff.b, "Program to check against A")->required();
   diff_cmd->add_option("--tolerance", diff.tolerance_mm, "Band in mm")
-      ->check(finite_in(kMinToleranceMm, false, kMaxToleranceMm, "mm"))
+      ->check(finite_in(kToleranceRange))
       ->capture_default_str();
   CLI::Option* diff_dialect_option =
       diff_cmd

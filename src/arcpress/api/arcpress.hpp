@@ -1,6 +1,7 @@
 #pragma once
 // The C++ façade: one call runs the whole pipeline on a program held in memory.
 // lex -> interpret -> extract runs -> fit -> emit (-> verify).
+#include <cmath>
 #include <optional>
 #include <span>
 #include <string>
@@ -74,6 +75,22 @@ struct CompressResult {
   }
   double band_mm = 0;
 };
+
+/// The range a floating option must lie in: a finite number from `lo` (above it where
+/// `above_lo`) to `hi`, in `unit`. One table for the command line's checks and the library's.
+struct OptionRange {
+  double lo, hi;
+  bool above_lo;
+  const char* unit;
+  bool holds(double v) const { return std::isfinite(v) && (above_lo ? v > lo : v >= lo) && v <= hi; }
+};
+inline constexpr OptionRange kToleranceRange{kMinToleranceMm, kMaxToleranceMm, false, "mm"};
+inline constexpr OptionRange kG1AngleRange{0, 90, true, "degrees"};
+inline constexpr OptionRange kCornerAngleRange{0, 180, false, "degrees"};
+inline constexpr OptionRange kMinRadiusRange{0, 1e6, false, "mm"};
+inline constexpr OptionRange kMaxRadiusRange{0, 1e6, true, "mm"};
+inline constexpr OptionRange kMaxSweepRange{1, 359, false, "degrees"};
+inline constexpr OptionRange kMinArcLengthRange{0, 1e4, false, "mm"};
 
 /// Throws Error(kExitInput) unless every number of `o` is finite and in its documented range
 /// (the CLI's options table); compress() calls it, so no search is ever asked to run for a

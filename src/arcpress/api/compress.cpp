@@ -5,6 +5,7 @@
 #include <cmath>
 #include <iterator>
 #include <numeric>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -105,6 +106,14 @@ bool is_kept(const FitResult& f, const Run& run) {
   return true;
 }
 
+/// The run whose output lines (EmitStats::run_lines, in order) hold `line`, if any.
+std::optional<size_t> run_at(const std::vector<std::pair<uint32_t, uint32_t>>& run_lines, uint32_t line) {
+  const auto after = std::upper_bound(run_lines.begin(), run_lines.end(), line,
+                                      [](uint32_t l, const auto& span) { return l < span.first; });
+  if (after == run_lines.begin() || line > std::prev(after)->second) return std::nullopt;
+  return size_t(std::prev(after) - run_lines.begin());
+}
+
 /// The output lines at which the checks of `r` found the output outside the band or off
 /// the input's path (0 for a finding that names no place in the output's path).
 std::vector<uint32_t> refused_output_lines(const CompressResult& r) {
@@ -153,18 +162,18 @@ std::vector<FitResult> fit_runs(const Interpretation& in, const std::vector<Run>
 }  // namespace
 
 void check_options(const FitOptions& o) {
-  auto check = [](const char* what, double v, double lo, bool above_lo, double hi) {
-    if (std::isfinite(v) && (above_lo ? v > lo : v >= lo) && v <= hi) return;
-    throw Error(kExitInput, fmt::format("{} must be a finite number {} {} and <= {}, got {}", what, above_lo ? ">" : ">=",
-                                        lo, hi, v));
+  auto check = [](const char* what, double v, const OptionRange& range) {
+    if (range.holds(v)) return;
+    throw Error(kExitInput, fmt::format("{} must be a finite number {} {} and <= {} {}, got {}", what,
+                                        range.above_lo ? ">" : ">=", range.lo, range.hi, range.unit, v));
   };
-  check("the tolerance (mm)", o.tolerance_mm, kMinToleranceMm, false, kMaxToleranceMm);
-  check("the G1 angle (degrees)", o.g1_angle_deg, 0, true, 90);
-  check("the corner angle (degrees)", o.corner_angle_deg, 0, false, 180);
-  check("the minimum radius (mm)", o.min_radius_mm, 0, false, 1e6);
-  check("the maximum radius (mm)", o.max_radius_mm, 0, true, 1e6);
-  check("the maximum sweep (degrees)", o.max_sweep_deg, 1, false, 359);
-  check("the minimum arc length (mm)", o.min_arc_length_mm, 0, false, 1e4);
+  check("the tolerance", o.tolerance_mm, kToleranceRange);
+  check("the G1 angle", o.g1_angle_deg, kG1AngleRange);
+  check("the corner angle", o.corner_angle_deg, kCornerAngleRange);
+  check("the minimum radius", o.min_radius_mm, kMinRadiusRange);
+  check("the maximum radius", o.max_radius_mm, kMaxRadiusRange);
+  check("the maximum sweep", o.max_sweep_deg, kMaxSweepRange);
+  check("the minimum arc length", o.min_arc_length_mm, kMinArcLengthRange);
 }
 
 CompressResult compress(const std::string& name, std::string text, const CompressOptions& opt,
@@ -229,30 +238,22 @@ CompressResult compress(const std::string& name, std::string text, const Compres
     // at the places the checks name, for a few rounds; then, or where a finding names no
     // place in a run, every run (the input itself, which reads as itself).
     for (int round = 0; !r.within_band() && round < kFallbackRounds; ++round) {
-      bool named = false;
-      const std::vector<uint32_t> lines = refused_output_lines(r);
-      for (uint32_t line : lines)
-        for (size_t k = 0; k < runs.size(); ++k) {
-          const auto [first, last] = r.stats.run_lines[k];
-          if (line < first || line > last || is_kept(fits[k], runs[k])) continue;
-          fits[k] = kept(runs[k]);
-          ++r.runs_kept_as_input;
-          named = true;
-        }
-      const bool everything = !named || lines.size() != size_t(std::count_if(lines.begin(), lines.end(), [&](uint32_t l) {
-                                return std::any_of(r.stats.run_lines.begin(), r.stats.run_lines.end(),
-                                                   [&](const auto& span) { return l >= span.first && l <= span.second; });
-                              })) || round + 1 == kFallbackRounds;
-      if (everything)
-        for (size_t k = 0; k < runs.size(); ++k)
-          if (!is_kept(fits[k], runs[k])) {
-            fits[k] = kept(runs[k]);
-            ++r.runs_kept_as_input;
-          }
-      const size_t kept_so_far = r.runs_kept_as_input;
+      // A place in no run, or in one written as its input already, has no fit to blame.
+      bool everything = round + 1 == kFallbackRounds;
+      std::vector<size_t> blamed;
+      for (uint32_t line : refused_output_lines(r)) {
+        const std::optional<size_t> k = run_at(r.stats.run_lines, line);
+        if (!k || is_kept(fits[*k], runs[*k])) everything = true;
+        else blamed.push_back(*k);
+      }
+      if (everything) {
+        blamed.resize(runs.size());
+        std::iota(blamed.begin(), blamed.end(), size_t(0));
+      }
+      for (size_t k : blamed)
+        if (!is_kept(fits[k], runs[k])) fits[k] = kept(runs[k]), ++r.runs_kept_as_input;
       r.stats = EmitStats{};
       r.output = emit_program(prog, in, runs, fits, eo, &r.stats);
-      r.runs_kept_as_input = kept_so_far;
       verify_output(prog, in, opt, r, runs);
       if (everything) break;
     }
