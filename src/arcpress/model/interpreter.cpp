@@ -270,12 +270,13 @@ class Interpreter {
     uint32_t written = 0;  // axes this block writes
     Unfit after_why[kAxisCount];
     for (int ax = 0; ax < kAxisCount; ++ax) after_why[ax] = why_[ax].reason;
+    bool reasons_changed = false;  // this block makes an axis unknown for a reason of its own
     for (int ax = 0; ax < kAxisCount; ++ax) {
       if (!words_seen[ax]) continue;
       written |= 1u << ax;
       if (expr_axis[ax]) {
         known_after &= ~(1u << ax);
-        after_why[ax] = Unfit::UnknownAfterExpression;
+        after_why[ax] = Unfit::UnknownAfterExpression, reasons_changed = true;
         continue;
       }
       double v = value[ax];
@@ -284,7 +285,7 @@ class Interpreter {
       bool relative = ax == kE ? fr.e_relative : !fr.absolute;
       if (g53) {
         known_after &= ~(1u << ax);  // machine coordinates: not in our frame
-        after_why[ax] = Unfit::UnknownAfterMachine;
+        after_why[ax] = Unfit::UnknownAfterMachine, reasons_changed = true;
         target[ax] = v * scale;
       } else if (relative) {
         target[ax] = pos_[ax] + v * scale;
@@ -322,7 +323,7 @@ class Interpreter {
       }
     if (kind == MoveKind::Other && motion_ != 0) {  // cycles end where they like
       for (int ax : {kX, kY, kZ})
-        if ((known_after >> ax) & 1u) after_why[ax] = Unfit::UnknownAfterCycle;
+        if ((known_after >> ax) & 1u) after_why[ax] = Unfit::UnknownAfterCycle, reasons_changed = true;
       known_after &= ~kXyzMask;
     }
     Move& m = add_move(bi, kind, target, known, turns);
@@ -359,8 +360,9 @@ class Interpreter {
                                               : Unfit::None;
     if (!m.known && is_feed(kind)) out_.unplaced.push_back({uint32_t(out_.moves.size() - 1), cause_block_});
     pos_ = target;
+    const bool known_changed = known_after != known_;
     known_ = known_after;
-    for (int ax = 0; ax < kAxisCount; ++ax) {
+    for (int ax = 0; ax < kAxisCount && (known_changed || reasons_changed); ++ax) {
       if ((known_ >> ax) & 1u) why_[ax] = {Unfit::None, -1};
       else if (after_why[ax] != why_[ax].reason) why_[ax] = {after_why[ax], int64_t(bi)};
     }
