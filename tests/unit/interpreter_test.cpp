@@ -95,9 +95,9 @@ TEST_CASE("what cannot be evaluated makes the position unknown; an unknown axis 
   // The feed moves that could not be placed, each with the block that made its axis unknown.
   REQUIRE(r.in.unplaced.size() == 2);
   CHECK(r.in.unplaced[0].move == 1);
-  CHECK(r.in.unplaced[0].cause_block == 1);
+  CHECK(r.in.unplaced[0].cause_line == 2);
   CHECK(r.in.unplaced[1].move == 3);
-  CHECK(r.in.unplaced[1].cause_block == 1);
+  CHECK(r.in.unplaced[1].cause_line == 2);
 }
 
 TEST_CASE("axes a program never sets are constant: a 2-D program's moves are placed", "[model]") {
@@ -123,7 +123,7 @@ TEST_CASE("after homing, a move that moves a homed axis is unplaced until the ax
   CHECK_FALSE(r.in.moves[5].known);  // Z from the home position
   CHECK(r.in.moves[6].known);
   REQUIRE(r.in.unplaced.size() == 2);
-  CHECK(r.in.unplaced[0].cause_block == 2);
+  CHECK(r.in.unplaced[0].cause_line == 3);
 }
 
 TEST_CASE("S on a feed move is the power in force along it", "[model]") {

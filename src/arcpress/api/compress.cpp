@@ -207,7 +207,7 @@ CompressResult compress(const std::string& name, std::string text, const Compres
   if (!opt.passthrough) {
     for (const LeftOut& g : left_out_moves(in, runs)) {
       NotFitted n{g.why, g.moves, prog.blocks[in.moves[g.first_move].block].line, 0};
-      if (g.cause_block >= 0 && is_position_unknown(g.why)) n.cause_line = prog.blocks[size_t(g.cause_block)].line;
+      if (is_position_unknown(g.why)) n.cause_line = g.cause_line;
       r.not_fitted.push_back(n);
     }
     // A program with G1 moves of which none could be fitted is told why, where something

@@ -265,7 +265,7 @@ std::vector<RunChain> chain_runs(const Interpretation& in, const std::vector<Run
 
 std::vector<LeftOut> left_out_moves(const Interpretation& in, const std::vector<Run>& runs) {
   std::vector<LeftOut> groups;
-  auto add = [&](Unfit why, uint32_t move, int64_t cause) {
+  auto add = [&](Unfit why, uint32_t move, uint32_t cause) {
     for (LeftOut& g : groups)
       if (g.why == why) {
         ++g.moves;
@@ -280,7 +280,7 @@ std::vector<LeftOut> left_out_moves(const Interpretation& in, const std::vector<
     const Move& m = in.moves[k];
     while (u < in.unplaced.size() && in.unplaced[u].move < k) ++u;
     if (m.kind != MoveKind::Line) continue;
-    const int64_t cause = u < in.unplaced.size() && in.unplaced[u].move == k ? in.unplaced[u].cause_block : -1;
+    const uint32_t cause = u < in.unplaced.size() && in.unplaced[u].move == k ? in.unplaced[u].cause_line : 0;
     add(m.unfit, k, cause);
   }
   return groups;

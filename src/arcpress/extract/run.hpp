@@ -70,7 +70,7 @@ struct LeftOut {
   Unfit why = Unfit::None;
   size_t moves = 0;
   uint32_t first_move = 0;  ///< the first such move
-  int64_t cause_block = -1; ///< unplaced moves: the block that made the first one's axis unknown (-1: never set)
+  uint32_t cause_line = 0;  ///< unplaced moves: the line that made the first one's axis unknown (0: never set)
 };
 std::vector<LeftOut> left_out_moves(const Interpretation& in, const std::vector<Run>& runs);
 

@@ -260,35 +260,36 @@ class LineLexer {
 
 }  // namespace
 
+size_t lex_line(Program& p, size_t begin, uint32_t line, DiagnosticSink& sink) {
+  const std::string& t = p.text;
+  const size_t nl = t.find('\n', begin);
+  Block b;
+  b.line = line;
+  b.begin = uint32_t(begin);
+  const size_t end = nl == std::string::npos ? t.size() : nl;
+  size_t content_end = end;
+  if (nl != std::string::npos) {
+    b.eol_length = 1;
+    if (end > begin && t[end - 1] == '\r') {
+      content_end = end - 1;
+      b.eol_length = 2;
+    }
+  }
+  b.length = uint32_t(content_end - begin);
+  b.first_word = uint32_t(p.words.size());
+  p.blocks.push_back(b);
+  LineLexer(p, p.blocks.back(), sink).run();
+  return nl == std::string::npos ? t.size() : nl + 1;
+}
+
 Program lex(std::string name, std::string text, DiagnosticSink& sink) {
   Program p;
   p.name = std::move(name);
   p.text = std::move(text);
-  const std::string& t = p.text;
-  p.blocks.reserve(t.size() / 24 + 1);
-  p.words.reserve(t.size() / 6 + 1);
-  size_t pos = 0;
+  p.blocks.reserve(p.text.size() / 24 + 1);
+  p.words.reserve(p.text.size() / 6 + 1);
   uint32_t line = 0;
-  while (pos < t.size()) {
-    size_t nl = t.find('\n', pos);
-    Block b;
-    b.line = ++line;
-    b.begin = uint32_t(pos);
-    size_t end = nl == std::string::npos ? t.size() : nl;
-    size_t content_end = end;
-    if (nl != std::string::npos) {
-      b.eol_length = 1;
-      if (end > pos && t[end - 1] == '\r') {
-        content_end = end - 1;
-        b.eol_length = 2;
-      }
-    }
-    b.length = uint32_t(content_end - pos);
-    b.first_word = uint32_t(p.words.size());
-    p.blocks.push_back(b);
-    LineLexer(p, p.blocks.back(), sink).run();
-    pos = nl == std::string::npos ? t.size() : nl + 1;
-  }
+  for (size_t pos = 0; pos < p.text.size();) pos = lex_line(p, pos, ++line, sink);
   return p;
 }
 

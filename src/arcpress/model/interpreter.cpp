@@ -35,17 +35,22 @@ constexpr double kSpindleUnknown = -1;
 
 class Interpreter {
  public:
-  Interpreter(const Program& p, const Dialect& d, DiagnosticSink& sink) : p_(p), d_(d), sink_(sink) {
-    frame_.diameter_mode = d.diameter_x;
-    out_.frames.push_back(frame_);
-    out_.move_of_block.assign(p.blocks.size(), -1);
-    out_.moves.reserve(p.blocks.size());
+  Interpreter(const Dialect& d, DiagnosticSink& sink, const ModalState& start) : d_(d), sink_(sink), s_(start) {}
+
+  void begin(const Program& p, Interpretation& out) {
+    p_ = &p;
+    o_ = &out;
+    out.frames.assign(1, s_.frame);
+    out.start = s_.pos;
+    out.start_known = (s_.known & kXyzMask) == kXyzMask;
   }
 
-  Interpretation run() {
-    for (size_t bi = 0; bi < p_.blocks.size(); ++bi) block(uint32_t(bi), p_.blocks[bi]);
-    return std::move(out_);
+  void step(uint32_t bi) {
+    if (o_->move_of_block.size() <= bi) o_->move_of_block.resize(bi + 1, -1);
+    block(bi, p_->blocks[bi]);
   }
+
+  const ModalState& state() const { return s_; }
 
  private:
   void block(uint32_t bi, const Block& b) {
@@ -59,8 +64,8 @@ class Interpreter {
         // Firmware M-codes with a text argument (a message, an object label, a printer check,
         // a file name) move nothing; M32 starts another program, and other host commands
         // (`$H` homing, `$J=` jogging, firmware macros) may move anything.
-        if (b.word_count > 0 && p_.words_begin(b)->letter == 'M' && !p_.words_begin(b)->is_expr &&
-            std::lround(p_.words_begin(b)->value) != 32)
+        if (b.word_count > 0 && p_->words_begin(b)->letter == 'M' && !p_->words_begin(b)->is_expr &&
+            std::lround(p_->words_begin(b)->value) != 32)
           return;
         forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterControl, bi);
         return;
@@ -84,7 +89,7 @@ class Interpreter {
     // Most blocks change no modal setting: copy the frame only when one is touched.
     std::optional<Frame> fedit;
     auto F = [&]() -> Frame& {
-      if (!fedit) fedit = frame_;
+      if (!fedit) fedit = s_.frame;
       return *fedit;
     };
     double feed = 0;
@@ -92,14 +97,14 @@ class Interpreter {
 
     bool repeated = false;  // a word the controller refuses to see twice
     uint32_t letters_seen = 0;
-    for (auto* w = p_.words_begin(b); w != p_.words_end(b); ++w) {
+    for (auto* w = p_->words_begin(b); w != p_->words_end(b); ++w) {
       char L = w->letter;
       if (std::string_view("XYZABCUVWEIJKRFP").find(L) != std::string_view::npos && !w->flag) {
         const uint32_t bit = 1u << (L - 'A');
         if (letters_seen & bit) {
           repeated = true;
           sink_.problem({b.line, w->col}, "E-MODEL-REPEATED-WORD",
-                        fmt::format("{} appears twice in the block ('{}'); controllers refuse it", L, p_.raw(b, *w)));
+                        fmt::format("{} appears twice in the block ('{}'); controllers refuse it", L, p_->raw(b, *w)));
         }
         letters_seen |= bit;
       }
@@ -115,8 +120,8 @@ class Interpreter {
       }
       if (w->is_expr) {
         if (L == 'G' || L == 'M') other_words = true, forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterExpression, bi);
-        if (L == 'F') feed_known_ = false;
-        if (L == 'S') spindle_ = kSpindleUnknown;
+        if (L == 'F') s_.feed_known = false;
+        if (L == 'S') s_.spindle = kSpindleUnknown;
         continue;
       }
       switch (L) {
@@ -132,9 +137,9 @@ class Interpreter {
               break;
             case 800: motion = 800; break;
             case 40: break;  // dwell
-            case 170: f_plane_ = Plane::XY; break;
-            case 180: f_plane_ = Plane::ZX; break;
-            case 190: f_plane_ = Plane::YZ; break;
+            case 170: s_.plane = Plane::XY; break;
+            case 180: s_.plane = Plane::ZX; break;
+            case 190: s_.plane = Plane::YZ; break;
             case 200: F().unit_mm = 25.4; break;
             case 210: F().unit_mm = 1.0; break;
             case 70: F().diameter_mode = true; break;
@@ -157,7 +162,7 @@ class Interpreter {
               break;
             case 530: g53 = true; break;
             case 540: case 550: case 560: case 570: case 580: case 590: case 591: case 592: case 593:
-              if (frame_.work_offset != g)  // same machine point, new coordinates
+              if (s_.frame.work_offset != g)  // same machine point, new coordinates
                 forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterOffset, bi);
               F().work_offset = g;
               break;
@@ -172,7 +177,7 @@ class Interpreter {
             default:
               sink_.problem({b.line, w->col}, "E-MODEL-GCODE",
                             fmt::format("{} is not modelled; the block is kept and not fitted",
-                                        p_.raw(b, *w)));
+                                        p_->raw(b, *w)));
               forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterUnmodelled, bi);
               break;
           }
@@ -208,7 +213,7 @@ class Interpreter {
           other_words = true;
           break;
         case 'S':  // spindle speed, or laser power on a feed move: a fitted block carries it
-          spindle_ = w->value;
+          s_.spindle = w->value;
           break;
         case 'N':
           break;
@@ -217,10 +222,10 @@ class Interpreter {
           break;
       }
     }
-    const Frame& fnow = fedit ? *fedit : frame_;
+    const Frame& fnow = fedit ? *fedit : s_.frame;
     if (feed_set) {
-      feed_mm_ = fnow.inverse_time ? feed : feed * fnow.unit_mm;
-      feed_known_ = true;
+      s_.feed_mm = fnow.inverse_time ? feed : feed * fnow.unit_mm;
+      s_.feed_known = true;
     }
 
     // G92 and G92.1 change the offsets; positions in mm stay where they are.
@@ -234,11 +239,11 @@ class Interpreter {
           continue;
         }
         double scale = kAxisIsLinear[ax] ? f.unit_mm : 1.0;
-        f.offset[ax] = pos_[ax] - value[ax] * scale;
+        f.offset[ax] = s_.pos[ax] - value[ax] * scale;
       }
     }
     if (fedit) set_frame(*fedit);
-    if (motion >= 0) motion_ = motion;
+    if (motion >= 0) s_.motion = motion;
 
     bool any_axis = false;
     for (int ax = 0; ax < kAxisCount; ++ax) any_axis |= words_seen[ax];
@@ -251,25 +256,25 @@ class Interpreter {
           forget(1u << ax, Unfit::UnknownAfterHoming, bi);
           // One stand-in for the home position, whatever came before, so that two programs
           // that home alike hold the same stand-in for an axis they do not set again.
-          pos_[ax] = 0;
+          s_.pos[ax] = 0;
         }
-      Move& m = add_move(bi, MoveKind::Other, pos_, false, 1);
-      m.unknown_axes = uint16_t(kAllAxes & ~known_);
+      Move& m = add_move(bi, MoveKind::Other, s_.pos, false, 1);
+      m.unknown_axes = uint16_t(kAllAxes & ~s_.known);
       m.end_known = false;
       return;
     }
     if (!any_axis || axis_consumer) {
       // Arc words without axes (a full circle in I/J form) still move along a path.
-      if (!(motion_ == 20 || motion_ == 30) || !(ijk_seen[0] || ijk_seen[1] || ijk_seen[2]) || axis_consumer)
+      if (!(s_.motion == 20 || s_.motion == 30) || !(ijk_seen[0] || ijk_seen[1] || ijk_seen[2]) || axis_consumer)
         return;
     }
 
-    const Frame& fr = frame_;
-    AxisValues target = pos_;
-    uint32_t known_after = known_;
+    const Frame& fr = s_.frame;
+    AxisValues target = s_.pos;
+    uint32_t known_after = s_.known;
     uint32_t written = 0;  // axes this block writes
     Unfit after_why[kAxisCount];
-    for (int ax = 0; ax < kAxisCount; ++ax) after_why[ax] = why_[ax].reason;
+    for (int ax = 0; ax < kAxisCount; ++ax) after_why[ax] = s_.why[ax].reason;
     bool reasons_changed = false;  // this block makes an axis unknown for a reason of its own
     for (int ax = 0; ax < kAxisCount; ++ax) {
       if (!words_seen[ax]) continue;
@@ -288,7 +293,7 @@ class Interpreter {
         after_why[ax] = Unfit::UnknownAfterMachine, reasons_changed = true;
         target[ax] = v * scale;
       } else if (relative) {
-        target[ax] = pos_[ax] + v * scale;
+        target[ax] = s_.pos[ax] + v * scale;
       } else {
         target[ax] = fr.to_mm(ax, v);
         known_after |= (1u << ax);
@@ -298,41 +303,41 @@ class Interpreter {
     MoveKind kind = MoveKind::Other;
     if (!g53) {
       // A dialect whose G18 arcs turn the other way is read back into RS274's sense here.
-      bool flip = d_.zx_reversed && f_plane_ == Plane::ZX;
-      if (motion_ == 0) kind = MoveKind::Rapid;
-      else if (motion_ == 10) kind = MoveKind::Line;
-      else if (motion_ == 20) kind = flip ? MoveKind::ArcCCW : MoveKind::ArcCW;
-      else if (motion_ == 30) kind = flip ? MoveKind::ArcCW : MoveKind::ArcCCW;
+      bool flip = d_.zx_reversed && s_.plane == Plane::ZX;
+      if (s_.motion == 0) kind = MoveKind::Rapid;
+      else if (s_.motion == 10) kind = MoveKind::Line;
+      else if (s_.motion == 20) kind = flip ? MoveKind::ArcCCW : MoveKind::ArcCW;
+      else if (s_.motion == 30) kind = flip ? MoveKind::ArcCW : MoveKind::ArcCCW;
     }
     // The axes the move moves: those it writes, and an arc's two plane axes, which it
     // moves around the centre whether it writes them or not. An axis it does not move
     // stays where it is, known or not (a 2-D program never sets Z; a lathe never sets Y),
     // so the move is placed where every axis it moves is known at both ends.
     uint32_t moved = written;
-    if (is_arc(kind)) moved |= (1u << axes_of(f_plane_).first) | (1u << axes_of(f_plane_).second);
-    const uint32_t unknown_moved = moved & ~(known_ & known_after);
+    if (is_arc(kind)) moved |= (1u << axes_of(s_.plane).first) | (1u << axes_of(s_.plane).second);
+    const uint32_t unknown_moved = moved & ~(s_.known & known_after);
     bool known = unknown_moved == 0;
     Unfit unplaced_why = Unfit::None;
     for (int ax = 0; ax < kAxisCount && !known; ++ax)
       if ((unknown_moved >> ax) & 1u) {
         // The axis unknown at the start says why; one this block makes unknown, this block.
-        const bool at_start = !((known_ >> ax) & 1u);
-        unplaced_why = at_start ? why_[ax].reason : after_why[ax];
-        cause_block_ = at_start ? why_[ax].block : int64_t(bi);
+        const bool at_start = !((s_.known >> ax) & 1u);
+        unplaced_why = at_start ? s_.why[ax].reason : after_why[ax];
+        s_.cause_line = at_start ? s_.why[ax].line : b.line;
         break;
       }
-    if (kind == MoveKind::Other && motion_ != 0) {  // cycles end where they like
+    if (kind == MoveKind::Other && s_.motion != 0) {  // cycles end where they like
       for (int ax : {kX, kY, kZ})
         if ((known_after >> ax) & 1u) after_why[ax] = Unfit::UnknownAfterCycle, reasons_changed = true;
       known_after &= ~kXyzMask;
     }
     Move& m = add_move(bi, kind, target, known, turns);
-    m.unknown_axes = uint16_t(kAllAxes & ~(known_ & known_after));
+    m.unknown_axes = uint16_t(kAllAxes & ~(s_.known & known_after));
     m.end_known = known || (moved & ~known_after) == 0;
     if (repeated && m.known) {
       m.known = false;
       unplaced_why = Unfit::RepeatedWord;
-      cause_block_ = bi;
+      s_.cause_line = b.line;
     }
     if (kind == MoveKind::ArcCW || kind == MoveKind::ArcCCW) {
       bool readable = true;
@@ -340,12 +345,12 @@ class Interpreter {
       if (!readable && m.known) {
         m.known = false;
         unplaced_why = Unfit::UnreadableArc;
-        cause_block_ = bi;
+        s_.cause_line = b.line;
       }
     }
     // A move along X, Y or Z, or one that goes nowhere at all (which the fitter steps over);
     // not one that moves only E or the extra axes (a retraction, a rotary index).
-    bool moved_xyz = target[kX] != pos_[kX] || target[kY] != pos_[kY] || target[kZ] != pos_[kZ];
+    bool moved_xyz = target[kX] != s_.pos[kX] || target[kY] != s_.pos[kY] || target[kZ] != s_.pos[kZ];
     m.unfit = !m.known                        ? (unplaced_why == Unfit::None ? Unfit::UnknownAfterUnmodelled : unplaced_why)
               : kind != MoveKind::Line        ? Unfit::NotLine
               : b.has_expr                    ? Unfit::Expression
@@ -355,33 +360,33 @@ class Interpreter {
               : other_words                   ? Unfit::OtherWords
               : fr.inverse_time               ? Unfit::InverseTime
               : fr.diameter_mode              ? Unfit::DiameterMode
-              : !feed_known_                  ? Unfit::FeedUnknown
-              : !(moved_xyz || target == pos_) ? Unfit::NoPathAxis
+              : !s_.feed_known                  ? Unfit::FeedUnknown
+              : !(moved_xyz || target == s_.pos) ? Unfit::NoPathAxis
                                               : Unfit::None;
-    if (!m.known && is_feed(kind)) out_.unplaced.push_back({uint32_t(out_.moves.size() - 1), cause_block_});
-    pos_ = target;
-    const bool known_changed = known_after != known_;
-    known_ = known_after;
+    if (!m.known && is_feed(kind)) o_->unplaced.push_back({uint32_t(o_->moves.size() - 1), s_.cause_line});
+    s_.pos = target;
+    const bool known_changed = known_after != s_.known;
+    s_.known = known_after;
     for (int ax = 0; ax < kAxisCount && (known_changed || reasons_changed); ++ax) {
-      if ((known_ >> ax) & 1u) why_[ax] = {Unfit::None, -1};
-      else if (after_why[ax] != why_[ax].reason) why_[ax] = {after_why[ax], int64_t(bi)};
+      if ((s_.known >> ax) & 1u) s_.why[ax] = {Unfit::None, 0};
+      else if (after_why[ax] != s_.why[ax].reason) s_.why[ax] = {after_why[ax], b.line};
     }
   }
 
   /// Axes in `mask` become unknown, `why`, from block `bi` on (the latest reason is kept).
   void forget(uint32_t mask, Unfit why, uint32_t bi) {
     for (int ax = 0; ax < kAxisCount; ++ax)
-      if ((mask >> ax) & 1u) why_[ax] = {why, int64_t(bi)};
-    known_ &= ~mask;
+      if ((mask >> ax) & 1u) s_.why[ax] = {why, p_->blocks[bi].line};
+    s_.known &= ~mask;
   }
 
   Vec3 arc_center(const Block& b, const Frame& fr, const AxisValues& target, const double* ijk,
                   const bool* ijk_seen, bool r_seen, double r_value, MoveKind kind, bool& known) {
-    auto a = axes_of(f_plane_);
+    auto a = axes_of(s_.plane);
     // I/J/K belong to X/Y/Z respectively.
-    Vec3 c(pos_[kX], pos_[kY], pos_[kZ]);
+    Vec3 c(s_.pos[kX], s_.pos[kY], s_.pos[kZ]);
     if (r_seen) {
-      Vec2 s(pos_[a.first], pos_[a.second]), e(target[a.first], target[a.second]);
+      Vec2 s(s_.pos[a.first], s_.pos[a.second]), e(target[a.first], target[a.second]);
       double r = r_value * fr.unit_mm;
       Vec2 chord = e - s;
       double d = chord.norm();
@@ -425,9 +430,9 @@ class Interpreter {
       if (k == a.normal) continue;
       double off = ijk_seen[k] ? ijk[k] : 0.0;
       if (absolute)
-        c[k] = ijk_seen[k] ? fr.to_mm(k, off) : pos_[k];
+        c[k] = ijk_seen[k] ? fr.to_mm(k, off) : s_.pos[k];
       else
-        c[k] = pos_[k] + off * fr.unit_mm;
+        c[k] = s_.pos[k] + off * fr.unit_mm;
     }
     return c;
   }
@@ -436,57 +441,68 @@ class Interpreter {
     Move m;
     m.to = to;
     m.block = bi;
-    m.frame = uint32_t(out_.frames.size() - 1);
+    m.frame = uint32_t(o_->frames.size() - 1);
     m.kind = kind;
-    m.plane = f_plane_;
-    m.feed_mm_min = feed_mm_;
+    m.plane = s_.plane;
+    m.feed_mm_min = s_.feed_mm;
     m.known = known;
     m.turns = int16_t(turns);
-    m.spindle = spindle_;
-    out_.move_of_block[bi] = int32_t(out_.moves.size());
-    out_.moves.push_back(m);
-    return out_.moves.back();
+    m.spindle = s_.spindle;
+    o_->move_of_block[bi] = int32_t(o_->moves.size());
+    o_->moves.push_back(m);
+    return o_->moves.back();
   }
 
   void set_frame(const Frame& f) {
-    if (f.same_as(frame_)) return;
-    frame_ = f;
-    out_.frames.push_back(f);
+    if (f.same_as(s_.frame)) return;
+    s_.frame = f;
+    o_->frames.push_back(f);
   }
 
   /// A word's number as the controller reads it: where the dialect counts numbers without
   /// a decimal point in least increments (Fanuc "X1" = 0.001 mm), scaled to program units.
   double number(const Word& w) const {
     if (!d_.decimal_point || w.has_point || w.is_expr) return w.value;
-    double inc = frame_.unit_mm == 1.0 ? d_.integer_increment_mm : d_.integer_increment_inch;
+    double inc = s_.frame.unit_mm == 1.0 ? d_.integer_increment_mm : d_.integer_increment_inch;
     return inc > 0 ? w.value * inc : w.value;
   }
 
-  const Program& p_;
   const Dialect& d_;
   DiagnosticSink& sink_;
-  Interpretation out_;
-  Frame frame_;
-  Plane f_plane_ = Plane::XY;
-  AxisValues pos_{};
-  uint32_t known_ = 1u << kE;  // bit per axis: position known; E is a counter from 0
-  /// Per axis not known: why, and the block that made it so (-1: never set).
-  struct Why {
-    Unfit reason = Unfit::UnknownAtStart;
-    int64_t block = -1;
-  };
-  Why why_[kAxisCount] = {};
-  int64_t cause_block_ = -1;  // of the last unplaced move
-  double spindle_ = 0;   // S in force
-  int motion_ = 0;       // modal motion G-code ×10; G0 at power-up
-  double feed_mm_ = 0;
-  bool feed_known_ = false;
+  ModalState s_;
+  const Program* p_ = nullptr;
+  Interpretation* o_ = nullptr;
 };
 
 }  // namespace
 
-Interpretation interpret(const Program& program, DiagnosticSink& sink, const Dialect& dialect) {
-  return Interpreter(program, dialect, sink).run();
+ModalState initial_state(const Dialect& dialect) {
+  ModalState s;
+  s.frame.diameter_mode = dialect.diameter_x;
+  return s;
+}
+
+struct ModalInterpreter::Impl : Interpreter {
+  using Interpreter::Interpreter;
+};
+
+ModalInterpreter::ModalInterpreter(const Dialect& dialect, DiagnosticSink& sink, const ModalState& start)
+    : impl_(std::make_unique<Impl>(dialect, sink, start)) {}
+ModalInterpreter::~ModalInterpreter() = default;
+ModalInterpreter::ModalInterpreter(ModalInterpreter&&) noexcept = default;
+void ModalInterpreter::begin(const Program& program, Interpretation& out) { impl_->begin(program, out); }
+void ModalInterpreter::step(uint32_t block) { impl_->step(block); }
+const ModalState& ModalInterpreter::state() const { return impl_->state(); }
+
+Interpretation interpret(const Program& program, DiagnosticSink& sink, const Dialect& dialect, ModalState* state) {
+  Interpretation out;
+  Interpreter it(dialect, sink, state ? *state : initial_state(dialect));
+  it.begin(program, out);
+  out.move_of_block.assign(program.blocks.size(), -1);
+  out.moves.reserve(program.blocks.size());
+  for (size_t bi = 0; bi < program.blocks.size(); ++bi) it.step(uint32_t(bi));
+  if (state) *state = it.state();
+  return out;
 }
 
 }  // namespace arcpress

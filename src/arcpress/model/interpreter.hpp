@@ -3,6 +3,9 @@
 // group that changes how words are read. What it cannot evaluate (expressions, flow
 // control, canned cycles, machine-coordinate moves) makes the position unknown and is a
 // barrier that later stages never fit across.
+#include <array>
+#include <memory>
+
 #include "arcpress/core/diagnostic.hpp"
 #include "arcpress/dialect/dialect.hpp"
 #include "arcpress/lex/block.hpp"
@@ -10,8 +13,60 @@
 
 namespace arcpress {
 
+/// What the interpreter knows between two blocks: every modal setting, the position and
+/// which axes of it are known and why not. A program read in pieces (a stream) is read on
+/// from the state the previous piece ended in, exactly as if it were read whole.
+struct ModalState {
+  Frame frame;
+  Plane plane = Plane::XY;
+  AxisValues pos{};                 ///< mm (degrees for A/B/C); stand-ins where not known
+  uint32_t known = 1u << kE;        ///< bit per axis: position known; E is a counter from 0
+  /// Per axis whose position is not known: why, and the line that made it so (0: never set).
+  struct Why {
+    Unfit reason = Unfit::UnknownAtStart;
+    uint32_t line = 0;
+  };
+  std::array<Why, kAxisCount> why{};
+  uint32_t cause_line = 0;          ///< of the last unplaced move
+  double spindle = 0;               ///< S in force
+  int motion = 0;                   ///< modal motion G-code x10; G0 at power-up
+  double feed_mm = 0;               ///< F in force, mm/min (or inverse time)
+  bool feed_known = false;
+
+  /// Whether a reader in state `o` reads every following block as one in this state does:
+  /// the same position, known axes, frame, plane, feed and spindle, and (where
+  /// `with_motion`) modal motion. The reasons axes are unknown, and their lines, are only told.
+  bool reads_as(const ModalState& o, bool with_motion) const {
+    return frame.same_as(o.frame) && plane == o.plane && pos == o.pos && known == o.known && spindle == o.spindle &&
+           feed_known == o.feed_known && (!feed_known || feed_mm == o.feed_mm) && (!with_motion || motion == o.motion);
+  }
+};
+
+/// The state at the start of a program read by `dialect`'s controller.
+ModalState initial_state(const Dialect& dialect);
+
+/// Reads a program block by block, from a given state: for a program that arrives in pieces.
+class ModalInterpreter {
+ public:
+  ModalInterpreter(const Dialect& dialect, DiagnosticSink& sink, const ModalState& start);
+  ~ModalInterpreter();
+  ModalInterpreter(ModalInterpreter&&) noexcept;
+  /// Reads blocks of `program` into `out` from here on (out.start is the present position);
+  /// both must outlive the step() calls, and `program` may grow between them.
+  void begin(const Program& program, Interpretation& out);
+  /// Reads block `block` of the program; blocks are read in order, each once.
+  void step(uint32_t block);
+  const ModalState& state() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
 /// Reads `program` as `dialect`'s controller would (centre form, G18 direction, numbers
-/// without a decimal point); the default is generic RS274.
-Interpretation interpret(const Program& program, DiagnosticSink& sink, const Dialect& dialect = Dialect{});
+/// without a decimal point); the default is generic RS274. With `state`, reading starts
+/// from it and it is left as the program ends.
+Interpretation interpret(const Program& program, DiagnosticSink& sink, const Dialect& dialect = Dialect{},
+                         ModalState* state = nullptr);
 
 }  // namespace arcpress

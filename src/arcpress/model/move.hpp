@@ -119,7 +119,7 @@ struct Move {
 /// A feed move (G1/G2/G3) that could not be placed, and what made its axis unknown.
 struct UnplacedMove {
   uint32_t move = 0;        ///< index into Interpretation::moves
-  int64_t cause_block = -1; ///< the block that made the axis unknown; -1: never set
+  uint32_t cause_line = 0;  ///< the line that made the axis unknown; 0: never set
 };
 
 /// A feed move from an unknown position into a known one (the first move after homing):

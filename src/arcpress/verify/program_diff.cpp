@@ -535,8 +535,7 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
       size_t& count = entry ? s.entry_moves : s.unplaced_feed_moves;
       if (count++ > 0) continue;
       std::string why = describe(m.unfit);
-      if (u.cause_block >= 0 && is_position_unknown(m.unfit))
-        why += fmt::format(" at line {}", p.blocks[size_t(u.cause_block)].line);
+      if (u.cause_line > 0 && is_position_unknown(m.unfit)) why += fmt::format(" at line {}", u.cause_line);
       (entry ? s.first_entry_line : s.first_unplaced_line) = p.blocks[m.block].line;
       (entry ? s.entry_reason : s.unplaced_reason) = std::move(why);
     }
