@@ -48,11 +48,13 @@ struct CompressResult {
   std::string output;
   size_t blocks_in = 0;
   size_t bytes_in = 0;
+  size_t bytes_out = 0;
   EmitStats stats;
   size_t forced_kinks = 0;   ///< smooth joints where the band forced a tangent change
   /// Where they are: the input line of the move that starts at each, in order.
   std::vector<uint32_t> forced_kink_lines;
   size_t g1_moves = 0;       ///< G1 moves in the input
+  size_t runs_fitted = 0;    ///< runs of G1 moves the fitter was given
   /// Runs written as the input's own moves because the check refused their fit (a fitter or
   /// rounding fault on extreme input): the rest of the program is still compressed.
   size_t runs_kept_as_input = 0;

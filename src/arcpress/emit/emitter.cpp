@@ -47,7 +47,12 @@ class Emitter {
   Emitter(const Program& p, const Interpretation& in, const EmitOptions& opt, EmitStats* stats)
       : p_(p), in_(in), stats_(stats), opt_(opt) {
     out_.reserve(p.text.size());
-    detect_padding();
+    const OutputHabits h = opt.start.habits ? *opt.start.habits : output_habits(p);
+    padded_ = h.padded;
+    keep_point_ = h.keep_point;
+    in_motion_ = opt.start.in_motion;
+    out_motion_ = opt.start.out_motion;
+    header_done_ = opt.start.header_done;
   }
 
   std::string run(const std::vector<Run>& runs, const std::vector<FitResult>& fits) {
@@ -80,25 +85,6 @@ class Emitter {
   }
 
  private:
-  /// Program-wide habits: G01 or G1, and whole numbers written as "1." or "1".
-  void detect_padding() {
-    size_t padded = 0, plain = 0, whole_point = 0, whole_bare = 0;
-    for (const auto& b : p_.blocks) {
-      for (auto* w = p_.words_begin(b); w != p_.words_end(b); ++w)
-        if (moves_axis(w->letter) && w->decimals == 0 && !w->is_expr && !w->flag) (w->has_point ? whole_point : whole_bare)++;
-    }
-    keep_point_ = whole_point > 0 && whole_bare == 0;
-    for (const auto& b : p_.blocks) {
-      for (auto* w = p_.words_begin(b); w != p_.words_end(b); ++w) {
-        if (w->letter != 'G' || w->is_expr || !is_motion_gcode(w->value)) continue;
-        auto t = p_.raw(b, *w);
-        (t.size() >= 3 && t[1] == '0' && t[2] >= '0' && t[2] <= '3') ? ++padded : ++plain;
-      }
-      if (padded + plain > 200) break;
-    }
-    padded_ = padded > plain;
-  }
-
   /// Copies a block as it is, restating the motion word when the output's modal motion
   /// differs from the input's at this point (after a run that ended in G2/G3).
   void copy_block(const Block& b) {
@@ -554,6 +540,26 @@ class Emitter {
 };
 
 }  // namespace
+
+OutputHabits output_habits(const Program& p) {
+  OutputHabits h;
+  size_t padded = 0, plain = 0, whole_point = 0, whole_bare = 0;
+  for (const auto& b : p.blocks) {
+    for (auto* w = p.words_begin(b); w != p.words_end(b); ++w)
+      if (moves_axis(w->letter) && w->decimals == 0 && !w->is_expr && !w->flag) (w->has_point ? whole_point : whole_bare)++;
+  }
+  h.keep_point = whole_point > 0 && whole_bare == 0;
+  for (const auto& b : p.blocks) {
+    for (auto* w = p.words_begin(b); w != p.words_end(b); ++w) {
+      if (w->letter != 'G' || w->is_expr || !is_motion_gcode(w->value)) continue;
+      auto t = p.raw(b, *w);
+      (t.size() >= 3 && t[1] == '0' && t[2] >= '0' && t[2] <= '3') ? ++padded : ++plain;
+    }
+    if (padded + plain > 200) break;
+  }
+  h.padded = padded > plain;
+  return h;
+}
 
 std::string emit_program(const Program& program, const Interpretation& in, const std::vector<Run>& runs,
                          const std::vector<FitResult>& fits, const EmitOptions& options, EmitStats* stats) {

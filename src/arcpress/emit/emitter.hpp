@@ -3,6 +3,7 @@
 // Blocks outside runs, and single-move lines the fitter kept, are copied byte for byte;
 // new blocks copy the look of the blocks they replace (case, spacing, G1 vs G01, the
 // input's own number text for every coordinate that comes from the input).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,23 @@ struct EmitStats {
   std::vector<std::pair<uint32_t, uint32_t>> run_lines;
 };
 
+/// Program-wide habits of the input that new blocks copy: G01 or G1, whole numbers as "1." or "1".
+struct OutputHabits {
+  bool padded = false;
+  bool keep_point = false;
+};
+/// The habits of `program` (the first 200 motion words decide G01 or G1).
+OutputHabits output_habits(const Program& program);
+
+/// How the output stands before the first block of a program emitted in pieces (a stream):
+/// the defaults are a program's start.
+struct EmitStart {
+  int in_motion = 0;   ///< modal motion (G x10) of the input there
+  int out_motion = 0;  ///< ... and of the output; -1: not known (the first block that relies on it states it)
+  bool header_done = false;  ///< the dialect's arc header is written, or the program set the centre mode
+  std::optional<OutputHabits> habits;  ///< the program's, found in its first piece; absent: this piece's own
+};
+
 struct EmitOptions {
   /// The band the fit was made for: every arc is re-checked against it after rounding.
   double band_mm = 0.01;
@@ -46,6 +64,7 @@ struct EmitOptions {
   /// Threads that compose the runs' new blocks (0: one per hardware thread). The text is the
   /// same for any number.
   unsigned threads = 1;
+  EmitStart start;
 };
 
 /// Writes the program with each run replaced by its fit. Every arc is printed, read back

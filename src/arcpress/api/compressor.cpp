@@ -1,0 +1,273 @@
+#include "arcpress/api/compressor.hpp"
+
+#include <condition_variable>
+#include <deque>
+#include <exception>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "arcpress/api/piece.hpp"
+#include "arcpress/core/error.hpp"
+#include "arcpress/core/workers.hpp"
+#include "arcpress/lex/lexer.hpp"
+#include "arcpress/lex/refusal_scan.hpp"
+#include "arcpress/model/interpreter.hpp"
+
+namespace arcpress {
+namespace {
+
+/// Whether the block sets the arc centre mode itself (G90.1 or G91.1).
+bool sets_centre_mode(const Program& p, const Block& b) {
+  for (const Word* w = p.words_begin(b); w != p.words_end(b); ++w)
+    if (w->letter == 'G' && !w->is_expr && (std::lround(w->value * 10) == 901 || std::lround(w->value * 10) == 911))
+      return true;
+  return false;
+}
+
+/// Whether no chain of runs goes on across the end of move `m`: it is no move a fit may
+/// rewrite and no input arc a chain keeps tangent to (chain_runs() closes its chain there).
+bool ends_chains(const Move& m) { return !m.fittable() && !(is_arc(m.kind) && m.known); }
+
+}  // namespace
+
+struct Compressor::Impl {
+  struct Slot {
+    std::unique_ptr<Piece> piece;
+    bool done = false;
+  };
+
+  Impl(std::string n, const CompressOptions& o, DiagnosticSink& s)
+      : name(std::move(n)), opt(o), sink(s), reader(o.dialect, s, initial_state(o.dialect)) {
+    const size_t threads = worker_count(opt.threads, size_t(-1));
+    limit = kPiecesInFlight * threads;
+    total.ok = true;
+    total.verified = opt.verify && !opt.passthrough;
+    total.unplaced_kept = true;
+    total.band_mm = opt.fit.tolerance_mm;
+    if (threads > 1)
+      for (size_t w = 0; w < threads; ++w) workers.emplace_back([this] { work(); });
+  }
+
+  ~Impl() {
+    {
+      std::lock_guard lk(mu);
+      stopping = true;
+    }
+    cv_work.notify_all();
+    for (auto& t : workers) t.join();
+  }
+
+  void push(std::string_view bytes) {
+    rethrow();
+    if (failed) return;
+    bytes_read += bytes.size();
+    pending.append(bytes);
+    size_t pos = 0;
+    for (size_t nl; !failed && (nl = pending.find('\n', pos)) != std::string::npos; pos = nl + 1)
+      add_line(std::string_view(pending).substr(pos, nl + 1 - pos));
+    pending.erase(0, pos);
+    release(false);
+  }
+
+  void finish() {
+    rethrow();
+    if (!failed && !pending.empty()) add_line(pending);
+    pending.clear();
+    if (!failed && cur) {
+      cur->last = true;
+      close_piece(true);
+    }
+    release(true);
+    // A program with G1 moves of which none could be fitted is told why, where something
+    // kept them from it (not where each is alone already, as in a program fitted before).
+    const auto& nf = total.not_fitted;
+    const auto most = std::max_element(nf.begin(), nf.end(), [](const NotFitted& x, const NotFitted& y) {
+      return (x.why == Unfit::None ? 0 : x.moves) < (y.why == Unfit::None ? 0 : y.moves);
+    });
+    if (!failed && !opt.passthrough && total.g1_moves > 0 && total.runs_fitted == 0 && most != nf.end() &&
+        most->why != Unfit::None)
+      sink.warning({most->first_line, 1}, "W-FIT-NONE",
+                   fmt::format("none of the {} G1 moves could be fitted; {} of them: {}{} (see --stats)",
+                               total.g1_moves, most->moves, describe(most->why),
+                               most->cause_line ? fmt::format(" at line {}", most->cause_line) : std::string()));
+    std::sort(total.forced_kink_lines.begin(), total.forced_kink_lines.end());
+    total.forced_kink_lines.erase(std::unique(total.forced_kink_lines.begin(), total.forced_kink_lines.end()),
+                                  total.forced_kink_lines.end());
+    total.forced_kinks = total.forced_kink_lines.size();
+    std::sort(total.comparison.kink_lines.begin(), total.comparison.kink_lines.end());
+  }
+
+  size_t take(std::string& out) {
+    rethrow();
+    release(false);
+    const size_t n = ready.size();
+    if (out.empty()) out.swap(ready);
+    else out += ready;
+    ready.clear();
+    return n;
+  }
+
+  /// One whole line (with its end of line, or the program's last without).
+  void add_line(std::string_view text) {
+    if (!cur) open_piece();
+    Program& p = cur->program;
+    const size_t begin = p.text.size();
+    p.text.append(text);
+    lex_line(p, begin, ++line, sink);
+    const uint32_t bi = uint32_t(p.blocks.size() - 1);
+    reader.step(bi);
+    if (sink.error_count() > 0) {  // strict mode: nothing more is written
+      failed = true;
+      total.ok = false;
+      ready.clear();
+      return;
+    }
+    if (p.text.size() < kPieceBytes) return;
+    const int32_t m = cur->in.move_of_block[bi];
+    if (m >= 0 && ends_chains(cur->in.moves[size_t(m)])) {
+      close_piece(true);
+    } else if (p.text.size() >= kMaxPieceBytes) {
+      ++forced;
+      close_piece(false);
+    }
+  }
+
+  void open_piece() {
+    cur = std::make_unique<Piece>();
+    cur->index = pieces++;
+    cur->program.name = name;
+    cur->start = reader.state();
+    cur->emit = next_emit;
+    reader.begin(cur->program, cur->in);
+  }
+
+  void close_piece(bool clean) {
+    Piece& p = *cur;
+    p.end = reader.state();
+    p.clean_end = clean;
+    if (!habits) habits = output_habits(p.program);
+    p.emit.habits = habits;
+    scan_refusals(p.program, opt.dialect, sink);
+    for (const Block& b : p.program.blocks) centre_mode_set = centre_mode_set || sets_centre_mode(p.program, b);
+    next_emit.in_motion = p.end.motion;
+    next_emit.out_motion = clean ? p.end.motion : -1;
+    next_emit.header_done = centre_mode_set;
+    dispatch(std::move(cur));
+  }
+
+  void dispatch(std::unique_ptr<Piece> piece) {
+    if (workers.empty()) {
+      compress_piece(*piece, opt);
+      flight.push_back({std::move(piece), true});
+      release(false);
+      return;
+    }
+    {
+      std::lock_guard lk(mu);
+      flight.push_back({std::move(piece), false});
+      todo.push_back(&flight.back());
+    }
+    cv_work.notify_one();
+    while (true) {
+      release(false);
+      std::unique_lock lk(mu);
+      if (flight.size() < limit || failure) break;
+      cv_done.wait(lk, [&] { return flight.front().done || failure; });
+    }
+    rethrow();
+  }
+
+  /// Moves the finished pieces at the front, in order, into `ready` and the result; with
+  /// `all`, waits for every piece.
+  void release(bool all) {
+    while (true) {
+      Slot slot;
+      {
+        std::unique_lock lk(mu);
+        if (all) cv_done.wait(lk, [&] { return flight.empty() || flight.front().done || failure; });
+        if (failure || flight.empty() || !flight.front().done) break;
+        slot = std::move(flight.front());
+        flight.pop_front();
+      }
+      if (failed) continue;
+      add_piece(total, *slot.piece, lines_out);
+      lines_out += slot.piece->output_lines;
+      ready += slot.piece->result.output;
+    }
+    rethrow();
+  }
+
+  void work() {
+    while (true) {
+      Slot* slot = nullptr;
+      {
+        std::unique_lock lk(mu);
+        cv_work.wait(lk, [&] { return stopping || !todo.empty(); });
+        if (todo.empty()) return;
+        slot = todo.front();
+        todo.pop_front();
+      }
+      std::exception_ptr err;
+      try {
+        compress_piece(*slot->piece, opt);
+      } catch (...) {  // the pipeline does not throw for input; an allocation can
+        err = std::current_exception();
+      }
+      {
+        std::lock_guard lk(mu);
+        slot->done = true;
+        if (err && !failure) failure = err;
+      }
+      cv_done.notify_all();
+    }
+  }
+
+  void rethrow() {
+    std::lock_guard lk(mu);
+    if (failure) std::rethrow_exception(failure);
+  }
+
+  std::string name;
+  CompressOptions opt;
+  DiagnosticSink& sink;
+  ModalInterpreter reader;
+  std::string pending;          // bytes after the last whole line
+  std::unique_ptr<Piece> cur;   // the piece being read
+  uint32_t line = 0;
+  size_t pieces = 0, bytes_read = 0, forced = 0, lines_out = 0, limit = 1;
+  bool centre_mode_set = false;
+  bool failed = false;
+  std::optional<OutputHabits> habits;
+  EmitStart next_emit;
+  CompressResult total;
+  std::string ready;            // output released and not yet taken
+
+  std::mutex mu;
+  std::condition_variable cv_work, cv_done;
+  std::deque<Slot> flight;      // pieces in program order, from the oldest not released
+  std::deque<Slot*> todo;       // ... not yet taken by a worker
+  std::exception_ptr failure;
+  bool stopping = false;
+  std::vector<std::thread> workers;
+};
+
+Compressor::Compressor(std::string name, const CompressOptions& opt, DiagnosticSink& sink) {
+  check_options(opt.fit);
+  if (opt.arc_format == ArcFormat::Radius && !opt.dialect.radius_word)
+    throw Error(kExitInput, opt.dialect.name + " does not read R-form arcs; use I/J/K");
+  sink.set_strict(opt.strict);
+  impl_ = std::make_unique<Impl>(std::move(name), opt, sink);
+}
+Compressor::~Compressor() = default;
+void Compressor::push(std::string_view bytes) { impl_->push(bytes); }
+size_t Compressor::take(std::string& out) { return impl_->take(out); }
+void Compressor::finish() { impl_->finish(); }
+const CompressResult& Compressor::result() const { return impl_->total; }
+size_t Compressor::bytes_read() const { return impl_->bytes_read; }
+size_t Compressor::forced_cuts() const { return impl_->forced; }
+
+}  // namespace arcpress

@@ -1,0 +1,65 @@
+#pragma once
+// The streaming engine: a program compressed as it arrives, in bounded memory.
+//
+// Bytes pushed in are cut into whole lines, lexed and read by the modal interpreter on the
+// caller's thread, and gathered into pieces (piece.hpp) of about kPieceBytes: a piece ends
+// after the first move no fit may join (a rapid, a retraction, a move with a comment or
+// from an unknown position...) once it holds that much, so a chain of runs is never cut
+// there and the fit is the one the whole program would get; a path that goes on for
+// kMaxPieceBytes without one is cut at a vertex (a forced cut, counted in the result). Each
+// closed piece is fitted, written and checked on a worker thread; finished pieces are
+// released in program order. At most kPiecesInFlight pieces per worker wait or are worked
+// on, so memory does not grow with the program: push() waits for the oldest while they are
+// that many. The text is the same for any number of threads and any way the bytes are cut
+// into pushes.
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include "arcpress/api/arcpress.hpp"
+
+namespace arcpress {
+
+/// Input bytes a piece gathers before it may end at the next move no fit joins.
+inline constexpr size_t kPieceBytes = size_t(1) << 17;
+/// Input bytes after which a piece ends at the next vertex whatever it is (a forced cut).
+inline constexpr size_t kMaxPieceBytes = size_t(1) << 20;
+/// Pieces per worker thread that may be read, queued, worked on or waiting for their turn.
+inline constexpr size_t kPiecesInFlight = 2;
+
+class Compressor {
+ public:
+  /// Compresses the program called `name` with `opt` (checked by check_options(): throws
+  /// Error(kExitInput) for an option out of range). Diagnostics go to `sink`, which must
+  /// outlive the compressor; it is only written on the calls' thread.
+  Compressor(std::string name, const CompressOptions& opt, DiagnosticSink& sink);
+  ~Compressor();
+  Compressor(const Compressor&) = delete;
+  Compressor& operator=(const Compressor&) = delete;
+
+  /// Takes the next bytes of the program, cut anywhere (in a line, in a CRLF). May wait for
+  /// the workers while the pieces in flight are as many as allowed.
+  void push(std::string_view bytes);
+  /// Appends the output finished so far, in order, to `out` and returns how many bytes that
+  /// was. Output is final once taken: it is never revised.
+  size_t take(std::string& out);
+  /// Ends the input and waits for every piece; take() then gives the rest of the output.
+  void finish();
+
+  /// The counts and checks of the pieces taken so far (all of them after finish()). `ok` is
+  /// false once the input has an error (strict mode): nothing after it is written, and what
+  /// was taken before must be thrown away, as must everything when !within_band().
+  const CompressResult& result() const;
+  /// Bytes pushed so far, for progress.
+  size_t bytes_read() const;
+  /// Pieces cut at a vertex because a path went on for kMaxPieceBytes without a move that
+  /// ends it (see the header's comment), so far.
+  size_t forced_cuts() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace arcpress

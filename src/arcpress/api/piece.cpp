@@ -1,0 +1,353 @@
+#include "arcpress/api/piece.hpp"
+
+#include <algorithm>
+#include <iterator>
+#include <numeric>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "arcpress/extract/run.hpp"
+#include "arcpress/fit/fitter.hpp"
+#include "arcpress/lex/lexer.hpp"
+
+namespace arcpress {
+
+void verify_piece_output(const Program& input, const Interpretation& in, const CompressOptions& opt, CompressResult& r,
+                         std::span<const Run> runs, const ModalState& start, const ModalState* end, bool with_motion) {
+  const std::string name = input.name + " (output)";
+  DiagnosticSink out_sink(name);
+  Program out_prog = lex(name, r.output, out_sink);
+  ModalState out_state = start;
+  Interpretation out_in = interpret(out_prog, out_sink, opt.dialect, &out_state);
+  CompareOptions co;
+  co.tolerance_mm = opt.fit.tolerance_mm;
+  co.g1_angle_deg = opt.fit.g1_angle_deg;
+  co.corner_angle_deg = opt.fit.corner_angle_deg;
+  if (!runs.empty()) {
+    co.fitted_plane.reserve(in.moves.size());
+    for (const Move& m : in.moves) co.fitted_plane.push_back(m.plane);
+    for (const Run& run : runs)
+      std::fill_n(co.fitted_plane.begin() + run.first_move, run.move_count, run.plane);
+  }
+  r.comparison = compare_paths(input, in, out_prog, out_in, co);
+  DiffOptions dopt;
+  dopt.tolerance_mm = opt.fit.tolerance_mm;
+  dopt.top = 1;
+  dopt.threads = opt.threads;
+  dopt.feed = false;  // compare_paths() pairs the moves and compares their feed exactly
+  // compare_paths() measured each output move against the input it replaces, which is no
+  // nearer than the nearest input anywhere: the whole-path measure needs to be exact only
+  // near that maximum (or the band, below it), where it can confirm or refute it.
+  dopt.least_mm = std::max(0.0, std::min(r.comparison.max_deviation_mm, opt.fit.tolerance_mm) * (1 - kReadingShare));
+  r.check = diff_programs(input, in, out_prog, out_in, dopt);
+  if (out_sink.error_count() > 0)
+    r.check.findings.insert(r.check.findings.begin(), "the output does not read back: " + out_sink.format_all());
+  // What follows is read by the controller from the state the output leaves: it must be
+  // the one the input leaves there.
+  if (end && !out_state.reads_as(*end, with_motion))
+    r.check.findings.push_back(fmt::format("the output leaves the controller in another state than the input after "
+                                           "input line {}",
+                                           input.blocks.empty() ? 0 : input.blocks.back().line));
+  // Feed moves that cannot be placed are not measured by either check: they must be the
+  // input's own, one for one, as read (kind, end point as far as it is known, why).
+  r.unplaced_kept = in.unplaced.size() == out_in.unplaced.size();
+  for (size_t k = 0; k < in.unplaced.size() && r.unplaced_kept; ++k) {
+    const Move& ma = in.moves[in.unplaced[k].move];
+    const Move& mb = out_in.moves[out_in.unplaced[k].move];
+    r.unplaced_kept = ma.kind == mb.kind && ma.to == mb.to && ma.unfit == mb.unfit && ma.unknown_axes == mb.unknown_axes;
+  }
+  if (!r.unplaced_kept)
+    r.check.findings.push_back(fmt::format("feed moves whose position is not known: {} in the input, {} in the output, "
+                                           "not the same moves",
+                                           in.unplaced.size(), out_in.unplaced.size()));
+  // Arcs too big to follow within the band, and moves too far from the origin to measure,
+  // are as many in the output as in the input (no fit writes one; compare_paths() has
+  // measured every output move against the input it replaces, as well as doubles allow).
+  if (r.check.a.unmeasured_arcs != r.check.b.unmeasured_arcs || r.check.a.far_moves < r.check.b.far_moves) {
+    r.unplaced_kept = false;
+    r.check.findings.push_back(fmt::format("moves too big or too far to measure: {} in the input, {} in the output",
+                                           r.check.a.unmeasured_arcs + r.check.a.far_moves,
+                                           r.check.b.unmeasured_arcs + r.check.b.far_moves));
+  }
+  r.band_mm = opt.fit.tolerance_mm;
+  r.verified = true;
+}
+
+namespace {
+
+/// Rounds of writing refused runs as their input before every run is.
+constexpr int kFallbackRounds = 4;
+
+/// A run written as its input moves: one line primitive per move.
+FitResult kept(const Run& run) {
+  FitResult f;
+  for (uint32_t v = 1; v <= run.move_count; ++v) f.prims.push_back({v, Primitive::Kind::Line});
+  return f;
+}
+bool is_kept(const FitResult& f, const Run& run) {
+  if (f.prims.size() != run.move_count) return false;
+  for (uint32_t v = 0; v < run.move_count; ++v)
+    if (f.prims[v].end_vertex != v + 1 || f.prims[v].kind != Primitive::Kind::Line) return false;
+  return true;
+}
+
+/// The run whose output lines (EmitStats::run_lines, in order) hold `line`, if any.
+std::optional<size_t> run_at(const std::vector<std::pair<uint32_t, uint32_t>>& run_lines, uint32_t line) {
+  const auto after = std::upper_bound(run_lines.begin(), run_lines.end(), line,
+                                      [](uint32_t l, const auto& span) { return l < span.first; });
+  if (after == run_lines.begin() || line > std::prev(after)->second) return std::nullopt;
+  return size_t(std::prev(after) - run_lines.begin());
+}
+
+/// The output lines at which the checks of `r` found the output outside the band or off
+/// the input's path (0 for a finding that names no place in the output's path).
+std::vector<uint32_t> refused_output_lines(const CompressResult& r) {
+  std::vector<uint32_t> lines;
+  const PathComparison& c = r.comparison;
+  if (!c.matched) lines.push_back(c.mismatch_line_b);
+  if (c.max_deviation_mm > r.band_mm) lines.push_back(c.worst_line_b);
+  for (const DiffPlace& p : r.check.worst)
+    if (p.deviation_mm > r.band_mm) lines.push_back(p.line_b);
+  if (r.check.max_rapid_mm > r.band_mm) lines.push_back(r.check.worst_rapid.line_b);
+  if (r.check.max_entry_mm > r.band_mm) lines.push_back(r.check.worst_entry.line_b);
+  if (!r.check.findings.empty()) lines.push_back(0);
+  return lines;
+}
+
+/// Fits every run of the piece, chain by chain (see chain_runs()).
+std::vector<FitResult> fit_runs(const Interpretation& in, const std::vector<Run>& runs, const CompressOptions& opt) {
+  std::vector<FitResult> fits(runs.size());
+  for (const RunChain& c : chain_runs(in, runs, opt.fit.tolerance_mm, opt.fit.corner_angle_deg)) {
+    auto got = fit_chain(in, c, runs, [&](const Run& r) {
+      return fit_options_for(opt.fit, opt.dialect, in.frames[r.frame], r.plane);
+    });
+    std::move(got.begin(), got.end(), fits.begin() + c.first_run);
+  }
+  return fits;
+}
+
+size_t count_lines(const std::string& text) {
+  const size_t n = size_t(std::count(text.begin(), text.end(), '\n'));
+  return n + (!text.empty() && text.back() != '\n');
+}
+
+}  // namespace
+
+void compress_piece(Piece& piece, const CompressOptions& options) {
+  CompressOptions opt = options;
+  opt.threads = 1;  // pieces are the unit of work of the threads
+  const Program& prog = piece.program;
+  const Interpretation& in = piece.in;
+  CompressResult& r = piece.result;
+  r.blocks_in = prog.blocks.size();
+  r.bytes_in = prog.text.size();
+  std::vector<Run> runs;
+  std::vector<FitResult> fits;
+  if (!opt.passthrough) {
+    // A plane's normal axis that wanders by less than the fitter carries along a primitive
+    // does not keep a stretch out of that plane.
+    FitOptions target = opt.fit;
+    target.helical = opt.fit.helical && opt.dialect.helical;
+    PlaneChoice choice;
+    choice.spread_mm = normal_axis_spread_mm(target);
+    choice.band_mm = opt.fit.tolerance_mm;
+    choice.corner_angle_deg = opt.fit.corner_angle_deg;
+    runs = extract_runs(in, 2, choice);
+    fits = fit_runs(in, runs, opt);
+  }
+  for (const Move& m : in.moves) r.g1_moves += m.kind == MoveKind::Line;
+  if (!opt.passthrough) {
+    for (const LeftOut& g : left_out_moves(in, runs)) {
+      NotFitted n{g.why, g.moves, prog.blocks[in.moves[g.first_move].block].line, 0};
+      if (is_position_unknown(g.why)) n.cause_line = g.cause_line;
+      r.not_fitted.push_back(n);
+    }
+  }
+  r.runs_fitted = runs.size();
+  EmitOptions eo;
+  eo.band_mm = opt.fit.tolerance_mm;
+  eo.dialect = opt.dialect;
+  eo.format = opt.arc_format.value_or(opt.dialect.format);
+  eo.tangent_slack_deg = 0.05 * opt.fit.g1_angle_deg;
+  eo.threads = 1;
+  eo.start = piece.emit;
+  r.output = emit_program(prog, in, runs, fits, eo, &r.stats);
+  r.ok = true;
+  r.band_mm = opt.fit.tolerance_mm;
+  auto verify = [&] {
+    verify_piece_output(prog, in, opt, r, runs, piece.start, piece.last ? nullptr : &piece.end, piece.clean_end);
+  };
+  if (opt.verify && !opt.passthrough) {
+    verify();
+    // A run whose output the check refuses is written as the input's own moves, and the
+    // piece checked again, so that one odd stretch never costs the whole program: the runs
+    // at the places the checks name, for a few rounds; then, or where a finding names no
+    // place in a run, every run (the input itself, which reads as itself).
+    for (int round = 0; !r.within_band() && round < kFallbackRounds; ++round) {
+      // A place in no run, or in one written as its input already, has no fit to blame.
+      bool everything = round + 1 == kFallbackRounds;
+      std::vector<size_t> blamed;
+      for (uint32_t line : refused_output_lines(r)) {
+        const std::optional<size_t> k = run_at(r.stats.run_lines, line);
+        if (!k || is_kept(fits[*k], runs[*k])) everything = true;
+        else blamed.push_back(*k);
+      }
+      if (everything) {
+        blamed.resize(runs.size());
+        std::iota(blamed.begin(), blamed.end(), size_t(0));
+      }
+      for (size_t k : blamed)
+        if (!is_kept(fits[k], runs[k])) fits[k] = kept(runs[k]), ++r.runs_kept_as_input;
+      r.stats = EmitStats{};
+      r.output = emit_program(prog, in, runs, fits, eo, &r.stats);
+      verify();
+      if (everything) break;
+    }
+  }
+  for (size_t k = 0; k < runs.size(); ++k)
+    for (uint32_t v : fits[k].forced_at)
+      r.forced_kink_lines.push_back(prog.blocks[in.moves[in.joint_move(runs[k].first_move + v)].block].line);
+  // Joints beside blocks the dialect's rules changed (an arc whose printed centre could not
+  // keep its end tangents, a primitive written back as its input moves) are forced by the
+  // digits: those that turn too far as read back, or all where the output was not read back.
+  std::vector<uint32_t> loose;
+  for (uint32_t m : r.stats.rule_joints)
+    if (m < in.moves.size()) loose.push_back(prog.blocks[in.moves[in.joint_move(m)].block].line);
+  std::sort(loose.begin(), loose.end());
+  if (r.verified) {
+    std::vector<uint32_t> turned;
+    std::set_intersection(loose.begin(), loose.end(), r.comparison.kink_lines.begin(), r.comparison.kink_lines.end(),
+                          std::back_inserter(turned));
+    loose.swap(turned);
+  }
+  // In order, each once (a joint between two runs may be reported by both).
+  auto& forced = r.forced_kink_lines;
+  forced.insert(forced.end(), loose.begin(), loose.end());
+  std::sort(forced.begin(), forced.end());
+  forced.erase(std::unique(forced.begin(), forced.end()), forced.end());
+  r.forced_kinks = forced.size();
+  piece.output_lines = count_lines(r.output);
+}
+
+namespace {
+
+void shift(DiffPlace& p, size_t lines) {
+  if (p.line_b > 0) p.line_b += uint32_t(lines);
+}
+
+/// `into` and `s` summed: counts add up, the first place of each kind is the earlier one.
+void add_summary(ProgramSummary& into, const ProgramSummary& s) {
+  into.blocks += s.blocks;
+  into.bytes += s.bytes;
+  into.feed_moves += s.feed_moves;
+  into.rapids += s.rapids;
+  into.sections += s.sections;
+  into.non_motion += s.non_motion;
+  into.path_mm += s.path_mm;
+  auto first = [](size_t& n, uint32_t& line, size_t add, uint32_t add_line) {
+    if (n == 0) line = add_line;
+    n += add;
+  };
+  if (into.unplaced_feed_moves == 0) into.unplaced_reason = s.unplaced_reason;
+  first(into.unplaced_feed_moves, into.first_unplaced_line, s.unplaced_feed_moves, s.first_unplaced_line);
+  if (into.entry_moves == 0) into.entry_reason = s.entry_reason;
+  first(into.entry_moves, into.first_entry_line, s.entry_moves, s.first_entry_line);
+  first(into.unmeasured_arcs, into.first_unmeasured_line, s.unmeasured_arcs, s.first_unmeasured_line);
+  first(into.far_moves, into.first_far_line, s.far_moves, s.first_far_line);
+}
+
+/// The largest of `into` and `add` (a deviation with its place), the earlier where equal.
+template <class T>
+void keep_largest(T& into_value, DiffPlace& into_place, T value, const DiffPlace& place) {
+  if (value > into_value) into_value = value, into_place = place;
+}
+
+/// How many findings a program's check keeps: the first ones say what went wrong.
+constexpr size_t kMaxFindings = 20;
+
+void add_diff(ProgramDiff& into, ProgramDiff d, size_t lines_before) {
+  for (DiffPlace& p : d.worst) shift(p, lines_before);
+  for (DiffPlace* p : {&d.worst_rapid, &d.worst_entry, &d.worst_feed}) shift(*p, lines_before);
+  add_summary(into.a, d.a);
+  add_summary(into.b, d.b);
+  into.max_deviation_mm = std::max(into.max_deviation_mm, d.max_deviation_mm);
+  const size_t top = std::max(into.worst.size(), d.worst.size());
+  into.worst.insert(into.worst.end(), d.worst.begin(), d.worst.end());
+  std::stable_sort(into.worst.begin(), into.worst.end(),
+                   [](const DiffPlace& x, const DiffPlace& y) { return x.deviation_mm > y.deviation_mm; });
+  if (into.worst.size() > top) into.worst.resize(top);
+  keep_largest(into.max_rapid_mm, into.worst_rapid, d.max_rapid_mm, d.worst_rapid);
+  keep_largest(into.max_entry_mm, into.worst_entry, d.max_entry_mm, d.worst_entry);
+  keep_largest(into.max_feed_difference_pct, into.worst_feed, d.max_feed_difference_pct, d.worst_feed);
+  into.max_extrusion_difference_mm = std::max(into.max_extrusion_difference_mm, d.max_extrusion_difference_mm);
+  into.max_extrusion_per_mm_difference_pct =
+      std::max(into.max_extrusion_per_mm_difference_pct, d.max_extrusion_per_mm_difference_pct);
+  into.non_motion_differences += d.non_motion_differences;
+  for (std::string& f : d.findings)
+    if (into.findings.size() < kMaxFindings) into.findings.push_back(std::move(f));
+  into.arc_chord_mm = std::max(into.arc_chord_mm, d.arc_chord_mm);
+  into.chord_excess_mm = std::max(into.chord_excess_mm, d.chord_excess_mm);
+}
+
+void add_comparison(PathComparison& into, const PathComparison& c, size_t lines_before) {
+  if (into.matched && !c.matched) {
+    into.matched = false;
+    into.mismatch = c.mismatch;
+    into.mismatch_line_b = c.mismatch_line_b + uint32_t(lines_before);
+  }
+  if (c.max_deviation_mm > into.max_deviation_mm) {
+    into.max_deviation_mm = c.max_deviation_mm;
+    into.worst_line_a = c.worst_line_a;
+    into.worst_line_b = c.worst_line_b ? c.worst_line_b + uint32_t(lines_before) : 0;
+    into.worst_point = c.worst_point;
+  }
+  into.moves_a += c.moves_a;
+  into.moves_b += c.moves_b;
+  into.smooth_joints += c.smooth_joints;
+  into.smooth_joints_over_g1 += c.smooth_joints_over_g1;
+  into.kink_lines.insert(into.kink_lines.end(), c.kink_lines.begin(), c.kink_lines.end());
+  into.max_smooth_kink_deg = std::max(into.max_smooth_kink_deg, c.max_smooth_kink_deg);
+}
+
+void add_stats(EmitStats& into, const EmitStats& s) {
+  into.runs += s.runs;
+  into.moves_in += s.moves_in;
+  into.lines_out += s.lines_out;
+  into.arcs_out += s.arcs_out;
+  into.motion_words_added += s.motion_words_added;
+  into.plane_words_added += s.plane_words_added;
+  into.arcs_unprintable += s.arcs_unprintable;
+  into.long_lines_kept += s.long_lines_kept;
+}
+
+}  // namespace
+
+void add_piece(CompressResult& total, const Piece& piece, size_t lines_before) {
+  const CompressResult& r = piece.result;
+  total.ok = total.ok && r.ok;
+  total.blocks_in += r.blocks_in;
+  total.bytes_in += r.bytes_in;
+  total.bytes_out += r.output.size();
+  add_stats(total.stats, r.stats);
+  total.forced_kink_lines.insert(total.forced_kink_lines.end(), r.forced_kink_lines.begin(), r.forced_kink_lines.end());
+  total.forced_kinks = total.forced_kink_lines.size();
+  total.g1_moves += r.g1_moves;
+  total.runs_fitted += r.runs_fitted;
+  total.runs_kept_as_input += r.runs_kept_as_input;
+  for (const NotFitted& n : r.not_fitted) {
+    auto same = std::find_if(total.not_fitted.begin(), total.not_fitted.end(),
+                             [&](const NotFitted& t) { return t.why == n.why; });
+    if (same == total.not_fitted.end()) total.not_fitted.push_back(n);
+    else same->moves += n.moves;
+  }
+  total.verified = total.verified && r.verified;
+  total.unplaced_kept = total.unplaced_kept && r.unplaced_kept;
+  if (r.verified) {
+    add_diff(total.check, r.check, lines_before);
+    add_comparison(total.comparison, r.comparison, lines_before);
+  }
+  total.band_mm = r.band_mm;
+}
+
+}  // namespace arcpress

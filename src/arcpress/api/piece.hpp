@@ -1,0 +1,52 @@
+#pragma once
+// A piece of a program, compressed and checked on its own: the unit of the streaming engine
+// (see compressor.hpp). A piece is a stretch of whole lines read from a known modal state
+// (ModalState) into a known state; it is cut where no chain of runs goes on (after a move
+// no fit may join, such as a rapid or a retraction), so that its fit is the fit the whole
+// program would get there, or, where a path goes on for longer than a piece may hold, at a
+// vertex (a forced cut). Everything the fit, the emitter and the check need is in the piece:
+// pieces are worked on in any order, on any thread.
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "arcpress/api/arcpress.hpp"
+#include "arcpress/model/interpreter.hpp"
+
+namespace arcpress {
+
+struct Piece {
+  size_t index = 0;        ///< 0, 1, 2 ... in program order
+  Program program;         ///< its lines, numbered as in the whole program
+  Interpretation in;       ///< read from `start` (in.start is the position there)
+  ModalState start, end;   ///< the input's state before its first line and after its last
+  EmitStart emit;          ///< how the output stands before it
+  /// The piece ends after a block written back as it is (a move no fit joins, or the end of
+  /// the program): the output's modal motion there is the input's. After a forced cut it may
+  /// not be, and the next piece states its motion word where it needs one.
+  bool clean_end = true;
+  bool last = false;       ///< the program's last piece
+
+  // What compress_piece() makes of it.
+  CompressResult result;   ///< its text, counts and checks; output lines (line_b) counted from the piece's first
+  size_t output_lines = 0; ///< lines in result.output
+};
+
+/// Fits, emits and (with opt.verify) checks the piece: the output is read back from
+/// `start` and must end in a state that reads the rest of the program as `end` does. Runs
+/// the check refuses are written as their input moves, as compress() documents. Never
+/// reports to a sink: the piece is worked on off the reader's thread.
+void compress_piece(Piece& piece, const CompressOptions& opt);
+
+/// verify_output() for a piece: the output is read back from `start`, and where `end` is
+/// given it must end in a state that reads on as `end` does (with the modal motion where
+/// `with_motion`).
+void verify_piece_output(const Program& input, const Interpretation& in, const CompressOptions& opt, CompressResult& r,
+                         std::span<const Run> runs, const ModalState& start, const ModalState* end, bool with_motion);
+
+/// Adds the counts and checks of `piece` (the next in order, whose output begins after
+/// `lines_before` lines of output) to `total`.
+void add_piece(CompressResult& total, const Piece& piece, size_t lines_before);
+
+}  // namespace arcpress
