@@ -8,6 +8,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cstdio>
@@ -60,95 +61,65 @@ bool written_in_place(const std::string& path, const struct stat* st) {
   return st && !S_ISREG(st->st_mode) && !S_ISDIR(st->st_mode);
 }
 
-void write_directly(const std::string& path, std::string_view data) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
-  if (fd < 0) throw Error(kExitIo, fmt::format("cannot open '{}' for writing: {}", path, error_text(errno)));
-  const int err = write_all(fd, data);
-  if (err != 0) {
-    ::close(fd);
-    throw Error(kExitIo, fmt::format("cannot write '{}': {}", path, error_text(err)));
-  }
-  if (::close(fd) != 0) throw Error(kExitIo, fmt::format("cannot finish writing '{}': {}", path, error_text(errno)));
-}
-
-/// The atomic write of a regular file at `path` (which exists when `old` is given).
-void write_replacing(const std::string& path, std::string_view data, const struct stat* old) {
-  std::string tmpl = path + ".arcpress-XXXXXX";
-  if (tmpl.size() >= sizeof g_temporary) throw Error(kExitIo, fmt::format("output path too long: '{}'", path));
-  // The handler may remove the file from the moment it exists: its name is set first.
-  std::memcpy(g_temporary, tmpl.c_str(), tmpl.size() + 1);
-  sigset_t block, saved;
-  sigemptyset(&block);
-  for (int s : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&block, s);
-  ::sigprocmask(SIG_BLOCK, &block, &saved);
-  const int fd = ::mkstemp(g_temporary);
-  const int made = errno;
-  if (fd >= 0) g_temporary_set = true;
-  ::sigprocmask(SIG_SETMASK, &saved, nullptr);
-  if (fd < 0) throw Error(kExitIo, fmt::format("cannot create a temporary file beside '{}': {}", path, error_text(made)));
-  const std::string tmp = g_temporary;
-  auto fail = [&](const std::string& what, int err) {
-    ::close(fd);
-    ::unlink(tmp.c_str());
-    g_temporary_set = false;
-    throw Error(kExitIo, fmt::format("{} '{}': {}", what, path, error_text(err)));
-  };
-  // The mode, owner and group an existing file had; a new file gets 0666 less the umask.
-  mode_t mode = 0666;
-  if (old) {
-    mode = old->st_mode & 07777;
-    if (::fchown(fd, old->st_uid, old->st_gid) != 0 && (old->st_uid != ::geteuid() || old->st_gid != ::getegid()))
-      std::fprintf(stderr, "arcpress: warning: cannot keep the owner and group of '%s' (%s): they are now this user's\n",
-                   path.c_str(), std::strerror(errno));
-  } else {
-    const mode_t um = ::umask(0);
-    ::umask(um);
-    mode &= ~um;
-  }
-  if (::fchmod(fd, mode) != 0) fail("cannot set the mode of the output for", errno);
-  if (const int err = write_all(fd, data); err != 0) fail("cannot write", err);
-  if (::fsync(fd) != 0) fail("cannot finish writing", errno);
-  if (::close(fd) != 0) {
-    const int err = errno;
-    ::unlink(tmp.c_str());
-    g_temporary_set = false;
-    throw Error(kExitIo, fmt::format("cannot finish writing '{}': {}", path, error_text(err)));
-  }
-  if (::rename(tmp.c_str(), path.c_str()) != 0) {
-    const int err = errno;
-    ::unlink(tmp.c_str());
-    g_temporary_set = false;
-    throw Error(kExitIo, fmt::format("cannot rename the output into '{}': {}", path, error_text(err)));
-  }
-  g_temporary_set = false;
-}
-
 }  // namespace
 
-std::string read_input(const std::string& path) {
-  const int fd = path == "-" ? STDIN_FILENO : ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  const std::string name = path == "-" ? "standard input" : "'" + path + "'";
-  if (fd < 0) throw Error(kExitIo, fmt::format("cannot open {}: {}", name, error_text(errno)));
+InputFile::InputFile(const std::string& path) : name_(path == "-" ? "standard input" : "'" + path + "'") {
+  fd_ = path == "-" ? STDIN_FILENO : ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd_ < 0) throw Error(kExitIo, fmt::format("cannot open {}: {}", name_, error_text(errno)));
+  owned_ = fd_ != STDIN_FILENO;
   struct stat st {};
-  if (::fstat(fd, &st) == 0 && S_ISDIR(st.st_mode)) {
-    if (fd != STDIN_FILENO) ::close(fd);
-    throw Error(kExitIo, fmt::format("cannot read {}: it is a folder", name));
+  if (::fstat(fd_, &st) == 0 && S_ISDIR(st.st_mode)) {
+    if (owned_) ::close(fd_);
+    throw Error(kExitIo, fmt::format("cannot read {}: it is a folder", name_));
   }
-  std::string data;
-  if (S_ISREG(st.st_mode) && st.st_size > 0) data.reserve(size_t(st.st_size));
-  char buf[1 << 16];
+  if (S_ISREG(st.st_mode)) {
+    const off_t at = ::lseek(fd_, 0, SEEK_CUR);
+    size_ = size_t(st.st_size) - size_t(at > 0 ? at : 0);
+    start_ = at > 0 ? at : 0;
+  }
+}
+
+InputFile::~InputFile() {
+  if (owned_) ::close(fd_);
+}
+
+size_t InputFile::read(std::string& into, size_t max) {
+  const size_t had = into.size();
+  into.resize(had + max);
   for (;;) {
-    const ssize_t n = ::read(fd, buf, sizeof buf);
-    if (n == 0) break;
+    const ssize_t n = ::read(fd_, into.data() + had, max);
+    if (n < 0 && errno == EINTR) continue;
     if (n < 0) {
-      if (errno == EINTR) continue;
       const int err = errno;
-      if (fd != STDIN_FILENO) ::close(fd);
-      throw Error(kExitIo, fmt::format("cannot read {}: {}", name, error_text(err)));
+      into.resize(had);
+      throw Error(kExitIo, fmt::format("cannot read {}: {}", name_, error_text(err)));
     }
-    data.append(buf, size_t(n));
+    into.resize(had + size_t(n));
+    return size_t(n);
   }
-  if (fd != STDIN_FILENO) ::close(fd);
+}
+
+std::string InputFile::tail(size_t n) const {
+  if (!size_ || *size_ == 0) return {};
+  const size_t len = std::min(n, *size_);
+  std::string out(len, '\0');
+  size_t got = 0;
+  while (got < len) {
+    const ssize_t k = ::pread(fd_, out.data() + got, len - got, off_t(start_ + *size_ - len + got));
+    if (k < 0 && errno == EINTR) continue;
+    if (k <= 0) break;
+    got += size_t(k);
+  }
+  out.resize(got);
+  return out;
+}
+
+std::string read_input(const std::string& path) {
+  InputFile in(path);
+  std::string data;
+  if (in.size()) data.reserve(*in.size());
+  while (in.read(data, size_t(1) << 16) > 0) {
+  }
   return data;
 }
 
@@ -180,11 +151,13 @@ static int named_descriptor(const std::string& path) {
   return -1;
 }
 
-void write_output(const std::string& path, std::string_view data) {
-  if (path == "-" || named_descriptor(path) == STDOUT_FILENO) return write_stdout(data);
-  if (const int fd = named_descriptor(path); fd >= 0) {
-    if (const int err = write_all(fd, data); err != 0)
-      throw Error(kExitIo, fmt::format("cannot write '{}': {}", path, error_text(err)));
+OutputFile::OutputFile(const std::string& path) : path_(path) {
+  if (path == "-" || named_descriptor(path) >= 0) {
+    fd_ = path == "-" ? STDOUT_FILENO : named_descriptor(path);
+    is_stdout_ = fd_ == STDOUT_FILENO;
+    if (is_stdout_ && g_stdout_failed) throw Error(kExitIo, "cannot write standard output");
+    if (is_stdout_) std::fflush(stdout);  // whatever stdio holds goes first
+    note_start();
     return;
   }
   struct stat link {};
@@ -194,19 +167,144 @@ void write_output(const std::string& path, std::string_view data) {
   if (!exists) {
     if (!path.empty() && path.back() == '/')
       throw Error(kExitIo, fmt::format("cannot write '{}': no such folder", path));
-    return write_replacing(path, data, nullptr);
+    open_temporary(path, nullptr);
+    return;
   }
   // A link is followed to what it names: that is rewritten, and the link stays.
   std::string target = path;
   struct stat st = link;
   if (S_ISLNK(link.st_mode)) {
-    if (::stat(path.c_str(), &st) != 0) throw Error(kExitIo, fmt::format("cannot write '{}': {} (a link to nothing)", path, error_text(errno)));
+    if (::stat(path.c_str(), &st) != 0)
+      throw Error(kExitIo, fmt::format("cannot write '{}': {} (a link to nothing)", path, error_text(errno)));
     target = resolved(path);
     if (target.empty()) throw Error(kExitIo, fmt::format("cannot follow the link '{}': {}", path, error_text(errno)));
   }
   if (S_ISDIR(st.st_mode)) throw Error(kExitIo, fmt::format("cannot write '{}': it is a folder", path));
-  if (written_in_place(path, &st) || written_in_place(target, &st)) return write_directly(path, data);
-  write_replacing(target, data, &st);
+  if (written_in_place(path, &st) || written_in_place(target, &st)) {
+    fd_ = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
+    if (fd_ < 0) throw Error(kExitIo, fmt::format("cannot open '{}' for writing: {}", path, error_text(errno)));
+    owned_ = true;
+    return;
+  }
+  open_temporary(target, &st);
+}
+
+OutputFile::~OutputFile() {
+  if (!done_) discard();
+}
+
+/// A regular file behind a descriptor the shell opened (`> out.nc`): where it began, so that
+/// discard() can cut it back there.
+void OutputFile::note_start() {
+  struct stat st {};
+  if (::fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode)) return;
+  const int flags = ::fcntl(fd_, F_GETFL);
+  const off_t at = (flags >= 0 && (flags & O_APPEND)) ? st.st_size : ::lseek(fd_, 0, SEEK_CUR);
+  if (at >= 0) start_ = at;
+}
+
+/// The temporary file beside `target` (which exists when `old` is given), renamed into place
+/// by commit().
+void OutputFile::open_temporary(const std::string& target, const struct stat* old) {
+  std::string tmpl = target + ".arcpress-XXXXXX";
+  if (tmpl.size() >= sizeof g_temporary) throw Error(kExitIo, fmt::format("output path too long: '{}'", target));
+  // The handler may remove the file from the moment it exists: its name is set first.
+  std::memcpy(g_temporary, tmpl.c_str(), tmpl.size() + 1);
+  sigset_t block, saved;
+  sigemptyset(&block);
+  for (int s : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&block, s);
+  ::sigprocmask(SIG_BLOCK, &block, &saved);
+  fd_ = ::mkstemp(g_temporary);
+  const int made = errno;
+  if (fd_ >= 0) g_temporary_set = true;
+  ::sigprocmask(SIG_SETMASK, &saved, nullptr);
+  if (fd_ < 0) throw Error(kExitIo, fmt::format("cannot create a temporary file beside '{}': {}", target, error_text(made)));
+  owned_ = true;
+  temporary_ = g_temporary;
+  target_ = target;
+  // The mode, owner and group an existing file had; a new file gets 0666 less the umask.
+  mode_t mode = 0666;
+  if (old) {
+    mode = old->st_mode & 07777;
+    if (::fchown(fd_, old->st_uid, old->st_gid) != 0 && (old->st_uid != ::geteuid() || old->st_gid != ::getegid()))
+      std::fprintf(stderr, "arcpress: warning: cannot keep the owner and group of '%s' (%s): they are now this user's\n",
+                   target.c_str(), std::strerror(errno));
+  } else {
+    const mode_t um = ::umask(0);
+    ::umask(um);
+    mode &= ~um;
+  }
+  if (::fchmod(fd_, mode) != 0) fail("cannot set the mode of the output for", errno);
+}
+
+void OutputFile::fail(const std::string& what, int err) {
+  discard();
+  if (is_stdout_) g_stdout_failed = true;
+  throw Error(kExitIo, fmt::format("{} {}: {}", what, is_stdout_ ? std::string("standard output") : "'" + path_ + "'",
+                                   error_text(err)));
+}
+
+void OutputFile::write(std::string_view data) {
+  if (done_) throw Error(kExitIo, fmt::format("cannot write '{}': already closed", path_));
+  if (const int err = write_all(fd_, data); err != 0) fail("cannot write", err);
+  written_ += data.size();
+}
+
+void OutputFile::commit() {
+  if (done_) return;
+  if (!temporary_.empty()) {
+    if (::fsync(fd_) != 0) fail("cannot finish writing", errno);
+    const int fd = fd_;
+    fd_ = -1;
+    if (::close(fd) != 0) {
+      const int err = errno;
+      ::unlink(temporary_.c_str());
+      g_temporary_set = false;
+      done_ = true;
+      throw Error(kExitIo, fmt::format("cannot finish writing '{}': {}", path_, error_text(err)));
+    }
+    if (::rename(temporary_.c_str(), target_.c_str()) != 0) {
+      const int err = errno;
+      ::unlink(temporary_.c_str());
+      g_temporary_set = false;
+      done_ = true;
+      throw Error(kExitIo, fmt::format("cannot rename the output into '{}': {}", path_, error_text(err)));
+    }
+    g_temporary_set = false;
+  } else if (owned_) {
+    const int fd = fd_;
+    fd_ = -1;
+    if (::close(fd) != 0) {
+      done_ = true;
+      throw Error(kExitIo, fmt::format("cannot finish writing '{}': {}", path_, error_text(errno)));
+    }
+  }
+  done_ = true;
+}
+
+size_t OutputFile::discard() {
+  if (done_) return 0;
+  done_ = true;
+  size_t left = 0;
+  if (!temporary_.empty()) {
+    ::close(fd_);
+    ::unlink(temporary_.c_str());
+    g_temporary_set = false;
+  } else {
+    // A file the shell opened is cut back to where it began; a pipe or terminal keeps what
+    // it has been given.
+    if (start_ < 0 || ::ftruncate(fd_, start_) != 0) left = written_;
+    else if (::lseek(fd_, start_, SEEK_SET) < 0) left = written_;
+    if (owned_) ::close(fd_);
+  }
+  fd_ = -1;
+  return left;
+}
+
+void write_output(const std::string& path, std::string_view data) {
+  OutputFile out(path);
+  out.write(data);
+  out.commit();
 }
 
 void remove_temporary_files_on_signals() {

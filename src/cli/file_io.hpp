@@ -1,15 +1,83 @@
 #pragma once
-// Whole-file input and all-or-nothing output for the command line.
+// Input read in chunks and all-or-nothing output for the command line.
+#include <cstddef>
+#include <optional>
 #include <string>
 #include <string_view>
 
+struct stat;
+
 namespace arcpress::cli {
+
+/// An input read in chunks: a file, or standard input for "-". Throws arcpress::Error
+/// (exit 3) on failure, naming the file (a folder, a file that cannot be opened or read).
+class InputFile {
+ public:
+  explicit InputFile(const std::string& path);
+  ~InputFile();
+  InputFile(const InputFile&) = delete;
+  InputFile& operator=(const InputFile&) = delete;
+
+  /// Appends up to `max` bytes to `into`; returns how many, 0 at the end.
+  size_t read(std::string& into, size_t max);
+  /// The bytes left to read where the input is a regular file.
+  std::optional<size_t> size() const { return size_; }
+  /// The last `n` bytes of a regular file (empty for anything else), leaving the reading
+  /// where it is.
+  std::string tail(size_t n) const;
+
+ private:
+  std::string name_;
+  int fd_ = -1;
+  bool owned_ = false;
+  std::optional<size_t> size_;
+  long long start_ = 0;
+};
 
 /// Reads a file, or standard input for "-". Throws arcpress::Error (exit 3) on failure,
 /// naming the file (a folder, a file that cannot be opened or read).
 std::string read_input(const std::string& path);
 
-/// Writes `data` to `path`. A regular file, or a path that does not exist yet, is written
+/// An output written as it is made. A regular file, or a path that does not exist yet, is
+/// written through a temporary file in the same folder that commit() renames into place
+/// once everything is written and synced, so a failure never leaves a partial or clobbered
+/// file; an existing file keeps its mode, owner and group (a warning where the process may
+/// not set them), and a symbolic link keeps pointing where it did, at the rewritten target.
+/// Any other destination (a character device such as /dev/null, a FIFO, a socket,
+/// /dev/stdout, /dev/fd/N) is opened and written directly, never replaced; "-" is standard
+/// output. Every write, sync, close and rename is checked: a failure throws arcpress::Error
+/// (exit 3) naming the destination. Destroyed without commit(), it discards what it wrote.
+class OutputFile {
+ public:
+  explicit OutputFile(const std::string& path);
+  ~OutputFile();
+  OutputFile(const OutputFile&) = delete;
+  OutputFile& operator=(const OutputFile&) = delete;
+
+  void write(std::string_view data);
+  /// Puts the output in place (a temporary file renamed over the destination).
+  void commit();
+  /// Takes back what was written where it can: the temporary file is removed, and a regular
+  /// file behind standard output or /dev/fd/N (a shell's `> out.nc`) is cut back to where
+  /// it began. Returns the bytes that stay written (to a pipe or terminal), 0 if none.
+  size_t discard();
+  size_t written() const { return written_; }
+
+ private:
+  void note_start();
+  void open_temporary(const std::string& target, const struct stat* old);
+  [[noreturn]] void fail(const std::string& what, int err);
+
+  std::string path_, temporary_, target_;
+  int fd_ = -1;
+  bool owned_ = false;      // opened here (closed by commit)
+  bool is_stdout_ = false;
+  bool done_ = false;
+  long long start_ = -1;    // a shell-opened regular file's offset at the start
+  size_t written_ = 0;
+};
+
+/// Writes `data` to `path` at once, as OutputFile does. A regular file, or a path that does not exist yet, is written
 /// through a temporary file in the same folder that is renamed into place only once
 /// everything is written and synced, so a failure never leaves a partial or clobbered file;
 /// an existing file keeps its mode, owner and group (a warning where the process may not set

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "arcpress/api/arcpress.hpp"
+#include "arcpress/api/compressor.hpp"
 #include "arcpress/core/error.hpp"
 #include "arcpress/dialect/dialect_loader.hpp"
 #include "arcpress/dialect/program_flavor.hpp"
@@ -20,6 +21,7 @@
 #include "arcpress/model/interpreter.hpp"
 #include "arcpress/verify/diff_plot.hpp"
 #include "file_io.hpp"
+#include "progress.hpp"
 
 namespace {
 
@@ -77,14 +79,22 @@ std::string exe_dir() {
 /// `--dialect` where `name_given`), or else the one the program names for itself (a
 /// slicer's flavor line), or else `name` (the default). `why` says which, for --stats.
 Dialect dialect_for(const std::string& name, bool name_given, const std::string& file, std::string_view program,
-                    std::string* why = nullptr) {
+                    std::string_view tail = {}, std::string* why = nullptr) {
   std::string reason = !file.empty() ? "--dialect-file" : name_given ? "--dialect" : "the default";
   std::string picked = name;
-  if (file.empty() && !name_given)
-    if (const auto flavor = program_flavor(program)) {
+  if (file.empty() && !name_given) {
+    // `tail`: the end of a program of which `program` is the start (a slicer's config block
+    // is at the end); its first line may be cut.
+    const size_t nl = tail.find('\n');
+    const std::string_view tail_lines = nl == std::string_view::npos ? std::string_view() : tail.substr(nl + 1);
+    std::optional<ProgramFlavor> flavor = program_flavor(program);
+    const bool at_end = !flavor && (flavor = program_flavor(tail_lines));
+    if (flavor) {
       picked = flavor->dialect;
-      reason = fmt::format("the program's '{}' at line {}", flavor->evidence, flavor->line);
+      reason = at_end ? fmt::format("the program's '{}' near its end", flavor->evidence)
+                      : fmt::format("the program's '{}' at line {}", flavor->evidence, flavor->line);
     }
+  }
   if (why) *why = reason;
   return !file.empty() ? load_dialect_file(file) : find_dialect(picked, dialect_search_path(exe_dir()));
 }
@@ -99,8 +109,15 @@ struct CompressArgs {
   std::string method = "arcs";
   bool in_place = false;
   bool stats = false;
+  bool quiet = false;
+  bool progress = false;
   CompressOptions opt;
 };
+
+/// How much of a program is searched for a slicer's flavor line, at its start and its end.
+constexpr size_t kFlavorBytes = size_t(1) << 20;
+/// How much of the input is read at once.
+constexpr size_t kReadBytes = size_t(1) << 20;
 
 int run_compress(const CompressArgs& a) {
   std::string out_path = a.output;
@@ -128,16 +145,50 @@ int run_compress(const CompressArgs& a) {
   if (a.arc_format == "r") opt.arc_format = ArcFormat::Radius;
 
   auto t0 = std::chrono::steady_clock::now();
-  std::string text = cli::read_input(a.input);
-  std::string name = a.input == "-" ? "<stdin>" : a.input;
+  cli::InputFile input(a.input);
+  const std::optional<size_t> size = input.size();
+  // The start of the program, where a slicer's flavor line may be, and, of a file, its end,
+  // where PrusaSlicer's config block names the flavor.
+  std::string chunk;
+  while (chunk.size() < kFlavorBytes && input.read(chunk, kFlavorBytes - chunk.size()) > 0) {
+  }
+  const std::string name = a.input == "-" ? "<stdin>" : a.input;
   std::string why_dialect;
-  opt.dialect = dialect_for(a.dialect, a.dialect_given, a.dialect_file, text, &why_dialect);
+  opt.dialect = dialect_for(a.dialect, a.dialect_given, a.dialect_file, chunk,
+                            chunk.size() < kFlavorBytes ? std::string() : input.tail(kFlavorBytes), &why_dialect);
   DiagnosticSink sink(name);
-  CompressResult r = compress(name, std::move(text), opt, sink);
+  Compressor compressor(name, opt, sink);
+  cli::OutputFile out(out_path);
+  cli::Progress progress(size, a.quiet, a.progress);
+  // Read, compress and write as the input comes: each piece's text is written once it and
+  // everything before it are done.
+  std::string text;
+  for (size_t read = 0; compressor.result().ok;) {
+    if (chunk.empty() && input.read(chunk, kReadBytes) == 0) break;
+    read += chunk.size();
+    compressor.push(chunk);
+    chunk.clear();
+    text.clear();
+    if (compressor.take(text) > 0) out.write(text);
+    progress.update(read);
+  }
+  compressor.finish();
+  text.clear();
+  if (compressor.take(text) > 0) out.write(text);
+  progress.clear();
+  const CompressResult& r = compressor.result();
   std::string diags = sink.format_all();
   if (!diags.empty()) std::fputs(diags.c_str(), stderr);
+  // Where the output cannot be used, it is taken back: a file is left as it was.
+  auto nothing_written = [&] {
+    const size_t left = out.discard();
+    if (left == 0) fmt::print(stderr, "arcpress: nothing written\n");
+    else fmt::print(stderr, "arcpress: {} bytes had been written to '{}' before the failure; do not use them\n", left,
+                    out_path == "-" ? "standard output" : out_path);
+  };
   if (!r.ok) {
-    fmt::print(stderr, "arcpress: {} error(s) in '{}'; nothing written\n", sink.error_count(), name);
+    fmt::print(stderr, "arcpress: {} error(s) in '{}'\n", sink.error_count(), name);
+    nothing_written();
     return kExitInput;
   }
   if (!r.within_band()) {
@@ -155,10 +206,10 @@ int run_compress(const CompressArgs& a) {
       fmt::print(stderr, "arcpress: verification failed: a rapid ends {:.6f} mm away, input line {}, output line {}\n",
                  c.max_rapid_mm, c.worst_rapid.line_a, c.worst_rapid.line_b);
     for (const std::string& f : c.findings) fmt::print(stderr, "arcpress: verification failed: {}\n", f);
-    fmt::print(stderr, "arcpress: nothing written\n");
+    nothing_written();
     return kExitVerifyFailed;
   }
-  cli::write_output(out_path, r.output);
+  out.commit();
   if (a.stats) {
     double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const auto& st = r.stats;
@@ -173,8 +224,8 @@ int run_compress(const CompressArgs& a) {
                "the check refused\n"
                "  planes         {} G17/G18/G19 blocks around runs fitted in another plane\n"
                "  time           {:.3f} s\n",
-               name, out_path == "-" ? "<stdout>" : out_path, r.blocks_in, r.bytes_in, r.output.size(),
-               r.bytes_in ? 100.0 * double(r.output.size()) / double(r.bytes_in) : 100.0, r.g1_moves, st.moves_in, st.runs,
+               name, out_path == "-" ? "<stdout>" : out_path, r.blocks_in, r.bytes_in, r.bytes_out,
+               r.bytes_in ? 100.0 * double(r.bytes_out) / double(r.bytes_in) : 100.0, r.g1_moves, st.moves_in, st.runs,
                opt.dialect.source.empty() ? opt.dialect.name : opt.dialect.name + " (" + opt.dialect.source + ")",
                why_dialect,
                st.lines_out, st.arcs_out, st.lines_out + st.arcs_out, st.moves_in,
@@ -320,6 +371,10 @@ int main(int argc, char** argv) {
                                                 "hardware thread (the output is the same for any count)")
       ->check(CLI::Range(0u, 1024u))->capture_default_str();
   app.add_flag("--stats", a.stats, "Print counts, sizes and the measured deviation to standard error");
+  app.add_flag("-q,--quiet", a.quiet, "Show no progress line (errors and warnings are still printed)");
+  app.add_flag("--progress", a.progress,
+               "Show the progress line on standard error even where it is no terminal (it is shown on a terminal "
+               "for inputs over 4 MB)");
   bool no_verify = false;
   app.add_flag("--no-verify", no_verify, "Skip reading the output back and measuring it against the input");
 
