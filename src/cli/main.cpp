@@ -116,6 +116,8 @@ struct CompressArgs {
 
 /// How much of a program is searched for a slicer's flavor line, at its start and its end.
 constexpr size_t kFlavorBytes = size_t(1) << 20;
+/// ... at the start of a program read from a pipe (Cura names it on its first line).
+constexpr size_t kFlavorPipeBytes = size_t(1) << 16;
 /// How much of the input is read at once.
 constexpr size_t kReadBytes = size_t(1) << 20;
 
@@ -149,13 +151,16 @@ int run_compress(const CompressArgs& a) {
   const std::optional<size_t> size = input.size();
   // The start of the program, where a slicer's flavor line may be, and, of a file, its end,
   // where PrusaSlicer's config block names the flavor.
+  // Only where no dialect is named; from a pipe, only as far as a header goes, so that its
+  // output is not held back.
+  const size_t head = !a.dialect_file.empty() || a.dialect_given ? 0 : size ? kFlavorBytes : kFlavorPipeBytes;
   std::string chunk;
-  while (chunk.size() < kFlavorBytes && input.read(chunk, kFlavorBytes - chunk.size()) > 0) {
+  while (chunk.size() < head && input.read(chunk, head - chunk.size()) > 0) {
   }
   const std::string name = a.input == "-" ? "<stdin>" : a.input;
   std::string why_dialect;
   opt.dialect = dialect_for(a.dialect, a.dialect_given, a.dialect_file, chunk,
-                            chunk.size() < kFlavorBytes ? std::string() : input.tail(kFlavorBytes), &why_dialect);
+                            head == 0 || chunk.size() < head ? std::string() : input.tail(kFlavorBytes), &why_dialect);
   DiagnosticSink sink(name);
   Compressor compressor(name, opt, sink);
   cli::OutputFile out(out_path);

@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <string>
 
@@ -184,4 +185,42 @@ TEST_CASE("a diff report whose quoted blocks hold a NUL byte still ends with its
   CHECK(c.exit_code == 1);
   CHECK(c.out.find("DIFFERENT: ") != std::string::npos);
   CHECK(c.out.find(std::string("(NOTE \0 ONE)", 12)) != std::string::npos);
+}
+
+TEST_CASE("a pipe fed half a program and held open already gives the output of what came", "[cli][output][stream]") {
+  auto d = arcpress::test::temp_dir("stream");
+  // A long program: the first half is some pieces' worth of input.
+  std::string program = "G21 G90\n";
+  for (int pass = 0; pass < 400; ++pass) {
+    program += fmt::format("G0 X0 Y{} Z1\nG1 Z0 F600\n", pass);
+    for (int k = 1; k <= 200; ++k)
+      program += fmt::format("G1 X{:.4f} Y{:.4f}\n", 0.25 * k, pass + 0.5 * std::sin(0.05 * k));
+  }
+  REQUIRE(program.size() > 4 * (size_t(1) << 17));
+  arcpress::test::write_file(d / "half.nc", program.substr(0, program.size() / 2 - 17));
+  // The input stays open for 20 s after the half; output must appear well before that.
+  auto c = run_shell(fmt::format(
+      "cd '{}'\n(cat half.nc; sleep 20) | \"$ARCPRESS\" > out.nc & pid=$!\n"
+      "for i in $(seq 100); do [ -s out.nc ] && break; sleep 0.1; done\n"
+      "size=$(stat -c %s out.nc)\nkill $pid 2>/dev/null; pkill -P $$ sleep 2>/dev/null\necho $size",
+      d.string()));
+  REQUIRE(c.exit_code == 0);
+  const long written = std::stol(c.out);
+  CHECK(written > 0);
+  CHECK(size_t(written) < program.size() / 2);
+}
+
+TEST_CASE("a program refused half way leaves a shell's output file as empty as it found it", "[cli][output][stream]") {
+  auto d = arcpress::test::temp_dir("refused");
+  std::string program = "G21 G90\n";
+  for (int pass = 0; pass < 300; ++pass) {
+    program += fmt::format("G0 X0 Y{} Z1\nG1 Z0 F600\n", pass);
+    for (int k = 1; k <= 200; ++k) program += fmt::format("G1 X{:.4f} Y{:.4f}\n", 0.25 * k, pass + 0.5 * std::sin(0.05 * k));
+  }
+  program += "G1 X1.2.3\n";  // unreadable, long after the first pieces went out
+  arcpress::test::write_file(d / "in.nc", program);
+  auto c = run_shell(fmt::format("cd '{}'\n\"$ARCPRESS\" --strict in.nc > out.nc; echo $?; stat -c %s out.nc",
+                                 d.string()));
+  CHECK(c.out == "2\n0\n");
+  CHECK(c.err.find("nothing written") != std::string::npos);
 }

@@ -1,0 +1,162 @@
+// The streaming engine (Compressor): the text does not depend on how the bytes arrive or on
+// the threads, output comes before the input ends, and pieces cut inside a path still keep
+// every promise.
+#include <catch2/catch.hpp>
+#include <fmt/format.h>
+
+#include <cmath>
+#include <random>
+#include <string>
+
+#include "arcpress/api/compressor.hpp"
+#include "arcpress/lex/lexer.hpp"
+#include "arcpress/model/interpreter.hpp"
+#include "support.hpp"
+
+using namespace arcpress;
+
+namespace {
+
+struct Streamed {
+  std::string output;
+  CompressResult result;
+  size_t forced_cuts = 0;
+  size_t taken_before_finish = 0;  ///< output bytes take() gave before finish()
+};
+
+/// Pushes `text` in pieces of the sizes `next_size()` gives, taking output after each push.
+template <class NextSize>
+Streamed stream(const std::string& text, const CompressOptions& opt, NextSize next_size) {
+  DiagnosticSink sink("stream");
+  Compressor c("stream", opt, sink);
+  Streamed s;
+  for (size_t at = 0; at < text.size();) {
+    const size_t n = std::min(next_size(), text.size() - at);
+    c.push(std::string_view(text).substr(at, n));
+    at += n;
+    c.take(s.output);
+  }
+  s.taken_before_finish = s.output.size();
+  c.finish();
+  c.take(s.output);
+  s.result = c.result();
+  s.forced_cuts = c.forced_cuts();
+  return s;
+}
+
+/// One line at a time, as a sender reading a serial stream would.
+Streamed stream_lines(const std::string& text, const CompressOptions& opt) {
+  size_t at = 0;
+  return stream(text, opt, [&] {
+    const size_t nl = text.find('\n', at);
+    const size_t n = nl == std::string::npos ? text.size() - at : nl + 1 - at;
+    at += n;
+    return n;
+  });
+}
+
+/// A smooth spiral of `moves` G1 moves (no corner, no rapid, nothing a piece ends at).
+std::string spiral(size_t moves) {
+  std::string s = "G21 G90\nG0 X0 Y0 Z1\nG1 Z0 F600\n";
+  for (size_t k = 1; k <= moves; ++k) {
+    const double t = 0.01 * double(k), r = 10 + 0.002 * double(k);
+    s += fmt::format("G1 X{:.4f} Y{:.4f}\n", r * std::cos(t), r * std::sin(t));
+  }
+  return s + "G0 Z5\nM2\n";
+}
+
+}  // namespace
+
+TEST_CASE("every corpus file streamed a line at a time, or in random chunks on two threads, gives the program's "
+          "compressed text",
+          "[stream][corpus]") {
+  ARCPRESS_CORPUS_FILES_OR_SKIP(files)
+  std::mt19937 rng(7);
+  for (const auto& f : files) {
+    const std::string text = test::read_file(f);
+    CompressOptions opt;
+    opt.threads = 1;
+    DiagnosticSink sink(f.string());
+    const CompressResult whole = compress(f.string(), text, opt, sink);
+    INFO(f.filename().string());
+    REQUIRE(whole.ok);
+    REQUIRE(whole.within_band());
+    const Streamed lines = stream_lines(text, opt);
+    CHECK(lines.output == whole.output);
+    CHECK(lines.result.within_band());
+    opt.threads = 2;
+    std::uniform_int_distribution<size_t> size(1, 100000);
+    const Streamed chunks = stream(text, opt, [&] { return size(rng); });
+    CHECK(chunks.output == whole.output);
+    CHECK(chunks.result.stats.arcs_out == whole.stats.arcs_out);
+    CHECK(chunks.result.check.max_deviation_mm == whole.check.max_deviation_mm);
+  }
+}
+
+TEST_CASE("output comes out before the input ends, and all of a big program is never held", "[stream][corpus]") {
+  ARCPRESS_CORPUS_FILES_OR_SKIP(files)
+  const auto bunny = std::find_if(files.begin(), files.end(),
+                                  [](const auto& p) { return p.filename().string().find("bunny") != std::string::npos; });
+  REQUIRE(bunny != files.end());
+  const std::string text = test::read_file(*bunny);
+  CompressOptions opt;
+  opt.threads = 2;
+  const Streamed s = stream(text, opt, [] { return size_t(1) << 16; });
+  // All but the last pieces in flight were written before the end: the most the engine
+  // holds is a few pieces per thread.
+  CHECK(s.taken_before_finish > 0);
+  CHECK(s.output.size() - s.taken_before_finish <= 2 * kPiecesInFlight * kMaxPieceBytes);
+  CHECK(s.result.within_band());
+  CHECK(s.forced_cuts == 0);  // a printer program has a retraction or a travel often enough
+}
+
+TEST_CASE("a path that goes on for longer than a piece may hold is cut at a vertex and still kept in the band",
+          "[stream]") {
+  const std::string text = spiral(60000);  // about 1.3 MB of one smooth path
+  REQUIRE(text.size() > kMaxPieceBytes);
+  CompressOptions opt;
+  opt.threads = 2;
+  const Streamed s = stream(text, opt, [] { return size_t(4096); });
+  CHECK(s.forced_cuts == 1);
+  CHECK(s.result.ok);
+  CHECK(s.result.verified);
+  CHECK(s.result.within_band());
+  CHECK(s.result.check.same(opt.fit.tolerance_mm));
+  CHECK(s.result.stats.arcs_out > 0);
+  // The check read the whole output back as one program too.
+  DiagnosticSink sink("whole");
+  CompressResult whole;
+  whole.output = s.output;
+  const Program in = lex("in", text, sink);
+  const Interpretation ii = interpret(in, sink);
+  verify_output(in, ii, opt, whole);
+  CHECK(whole.within_band());
+  // The same text for one thread and for any chunking.
+  opt.threads = 1;
+  CHECK(stream_lines(text, opt).output == s.output);
+}
+
+TEST_CASE("in strict mode, an error stops the stream: nothing after it is given out and the result is not ok",
+          "[stream]") {
+  std::string text = spiral(20000);
+  text += "G1 X1.2.3 Y2\n" + spiral(100);
+  CompressOptions opt;
+  opt.strict = true;
+  opt.threads = 2;
+  DiagnosticSink sink("strict");
+  Compressor c("strict", opt, sink);
+  c.push(text);
+  c.finish();
+  std::string out;
+  c.take(out);
+  CHECK_FALSE(c.result().ok);
+  CHECK(sink.error_count() > 0);
+}
+
+TEST_CASE("an empty program and one without a last end of line stream as they are", "[stream]") {
+  CompressOptions opt;
+  CHECK(stream("", opt, [] { return size_t(1); }).output.empty());
+  const Streamed s = stream("G0 X1 Y0\nG1 X2 F100\nG1 X3 Y1\r\nG1 X4 Y3", opt, [] { return size_t(3); });
+  CHECK(s.output == "G0 X1 Y0\nG1 X2 F100\nG1 X3 Y1\r\nG1 X4 Y3");  // a corner at each vertex: nothing to fit
+  CHECK(s.result.ok);
+}
