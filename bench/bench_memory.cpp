@@ -1,13 +1,17 @@
-// Peak memory of the arcpress command: each corpus file of 1 MB or more, and the largest
-// repeated `copies` times (10 by default) to show how the peak grows with the input, each
-// run as a child process whose peak resident set the kernel reports (wait4). Three runs per
-// file: `--method keep --no-verify` (reading and writing back: the floor), `--no-verify`
-// (fitting) and the default (fitting, then reading the output back and comparing it with
-// the input). Prints megabytes and the ratio to the input's size.
-//   bench_memory [copies]
+// Peak memory of the arcpress command: each corpus file of 1 MB or more, then the bunny
+// printer program once, 8 times over and repeated to 520 MB (or the megabytes the argument
+// gives), each run as a child process whose peak resident set the kernel reports (wait4).
+// Three runs per file: `--method keep --no-verify` (reading and writing back: the floor),
+// `--no-verify` (fitting) and the default (fitting, then reading the output back and
+// comparing it with the input). Prints megabytes and the ratio to the input's size, and
+// fails (exit 1) where any run takes more than 64 MiB or the default's peak on the biggest
+// program lies more than 8 MiB above its peak on the bunny alone.
+//   bench_memory [MB]
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -31,7 +35,12 @@ std::optional<double> peak_mib(const fs::path& file, const std::vector<std::stri
   return r.peak_mib;
 }
 
-void measure(const std::string& name, const fs::path& file) {
+struct Peaks {
+  std::string name;
+  std::optional<double> keep, fit, all;
+};
+
+Peaks measure(const std::string& name, const fs::path& file) {
   const double in_mib = double(fs::file_size(file)) / (1024.0 * 1024.0);
   auto keep = peak_mib(file, {"--method", "keep", "--no-verify"});
   auto fit = peak_mib(file, {"--no-verify"});
@@ -40,41 +49,75 @@ void measure(const std::string& name, const fs::path& file) {
     return m ? fmt::format("{:>8.0f} {:>5.0f}x", *m, *m / in_mib) : fmt::format("{:>15}", "failed");
   };
   fmt::print("{:<46} {:>8.1f}  {}  {}  {}\n", name, in_mib, cell(keep), cell(fit), cell(all));
+  std::fflush(stdout);
+  return {name, keep, fit, all};
 }
 
 }  // namespace
 
+/// The most memory arcpress may take with default options on any input, MiB.
+constexpr double kLimitMib = 64;
+/// How far the peak on the biggest program may lie above the peak on the file it repeats:
+/// what threads, pieces and the allocator's moods may add, never a share of the input.
+constexpr double kGrowthMib = 8;
+
 int main(int argc, char** argv) {
-  const int copies = argc > 1 ? std::max(1, std::atoi(argv[1])) : 10;
+  // Bytes of the biggest program: 520 MB unless the first argument says otherwise (MB).
+  const double big_mb = argc > 1 ? std::max(1.0, std::atof(argv[1])) : 520;
   const fs::path corpus = ARCPRESS_CORPUS_DIR;
-  if (!fs::exists(corpus)) {
+  const fs::path bunny = corpus / "printer" / "prusaslicer-2.5_bunny_marlin.gcode";
+  if (!fs::exists(bunny)) {
     fmt::print("no corpus at {}\n", corpus.string());
     return 0;
   }
+  fmt::print("peak resident set of `arcpress FILE -o -`, MiB and times the input's size\n");
+  fmt::print("{:<46} {:>8}  {:>15}  {:>15}  {:>15}\n", "file", "in MiB", "keep,no-verify", "--no-verify",
+             "default");
+  // The corpus files of 1 MB or more, then the biggest repeated 8 times and to `big_mb`.
   std::vector<fs::path> files;
   for (const auto& sub : {"cnc", "printer"})
     for (const auto& e : fs::directory_iterator(corpus / sub))
       if (fs::file_size(e.path()) >= 1000000) files.push_back(e.path());
   std::sort(files.begin(), files.end());
-  fmt::print("peak resident set of `arcpress FILE -o -`, MiB and times the input's size\n");
-  fmt::print("{:<46} {:>8}  {:>15}  {:>15}  {:>15}\n", "file", "in MiB", "keep,no-verify", "--no-verify",
-             "default");
-  for (const auto& f : files) measure(f.filename().string(), f);
-  if (files.empty()) return 0;
-  // The largest file, `copies` times over, in a temporary folder.
-  const fs::path largest = *std::max_element(files.begin(), files.end(), [](const fs::path& a, const fs::path& b) {
-    return fs::file_size(a) < fs::file_size(b);
-  });
+  std::vector<Peaks> peaks;
+  for (const auto& f : files) peaks.push_back(measure(f.filename().string(), f));
   const fs::path dir = fs::temp_directory_path() / fmt::format("arcpress-bench-memory-{}", getpid());
   fs::create_directories(dir);
-  const fs::path big = dir / ("x" + std::to_string(copies) + "-" + largest.filename().string());
+  std::string text;
   {
-    std::ifstream in(largest, std::ios::binary);
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    std::ofstream out(big, std::ios::binary);
-    for (int k = 0; k < copies; ++k) out << text;
+    std::ifstream in(bunny, std::ios::binary);
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   }
-  measure(fmt::format("{} x {}", largest.filename().string(), copies), big);
+  const size_t big_copies = size_t(std::ceil(big_mb * 1e6 / double(text.size())));
+  std::optional<double> bunny_peak, biggest_peak;
+  for (size_t copies : {size_t(1), size_t(8), big_copies}) {
+    const fs::path file = dir / fmt::format("bunny-x{}.gcode", copies);
+    {
+      std::ofstream out(file, std::ios::binary);
+      for (size_t k = 0; k < copies; ++k) out << text;
+    }
+    const Peaks p = measure(fmt::format("bunny x {} ({:.0f} MB)", copies, double(fs::file_size(file)) / 1e6), file);
+    peaks.push_back(p);
+    if (copies == 1) bunny_peak = p.all;
+    biggest_peak = p.all;
+    fs::remove(file);
+  }
   fs::remove_all(dir);
-  return 0;
+  // The promise: flat in the input's size, and under the limit on every input.
+  bool ok = true;
+  for (const Peaks& p : peaks)
+    for (const auto& m : {p.keep, p.fit, p.all})
+      if (!m || *m > kLimitMib) {
+        fmt::print("FAIL: {}: peak {} MiB, limit {} MiB\n", p.name, m ? fmt::format("{:.0f}", *m) : "unknown",
+                   kLimitMib);
+        ok = false;
+      }
+  if (bunny_peak && biggest_peak && *biggest_peak > *bunny_peak + kGrowthMib) {
+    fmt::print("FAIL: the peak grows with the input: {:.0f} MiB for bunny, {:.0f} MiB for {:.0f} MB of it "
+               "(allowed {:.0f} MiB more)\n",
+               *bunny_peak, *biggest_peak, big_mb, kGrowthMib);
+    ok = false;
+  }
+  fmt::print("{}\n", ok ? "memory: flat in the input's size and under the limit" : "memory: FAILED");
+  return ok ? 0 : 1;
 }

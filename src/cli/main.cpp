@@ -14,6 +14,7 @@
 
 #include "arcpress/api/arcpress.hpp"
 #include "arcpress/api/compressor.hpp"
+#include "arcpress/api/piece.hpp"
 #include "arcpress/core/error.hpp"
 #include "arcpress/dialect/dialect_loader.hpp"
 #include "arcpress/dialect/program_flavor.hpp"
@@ -228,6 +229,7 @@ int run_compress(const CompressArgs& a) {
                "  kept as input  {} arcs that would not print inside the dialect's rules, {} over-long lines, {} runs "
                "the check refused\n"
                "  planes         {} G17/G18/G19 blocks around runs fitted in another plane\n"
+               "  pieces         {} streamed, {} of them cut inside a path\n"
                "  time           {:.3f} s\n",
                name, out_path == "-" ? "<stdout>" : out_path, r.blocks_in, r.bytes_in, r.bytes_out,
                r.bytes_in ? 100.0 * double(r.bytes_out) / double(r.bytes_in) : 100.0, r.g1_moves, st.moves_in, st.runs,
@@ -235,7 +237,8 @@ int run_compress(const CompressArgs& a) {
                why_dialect,
                st.lines_out, st.arcs_out, st.lines_out + st.arcs_out, st.moves_in,
                st.moves_in ? 100.0 * double(st.lines_out + st.arcs_out) / double(st.moves_in) : 100.0,
-               st.arcs_unprintable, st.long_lines_kept, r.runs_kept_as_input, st.plane_words_added, s);
+               st.arcs_unprintable, st.long_lines_kept, r.runs_kept_as_input, st.plane_words_added,
+               compressor.pieces(), compressor.forced_cuts(), s);
     // The G1 moves left as they are, by reason, with the first place of each.
     for (const NotFitted& n : r.not_fitted)
       fmt::print(stderr, "  not fitted     {} G1 move{}: {}{} (first at line {})\n", n.moves, n.moves == 1 ? "" : "s",
@@ -247,6 +250,9 @@ int run_compress(const CompressArgs& a) {
       std::string where;
       if (!r.check.worst.empty() && r.check.worst.front().line_a > 0)
         where = fmt::format(", input line {}, output line {}", r.check.worst.front().line_a, r.check.worst.front().line_b);
+      // The check measures exactly only what is over a twentieth of the band.
+      const double floor_mm = kExactShare * r.band_mm;
+      if (r.check.max_deviation_mm < floor_mm) where = fmt::format(", under {:.6f} mm everywhere (measured no closer)", floor_mm);
       fmt::print(stderr,
                  "  deviation      {:.6f} mm max (band {} mm){}\n"
                  "  smooth joints  {} made, max kink {:.3f} deg, {} over {} deg ({} forced by the band or the digits)\n",

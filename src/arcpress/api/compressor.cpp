@@ -269,5 +269,6 @@ void Compressor::finish() { impl_->finish(); }
 const CompressResult& Compressor::result() const { return impl_->total; }
 size_t Compressor::bytes_read() const { return impl_->bytes_read; }
 size_t Compressor::forced_cuts() const { return impl_->forced; }
+size_t Compressor::pieces() const { return impl_->pieces; }
 
 }  // namespace arcpress

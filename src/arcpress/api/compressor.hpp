@@ -56,6 +56,8 @@ class Compressor {
   /// Pieces cut at a vertex because a path went on for kMaxPieceBytes without a move that
   /// ends it (see the header's comment), so far.
   size_t forced_cuts() const;
+  /// Pieces the program was cut into so far.
+  size_t pieces() const;
 
  private:
   struct Impl;

@@ -39,7 +39,10 @@ void verify_piece_output(const Program& input, const Interpretation& in, const C
   // compare_paths() measured each output move against the input it replaces, which is no
   // nearer than the nearest input anywhere: the whole-path measure needs to be exact only
   // near that maximum (or the band, below it), where it can confirm or refute it.
-  dopt.least_mm = std::max(0.0, std::min(r.comparison.max_deviation_mm, opt.fit.tolerance_mm) * (1 - kReadingShare));
+  // Below a twentieth of the band no distance matters to the check, or to a user reading
+  // its maximum: a piece written back as it was is not measured down to nothing.
+  dopt.least_mm = std::max(kExactShare * opt.fit.tolerance_mm,
+                           std::min(r.comparison.max_deviation_mm, opt.fit.tolerance_mm) * (1 - kReadingShare));
   r.check = diff_programs(input, in, out_prog, out_in, dopt);
   if (out_sink.error_count() > 0)
     r.check.findings.insert(r.check.findings.begin(), "the output does not read back: " + out_sink.format_all());

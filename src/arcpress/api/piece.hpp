@@ -16,6 +16,11 @@
 
 namespace arcpress {
 
+/// The share of the band below which the self-check's whole-path measure need not be exact:
+/// its maximum is exact above it, and where the paths are nowhere that far apart it reports
+/// at most that (DiffOptions::least_mm).
+inline constexpr double kExactShare = 0.05;
+
 struct Piece {
   size_t index = 0;        ///< 0, 1, 2 ... in program order
   Program program;         ///< its lines, numbered as in the whole program

@@ -1,0 +1,140 @@
+// Throughput of the streaming engine as ratios to a bare tokenizer on the same files in the
+// same run: ../shared/tools/parse_ceiling.cpp, which only splits words and parses numbers,
+// built beside this bench. Per file (bunny, FreeCAD, ps271 and bunny x 8): the tokenizer's
+// MB/s; lexing and interpreting (arcpress's reader) in MB/s and as a share of it; compressing
+// with verification (the default) through Compressor in 1 MiB pushes on one thread and on
+// every hardware thread, in MB/s and as a share of it; and the fit's quality: blocks out and
+// the measured maximum deviation. Best of three runs each.
+//   bench_throughput [PARSE_CEILING]
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "arcpress/api/compressor.hpp"
+#include "arcpress/lex/lexer.hpp"
+#include "arcpress/model/interpreter.hpp"
+#include "timed_compress.hpp"
+
+namespace fs = std::filesystem;
+using namespace arcpress;
+using clk = std::chrono::steady_clock;
+
+namespace {
+
+constexpr int kRepeats = 3;
+
+/// The tokenizer's MB/s on `file`, as it prints it; none when it could not run.
+std::optional<double> ceiling_mb_s(const std::string& exe, const fs::path& file) {
+  const std::string cmd = fmt::format("'{}' '{}'", exe, file.string());
+  FILE* p = ::popen(cmd.c_str(), "r");
+  if (!p) return std::nullopt;
+  char line[512] = {};
+  std::string out;
+  while (std::fgets(line, sizeof line, p)) out += line;
+  if (::pclose(p) != 0) return std::nullopt;
+  double mb_s = 0;
+  if (std::sscanf(out.c_str(), "parse ceiling: %lf MB/s", &mb_s) != 1) return std::nullopt;
+  return mb_s;
+}
+
+template <class F>
+double best_seconds(F&& f) {
+  double best = 1e9;
+  for (int k = 0; k < kRepeats; ++k) {
+    const auto t0 = clk::now();
+    f();
+    best = std::min(best, std::chrono::duration<double>(clk::now() - t0).count());
+  }
+  return best;
+}
+
+struct Streamed {
+  CompressResult result;
+  size_t lines_out = 0;
+};
+
+Streamed stream(const std::string& text, unsigned threads) {
+  CompressOptions opt;
+  opt.threads = threads;
+  DiagnosticSink sink;
+  Compressor c("bench", opt, sink);
+  std::string out;
+  Streamed s;
+  for (size_t at = 0; at < text.size(); at += size_t(1) << 20) {
+    c.push(std::string_view(text).substr(at, size_t(1) << 20));
+    out.clear();
+    c.take(out);
+    s.lines_out += size_t(std::count(out.begin(), out.end(), '\n'));
+  }
+  c.finish();
+  out.clear();
+  c.take(out);
+  s.lines_out += size_t(std::count(out.begin(), out.end(), '\n'));
+  s.result = c.result();
+  return s;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string ceiling = argc > 1 ? argv[1] : ARCPRESS_PARSE_CEILING;
+  const fs::path corpus = ARCPRESS_CORPUS_DIR;
+  const fs::path bunny = corpus / "printer" / "prusaslicer-2.5_bunny_marlin.gcode";
+  if (!fs::exists(bunny) || !fs::exists(ceiling)) {
+    fmt::print("no corpus at {} or no tokenizer at {}\n", corpus.string(), ceiling);
+    return 0;
+  }
+  const fs::path dir = fs::temp_directory_path() / fmt::format("arcpress-bench-throughput-{}", getpid());
+  fs::create_directories(dir);
+  const fs::path bunny8 = dir / "bunny-x8.gcode";
+  {
+    const std::string text = file_text(bunny);
+    std::string eight;
+    for (int k = 0; k < 8; ++k) eight += text;
+    std::ofstream(bunny8, std::ios::binary) << eight;
+  }
+  const std::array<std::pair<const char*, fs::path>, 4> files = {{
+      {"bunny", bunny},
+      {"FreeCAD", corpus / "cnc" / "freecad-script_BackFastening_2_OutCut.nc"},
+      {"ps271", corpus / "printer" / "ps271_benchy.gcode"},
+      {"bunny x 8", bunny8},
+  }};
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  fmt::print("throughput against the bare tokenizer ({}), best of {}; {} hardware threads\n", ceiling, kRepeats, cores);
+  fmt::print("{:<10} {:>6} {:>9} | {:>9} {:>6} | {:>9} {:>6} {:>9} {:>6} {:>6} | {:>9} {:>10}\n", "file", "MB",
+             "tokenizer", "read", "ratio", "1 thread", "ratio", fmt::format("{} thr.", cores), "ratio", "gain",
+             "lines out", "max dev mm");
+  bool all_ok = true;
+  for (const auto& [name, file] : files) {
+    const std::string text = file_text(file);
+    const double mb = double(text.size()) / 1e6;
+    const std::optional<double> tok = ceiling_mb_s(ceiling, file);
+    const double read_s = best_seconds([&] {
+      DiagnosticSink sink;
+      const Program p = lex(file.string(), text, sink);
+      const Interpretation in = interpret(p, sink);
+      if (in.moves.empty()) std::puts("");
+    });
+    Streamed one, many;
+    const double one_s = best_seconds([&] { one = stream(text, 1); });
+    const double many_s = best_seconds([&] { many = stream(text, 0); });
+    const bool same = one.lines_out == many.lines_out && one.result.check.max_deviation_mm == many.result.check.max_deviation_mm;
+    all_ok = all_ok && same && many.result.within_band();
+    auto ratio = [&](double mb_s) { return tok ? fmt::format("{:.3f}", mb_s / *tok) : std::string("-"); };
+    fmt::print("{:<10} {:>6.1f} {:>9} | {:>9.1f} {:>6} | {:>9.1f} {:>6} {:>9.1f} {:>6} {:>5.2f}x | {:>9} {:>10.6f}{}\n", name,
+               mb, tok ? fmt::format("{:.0f}", *tok) : "-", mb / read_s, ratio(mb / read_s), mb / one_s,
+               ratio(mb / one_s), mb / many_s, ratio(mb / many_s), one_s / many_s, many.lines_out,
+               many.result.check.max_deviation_mm, same ? "" : "  (threads differ!)");
+    std::fflush(stdout);
+  }
+  fs::remove_all(dir);
+  fmt::print("MB/s; ratio: of the tokenizer's MB/s on the same file; gain: 1 thread's time over all threads'\n");
+  return all_ok ? 0 : 1;
+}
