@@ -299,7 +299,15 @@ class Directed {
       }
       SegmentIndex::Nearest n1 = locate(p1, n0.segment);
       visit(s, n1, p1);
-      refine(s, p0, n0, p1, n1, 0, visit);
+      // Bounded by one segment of `to` where p0 lies as near it as it lies to its nearest (or
+      // nearer than anything of interest): a vertex two segments share, on a path written
+      // back as it was, then needs no split (a bound may use any point of `to`, nearest or not).
+      SegmentIndex::Nearest b0 = n0;
+      if (n0.segment != n1.segment) {
+        const SegmentIndex::Nearest alt = on_segment(p0, n1.segment);
+        if (alt.distance_mm <= std::max(n0.distance_mm, top_.floor())) b0 = alt;
+      }
+      refine(s, p0, b0, p1, n1, 0, visit);
       n0 = n1;
       last = p1;
     }
@@ -307,7 +315,7 @@ class Directed {
 
  private:
   SegmentIndex::Nearest locate(const Vec3& p, uint32_t hint) const {
-    SegmentIndex::Nearest near = walk_nearest(p, hint);
+    SegmentIndex::Nearest near = walk_nearest(p, hint, top_.floor());
     return near.distance_mm <= top_.floor() ? near : index_.nearest(p, near.segment);
   }
 
@@ -318,10 +326,12 @@ class Directed {
 
   /// The nearest of `to`'s segments reached from `hint` by stepping along `to` either way
   /// while the distance falls (a few steps of no gain are allowed, for zero-length pieces
-  /// and small zig-zags).
-  SegmentIndex::Nearest walk_nearest(const Vec3& p, uint32_t hint) const {
+  /// and small zig-zags); or the first found no farther than `enough_mm`, where nothing
+  /// nearer matters (a point on a path written back as it was).
+  SegmentIndex::Nearest walk_nearest(const Vec3& p, uint32_t hint, double enough_mm) const {
     constexpr int kMaxSteps = 256, kMaxMisses = 3;
     SegmentIndex::Nearest best = on_segment(p, hint);
+    if (best.distance_mm <= enough_mm) return best;
     for (int dir : {+1, -1}) {
       int64_t s = hint;
       for (int steps = 0, misses = 0; steps < kMaxSteps && misses <= kMaxMisses; ++steps) {
