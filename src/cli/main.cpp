@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <limits.h>
+#include <malloc.h>
 #include <unistd.h>
 #include <stdlib.h>
 
@@ -324,6 +325,10 @@ int run_diff(const DiffArgs& d) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Each piece of a program allocates and frees about the same memory as the last: keep
+  // what is freed for the next rather than give it back and fault it in again.
+  ::mallopt(M_MMAP_THRESHOLD, 64 << 20);
+  ::mallopt(M_TRIM_THRESHOLD, 128 << 20);
   cli::remove_temporary_files_on_signals();
   CLI::App app{
       "arcpress: replaces runs of short G1 moves in a G-code program with the fewest\n"

@@ -340,6 +340,7 @@ class Directed {
         SegmentIndex::Nearest n = on_segment(p, uint32_t(s));
         if (n.distance_mm < best.distance_mm) {
           best = n;
+          if (best.distance_mm <= enough_mm) return best;
           misses = 0;
         } else {
           ++misses;
