@@ -18,7 +18,8 @@ std::string megabytes(size_t bytes) { return fmt::format("{:.1f} MB", double(byt
 }  // namespace
 
 Progress::Progress(std::optional<size_t> total, bool quiet, bool forced)
-    : total_(total), enabled_(forced || (!quiet && ::isatty(STDERR_FILENO))), start_(Clock::now()), last_(start_) {}
+    : total_(total), enabled_(forced || (!quiet && ::isatty(STDERR_FILENO))), start_(Clock::now()),
+      last_(start_ - kRedraw) {}  // the first line is drawn as soon as the input is big enough
 
 Progress::~Progress() { clear(); }
 

@@ -68,7 +68,7 @@ std::string spiral(size_t moves) {
 }  // namespace
 
 TEST_CASE("every corpus file streamed a line at a time, or in random chunks on two threads, gives the program's "
-          "compressed text",
+          "compressed text, as the command line writes it",
           "[stream][corpus]") {
   ARCPRESS_CORPUS_FILES_OR_SKIP(files)
   std::mt19937 rng(7);
@@ -90,6 +90,10 @@ TEST_CASE("every corpus file streamed a line at a time, or in random chunks on t
     CHECK(chunks.output == whole.output);
     CHECK(chunks.result.stats.arcs_out == whole.stats.arcs_out);
     CHECK(chunks.result.check.max_deviation_mm == whole.check.max_deviation_mm);
+    // The command line runs the same engine on the same options.
+    const test::Command cli = test::run_arcpress("'" + f.string() + "' --dialect rs274");
+    CHECK(cli.exit_code == 0);
+    CHECK(cli.out == whole.output);
   }
 }
 

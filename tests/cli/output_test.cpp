@@ -224,3 +224,26 @@ TEST_CASE("a program refused half way leaves a shell's output file as empty as i
   CHECK(c.out == "2\n0\n");
   CHECK(c.err.find("nothing written") != std::string::npos);
 }
+
+TEST_CASE("progress is shown on standard error only where asked or on a terminal, and erased at the end",
+          "[cli][output][stream]") {
+  auto d = arcpress::test::temp_dir("progress");
+  std::string program = "G21 G90\n";
+  for (int pass = 0; program.size() < (size_t(6) << 20); ++pass) {
+    program += fmt::format("G0 X0 Y{} Z1\nG1 Z0 F600\n", pass);
+    for (int k = 1; k <= 200; ++k) program += fmt::format("G1 X{:.4f} Y{:.4f}\n", 0.25 * k, pass + 0.5 * std::sin(0.05 * k));
+  }
+  arcpress::test::write_file(d / "big.nc", program);
+  const std::string in = "'" + (d / "big.nc").string() + "' -o /dev/null";
+  auto shown = run_arcpress(in + " --progress");
+  REQUIRE(shown.exit_code == 0);
+  CHECK(shown.err.find("MB/s") != std::string::npos);
+  CHECK(shown.err.find(" of ") != std::string::npos);          // the file's size is known: a share of it
+  CHECK(shown.err.size() >= 4);
+  CHECK(shown.err.substr(shown.err.size() - 4) == "\r\033[K");  // erased at the end
+  auto piped = run_arcpress(in);                                  // standard error is no terminal here
+  CHECK(piped.exit_code == 0);
+  CHECK(piped.err.empty());
+  auto quiet = run_arcpress(in + " --progress -q");
+  CHECK(quiet.err.find("MB/s") != std::string::npos);             // --progress wins: asked for by name
+}

@@ -78,7 +78,10 @@ struct Compressor::Impl {
     if (!failed && !pending.empty()) add_line(pending);
     pending.clear();
     if (!failed && cur) {
+      // The last piece is often the only one (a program under kPieceBytes): every thread
+      // works on it.
       cur->last = true;
+      cur->threads = opt.threads;
       close_piece(true);
     }
     release(true);

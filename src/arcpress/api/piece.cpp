@@ -1,12 +1,14 @@
 #include "arcpress/api/piece.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <iterator>
 #include <numeric>
 #include <optional>
 
 #include <fmt/format.h>
 
+#include "arcpress/core/workers.hpp"
 #include "arcpress/extract/run.hpp"
 #include "arcpress/fit/fitter.hpp"
 #include "arcpress/lex/lexer.hpp"
@@ -118,15 +120,34 @@ std::vector<uint32_t> refused_output_lines(const CompressResult& r) {
   return lines;
 }
 
-/// Fits every run of the piece, chain by chain (see chain_runs()).
-std::vector<FitResult> fit_runs(const Interpretation& in, const std::vector<Run>& runs, const CompressOptions& opt) {
+/// Fits every run of the piece, chain by chain (see chain_runs()), with `threads` threads.
+std::vector<FitResult> fit_runs(const Interpretation& in, const std::vector<Run>& runs, const CompressOptions& opt,
+                                unsigned threads) {
+  const std::vector<RunChain> chains = chain_runs(in, runs, opt.fit.tolerance_mm, opt.fit.corner_angle_deg);
   std::vector<FitResult> fits(runs.size());
-  for (const RunChain& c : chain_runs(in, runs, opt.fit.tolerance_mm, opt.fit.corner_angle_deg)) {
+  auto fit_one = [&](size_t i) {
+    const RunChain& c = chains[i];
     auto got = fit_chain(in, c, runs, [&](const Run& r) {
       return fit_options_for(opt.fit, opt.dialect, in.frames[r.frame], r.plane);
     });
     std::move(got.begin(), got.end(), fits.begin() + c.first_run);
-  }
+  };
+  // Each worker takes the next chain not yet taken, longest first, so a few long ones do not
+  // hold the rest back at the end; results land in their runs' places, so the order never
+  // depends on the timing.
+  std::vector<size_t> order(chains.size());
+  std::iota(order.begin(), order.end(), size_t(0));
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t x, size_t y) { return chains[x].move_count > chains[y].move_count; });
+  std::atomic<size_t> next{0};
+  run_workers(worker_count(threads, chains.size()), [&](size_t) {
+    try {
+      for (size_t i; (i = next.fetch_add(1)) < chains.size();) fit_one(order[i]);
+    } catch (...) {  // the fitter does not throw; an allocation can: the others stop too
+      next = chains.size();
+      throw;
+    }
+  });
   return fits;
 }
 
@@ -139,7 +160,7 @@ size_t count_lines(const std::string& text) {
 
 void compress_piece(Piece& piece, const CompressOptions& options) {
   CompressOptions opt = options;
-  opt.threads = 1;  // pieces are the unit of work of the threads
+  opt.threads = piece.threads;
   const Program& prog = piece.program;
   const Interpretation& in = piece.in;
   CompressResult& r = piece.result;
@@ -157,7 +178,7 @@ void compress_piece(Piece& piece, const CompressOptions& options) {
     choice.band_mm = opt.fit.tolerance_mm;
     choice.corner_angle_deg = opt.fit.corner_angle_deg;
     runs = extract_runs(in, 2, choice);
-    fits = fit_runs(in, runs, opt);
+    fits = fit_runs(in, runs, opt, opt.threads);
   }
   for (const Move& m : in.moves) r.g1_moves += m.kind == MoveKind::Line;
   if (!opt.passthrough) {
@@ -173,7 +194,7 @@ void compress_piece(Piece& piece, const CompressOptions& options) {
   eo.dialect = opt.dialect;
   eo.format = opt.arc_format.value_or(opt.dialect.format);
   eo.tangent_slack_deg = 0.05 * opt.fit.g1_angle_deg;
-  eo.threads = 1;
+  eo.threads = opt.threads;
   eo.start = piece.emit;
   r.output = emit_program(prog, in, runs, fits, eo, &r.stats);
   r.ok = true;

@@ -32,6 +32,10 @@ struct Piece {
   /// not be, and the next piece states its motion word where it needs one.
   bool clean_end = true;
   bool last = false;       ///< the program's last piece
+  /// Threads that may work on this piece at once (fitting its chains, measuring its paths):
+  /// 1 where pieces are shared among threads; more for a piece worked on alone. The output
+  /// is the same for any number.
+  unsigned threads = 1;
 
   // What compress_piece() makes of it.
   CompressResult result;   ///< its text, counts and checks; output lines (line_b) counted from the piece's first
