@@ -1,0 +1,103 @@
+#!/usr/bin/env python3
+"""Compresses a G-code file through arcpress's C library (libarcpress.so) with ctypes.
+
+    arcpress_compress.py INPUT OUTPUT [--dialect NAME] [--tolerance MM] [--library PATH]
+
+The library is looked for at --library, then $ARCPRESS_LIBRARY, then by the system's usual
+rules (ldconfig, LD_LIBRARY_PATH). Exit 0 written; otherwise arcpress's status (1 the check
+failed, 2 bad input, 3 a file) and nothing is left at OUTPUT.
+"""
+import argparse
+import ctypes
+import ctypes.util
+import os
+import sys
+
+OK = 0
+
+
+class Stats(ctypes.Structure):
+    _fields_ = [("bytes_in", ctypes.c_size_t), ("bytes_out", ctypes.c_size_t), ("blocks_in", ctypes.c_size_t),
+                ("g1_moves", ctypes.c_size_t), ("lines_out", ctypes.c_size_t), ("arcs_out", ctypes.c_size_t),
+                ("max_deviation_mm", ctypes.c_double), ("verified", ctypes.c_int)]
+
+
+def load(path):
+    path = path or os.environ.get("ARCPRESS_LIBRARY") or ctypes.util.find_library("arcpress")
+    if not path:
+        sys.exit("arcpress_compress: libarcpress.so not found (use --library or ARCPRESS_LIBRARY)")
+    lib = ctypes.CDLL(path)
+    p = ctypes.c_void_p
+    lib.arcpress_options_new.restype = p
+    lib.arcpress_options_free.argtypes = [p]
+    lib.arcpress_options_last_error.argtypes = [p]
+    lib.arcpress_options_last_error.restype = ctypes.c_char_p
+    lib.arcpress_options_set_tolerance.argtypes = [p, ctypes.c_double]
+    lib.arcpress_options_set_dialect.argtypes = [p, ctypes.c_char_p]
+    lib.arcpress_compressor_new.argtypes = [p, ctypes.c_char_p, ctypes.POINTER(p)]
+    lib.arcpress_compressor_free.argtypes = [p]
+    lib.arcpress_push.argtypes = [p, ctypes.c_char_p, ctypes.c_size_t]
+    lib.arcpress_take.argtypes = [p, ctypes.POINTER(ctypes.c_char_p), ctypes.POINTER(ctypes.c_size_t)]
+    lib.arcpress_finish.argtypes = [p]
+    lib.arcpress_get_stats.argtypes = [p, ctypes.POINTER(Stats)]
+    lib.arcpress_diagnostics.argtypes = [p]
+    lib.arcpress_diagnostics.restype = ctypes.c_char_p
+    lib.arcpress_last_error.argtypes = [p]
+    lib.arcpress_last_error.restype = ctypes.c_char_p
+    return lib
+
+
+def compress(lib, source, target, dialect, tolerance):
+    options = lib.arcpress_options_new()
+    compressor = ctypes.c_void_p()
+    try:
+        if (lib.arcpress_options_set_tolerance(options, tolerance) != OK or
+                lib.arcpress_options_set_dialect(options, dialect.encode()) != OK or
+                lib.arcpress_compressor_new(options, source.encode(), ctypes.byref(compressor)) != OK):
+            print("arcpress_compress:", lib.arcpress_options_last_error(options).decode(), file=sys.stderr)
+            return 2
+        text, length = ctypes.c_char_p(), ctypes.c_size_t()
+        status = OK
+        partial = target + ".partial"
+        with open(source, "rb") as src, open(partial, "wb") as out:
+            def take():
+                if lib.arcpress_take(compressor, ctypes.byref(text), ctypes.byref(length)) == OK and length.value:
+                    out.write(ctypes.string_at(text, length.value))
+            while status == OK:
+                chunk = src.read(1 << 20)
+                if not chunk:
+                    break
+                status = lib.arcpress_push(compressor, chunk, len(chunk))
+                take()
+            if status == OK:
+                status = lib.arcpress_finish(compressor)
+            take()
+        sys.stderr.write(lib.arcpress_diagnostics(compressor).decode())
+        if status != OK:
+            os.remove(partial)
+            print("arcpress_compress:", lib.arcpress_last_error(compressor).decode(), file=sys.stderr)
+            return status
+        os.replace(partial, target)
+        stats = Stats()
+        lib.arcpress_get_stats(compressor, ctypes.byref(stats))
+        print(f"arcpress_compress: {stats.bytes_in} -> {stats.bytes_out} bytes, {stats.arcs_out} arcs, "
+              f"deviation {stats.max_deviation_mm:.6f} mm", file=sys.stderr)
+        return OK
+    finally:
+        lib.arcpress_compressor_free(compressor)
+        lib.arcpress_options_free(options)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("input")
+    parser.add_argument("output")
+    parser.add_argument("--dialect", default="rs274")
+    parser.add_argument("--tolerance", type=float, default=0.01)
+    parser.add_argument("--library")
+    args = parser.parse_args()
+    return compress(load(args.library), args.input, args.output, args.dialect, args.tolerance)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,60 @@
+#include "arcpress/arcpress.hpp"
+
+#include <dlfcn.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+#include <fmt/format.h>
+
+namespace arcpress {
+
+namespace {
+
+/// The folder of the file this code was loaded from (libarcpress.so, or the program it is
+/// linked into), or empty.
+std::string own_folder() {
+  Dl_info info{};
+  if (::dladdr(reinterpret_cast<void*>(&dialect_named), &info) == 0 || !info.dli_fname) return {};
+  std::error_code ec;
+  const std::filesystem::path file = std::filesystem::canonical(info.dli_fname, ec);
+  return ec ? std::string() : file.parent_path().string();
+}
+
+}  // namespace
+
+Dialect dialect_named(const std::string& name) {
+  // $ARCPRESS_DIALECT_PATH, then beside the library as installed (PREFIX/lib ->
+  // PREFIX/share/arcpress/dialects) or built, then the prefix it was configured for, then
+  // the source tree.
+  std::vector<std::string> path = dialect_search_path(own_folder());
+  path.insert(path.end() - (*ARCPRESS_SOURCE_DIALECT_DIR ? 1 : 0), ARCPRESS_INSTALL_DIALECT_DIR);
+  return find_dialect(name, path);
+}
+
+CompressResult compress_stream(std::istream& in, std::ostream& out, const std::string& name,
+                               const CompressOptions& options, DiagnosticSink& sink) {
+  constexpr size_t kChunk = size_t(1) << 20;
+  Compressor c(name, options, sink);
+  std::string chunk(kChunk, '\0'), text;
+  auto write = [&] {
+    text.clear();
+    if (c.take(text) > 0 && !out.write(text.data(), std::streamsize(text.size())))
+      throw Error(kExitIo, fmt::format("cannot write the output of '{}'", name));
+  };
+  while (c.result().ok && in) {
+    in.read(chunk.data(), std::streamsize(chunk.size()));
+    const auto got = size_t(in.gcount());
+    if (got == 0) break;
+    c.push(std::string_view(chunk.data(), got));
+    write();
+  }
+  if (in.bad()) throw Error(kExitIo, fmt::format("cannot read '{}'", name));
+  c.finish();
+  write();
+  out.flush();
+  if (!out) throw Error(kExitIo, fmt::format("cannot write the output of '{}'", name));
+  return c.result();
+}
+
+}  // namespace arcpress

@@ -1,0 +1,84 @@
+/* arcpress's C library: opaque handles, a status from every call, no exception crosses it and
+ * no state is shared between handles (two compressors may run on two threads at once).
+ *
+ *   arcpress_options *o = arcpress_options_new();
+ *   arcpress_options_set_tolerance(o, 0.01);
+ *   arcpress_options_set_dialect(o, "marlin");
+ *   arcpress_compressor *c = NULL;
+ *   if (arcpress_compressor_new(o, "part.gcode", &c) != ARCPRESS_OK) puts(arcpress_options_last_error(o));
+ *   arcpress_push(c, bytes, n);                     (as often as bytes come)
+ *   arcpress_take(c, &text, &len);                  (finished text so far, final)
+ *   status = arcpress_finish(c);                    (ARCPRESS_OK: everything taken may be used)
+ *   arcpress_take(c, &text, &len);
+ *   arcpress_compressor_free(c); arcpress_options_free(o);
+ *
+ * Text returned by a call stays valid until the next call on the same handle. */
+#ifndef ARCPRESS_H
+#define ARCPRESS_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum arcpress_status {
+  ARCPRESS_OK = 0,
+  ARCPRESS_CHECK_FAILED = 1, /* the output failed its check: throw away what was taken */
+  ARCPRESS_BAD_INPUT = 2,    /* a usage error or input that cannot be read (see last_error, diagnostics) */
+  ARCPRESS_IO_ERROR = 3,     /* a file could not be read or written */
+  ARCPRESS_INTERNAL = 4      /* anything else (out of memory): the handle is unusable */
+} arcpress_status;
+
+typedef struct arcpress_options arcpress_options;
+typedef struct arcpress_compressor arcpress_compressor;
+
+/* Counts and the measured deviation of a compression (valid after arcpress_finish). */
+typedef struct arcpress_stats {
+  size_t bytes_in, bytes_out;
+  size_t blocks_in;
+  size_t g1_moves;        /* G1 moves in the input */
+  size_t lines_out;       /* G1 blocks written for runs */
+  size_t arcs_out;        /* G2/G3 blocks written */
+  double max_deviation_mm;
+  int verified;           /* 1: the output was read back and measured */
+} arcpress_stats;
+
+const char* arcpress_version(void);
+
+arcpress_options* arcpress_options_new(void);
+void arcpress_options_free(arcpress_options* options);
+/* The message of the last failed call on `options` (or on arcpress_compressor_new with it). */
+const char* arcpress_options_last_error(const arcpress_options* options);
+arcpress_status arcpress_options_set_tolerance(arcpress_options* options, double mm);
+arcpress_status arcpress_options_set_g1_angle(arcpress_options* options, double degrees);
+arcpress_status arcpress_options_set_corner_angle(arcpress_options* options, double degrees);
+/* "arcs" (default), "global", "greedy", "stream", "lowe" or "keep". */
+arcpress_status arcpress_options_set_method(arcpress_options* options, const char* method);
+/* A shipped dialect by name ("fanuc", "marlin", ...) or a dialect TOML file of one's own. */
+arcpress_status arcpress_options_set_dialect(arcpress_options* options, const char* name);
+arcpress_status arcpress_options_set_dialect_file(arcpress_options* options, const char* path);
+arcpress_status arcpress_options_set_threads(arcpress_options* options, unsigned threads);
+arcpress_status arcpress_options_set_verify(arcpress_options* options, int verify);
+arcpress_status arcpress_options_set_strict(arcpress_options* options, int strict);
+
+/* `name` names the program in diagnostics. On failure *out is NULL and the message is
+ * arcpress_options_last_error(options). */
+arcpress_status arcpress_compressor_new(arcpress_options* options, const char* name, arcpress_compressor** out);
+void arcpress_compressor_free(arcpress_compressor* compressor);
+arcpress_status arcpress_push(arcpress_compressor* compressor, const char* bytes, size_t length);
+/* The output finished since the last take, in order; *text is not NUL-terminated. */
+arcpress_status arcpress_take(arcpress_compressor* compressor, const char** text, size_t* length);
+/* Ends the input. ARCPRESS_OK: all output may be used; ARCPRESS_BAD_INPUT or
+ * ARCPRESS_CHECK_FAILED: none of it. */
+arcpress_status arcpress_finish(arcpress_compressor* compressor);
+arcpress_status arcpress_get_stats(const arcpress_compressor* compressor, arcpress_stats* stats);
+/* "file:line:col: warning: CODE: message" lines for the input's problems (may be ""). */
+const char* arcpress_diagnostics(arcpress_compressor* compressor);
+const char* arcpress_last_error(const arcpress_compressor* compressor);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* ARCPRESS_H */

@@ -1,0 +1,98 @@
+// The C library (arcpress.h): statuses and messages instead of exceptions, no state shared
+// between handles, and the same text as the C++ engine.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+#include <thread>
+
+#include "arcpress/arcpress.h"
+#include "arcpress/arcpress.hpp"
+#include "support.hpp"
+
+namespace {
+
+/// A quarter circle of radius 10 mm in 2 degree steps, printed with a decimal point always.
+std::string quarter_circle() {
+  std::string s = "G21 G90\nG0 X10. Y0. Z1.\nG1 Z0. F600\n";
+  for (int k = 1; k <= 45; ++k) {
+    const double t = 2.0 * k * 3.14159265358979 / 180;
+    s += "G1 X" + std::to_string(10 * std::cos(t)) + " Y" + std::to_string(10 * std::sin(t)) + "\n";
+  }
+  return s + "G0 Z5.\nM2\n";
+}
+const std::string kProgram = quarter_circle();
+
+/// The text and status of compressing `program` through the C library, pushed in pieces of `step`.
+std::pair<std::string, arcpress_status> through_c(const std::string& program, size_t step, const char* dialect) {
+  arcpress_options* o = arcpress_options_new();
+  REQUIRE(o);
+  REQUIRE(arcpress_options_set_dialect(o, dialect) == ARCPRESS_OK);
+  arcpress_compressor* c = nullptr;
+  REQUIRE(arcpress_compressor_new(o, "c", &c) == ARCPRESS_OK);
+  std::string out;
+  const char* text = nullptr;
+  size_t n = 0;
+  for (size_t at = 0; at < program.size(); at += step) {
+    REQUIRE(arcpress_push(c, program.data() + at, std::min(step, program.size() - at)) == ARCPRESS_OK);
+    REQUIRE(arcpress_take(c, &text, &n) == ARCPRESS_OK);
+    out.append(text, n);
+  }
+  const arcpress_status s = arcpress_finish(c);
+  REQUIRE(arcpress_take(c, &text, &n) == ARCPRESS_OK);
+  out.append(text, n);
+  arcpress_compressor_free(c);
+  arcpress_options_free(o);
+  return {out, s};
+}
+
+}  // namespace
+
+TEST_CASE("the C library writes what the C++ engine writes, on two threads at once", "[capi]") {
+  arcpress::CompressOptions opt;
+  opt.dialect = arcpress::dialect_named("fanuc");
+  arcpress::DiagnosticSink sink;
+  const std::string expected = arcpress::compress("c", kProgram, opt, sink).output;
+  REQUIRE(expected.find("G3") != std::string::npos);
+  std::pair<std::string, arcpress_status> a, b;
+  std::thread t1([&] { a = through_c(kProgram, 7, "fanuc"); });
+  std::thread t2([&] { b = through_c(kProgram, 1000, "fanuc"); });
+  t1.join();
+  t2.join();
+  CHECK(a.second == ARCPRESS_OK);
+  CHECK(b.second == ARCPRESS_OK);
+  CHECK(a.first == expected);
+  CHECK(b.first == expected);
+}
+
+TEST_CASE("the C library answers a bad call with a status and a message, never an exception", "[capi]") {
+  arcpress_options* o = arcpress_options_new();
+  CHECK(arcpress_options_set_tolerance(o, -1) == ARCPRESS_BAD_INPUT);
+  CHECK(std::string(arcpress_options_last_error(o)).find("tolerance") != std::string::npos);
+  CHECK(arcpress_options_set_dialect(o, "no-such-controller") == ARCPRESS_BAD_INPUT);
+  CHECK(std::string(arcpress_options_last_error(o)).find("no-such-controller") != std::string::npos);
+  CHECK(arcpress_options_set_dialect_file(o, "/nonexistent/dialect.toml") == ARCPRESS_IO_ERROR);
+  CHECK(arcpress_options_set_method(o, "magic") == ARCPRESS_BAD_INPUT);
+  CHECK(arcpress_compressor_new(o, "x", nullptr) == ARCPRESS_BAD_INPUT);
+  // Strict mode: a line that cannot be read stops the compressor, with its place.
+  REQUIRE(arcpress_options_set_dialect(o, "rs274") == ARCPRESS_OK);
+  REQUIRE(arcpress_options_set_strict(o, 1) == ARCPRESS_OK);
+  arcpress_compressor* c = nullptr;
+  REQUIRE(arcpress_compressor_new(o, "bad.nc", &c) == ARCPRESS_OK);
+  const std::string bad = "G0 X0\nG1 X1.2.3 F100\n";
+  CHECK(arcpress_push(c, bad.data(), bad.size()) == ARCPRESS_BAD_INPUT);
+  CHECK(arcpress_finish(c) == ARCPRESS_BAD_INPUT);
+  CHECK(std::string(arcpress_diagnostics(c)).find("bad.nc:2:") != std::string::npos);
+  CHECK(arcpress_push(c, "G0 X1\n", 6) == ARCPRESS_BAD_INPUT);  // finished: refused, not a crash
+  arcpress_compressor_free(c);
+  arcpress_options_free(o);
+  CHECK(std::string(arcpress_version()) == arcpress::kVersion);
+}
+
+TEST_CASE("postproc/README.md shows the examples the package tests build, as they are", "[capi][docs]") {
+  const std::string readme = arcpress::test::read_file(ARCPRESS_SOURCE_DIR "/postproc/README.md");
+  for (const char* example : {"/postproc/examples/compress.cpp", "/postproc/examples/compress.c"}) {
+    INFO(example);
+    CHECK(readme.find(arcpress::test::read_file(std::string(ARCPRESS_SOURCE_DIR) + example)) != std::string::npos);
+  }
+}
