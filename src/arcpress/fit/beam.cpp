@@ -1,0 +1,220 @@
+// The default method (--method arcs): a beam search over chains of tangent primitives,
+// layer k holding the best chains of k primitives, guided by the greedy chain.
+#include "arcpress/fit/run_fitter.hpp"
+
+namespace arcpress::fit_detail {
+
+/// The G1 chain from `a` to `limit` with the fewest primitives a beam search finds. Layer k
+/// holds the chains of k primitives, at most `beam_width` of them, those reaching furthest
+/// (in the next step, or with this one) with distinct end tangents; each is extended along
+/// its end tangent and along it turned by the whole joint allowance (kJointShare of the G1
+/// angle) each way, and by half of it where the input runs straight ahead (for lines): the
+/// chains' own spread of tangents covers the arcs' turns between. The first chain reaching
+/// `limit` wins. Where the tangent at `a` is free, the roots are start_tangents(). The
+/// greedy chain (read off `greedy` up to its first kink, or chosen again when null) is
+/// always kept. When no chain goes on tangentially, the one reaching furthest is
+/// returned (empty when none leaves `a`), and the caller takes a kink there.
+std::vector<Chosen> RunFitter::beam_chain(uint32_t a, uint32_t limit, GreedyWalk* greedy) const {
+  std::vector<Node>& nodes = s_.nodes;
+  std::vector<int>& layer = s_.layer;
+  std::vector<int>& next = s_.next;
+  nodes.clear();
+  layer.clear();
+  roots(a, limit, s_.roots);
+  for (const Vec2& T : s_.roots) nodes.push_back({{}, -1, a, T});
+  for (int i = 0; i < static_cast<int>(nodes.size()); ++i) layer.push_back(i);
+  const double bin_rad = deg_to_rad(o_.g1_angle_deg) / 8;
+  const size_t width = o_.beam_width;
+  // Candidates are scored first and checked exactly only when the beam keeps them.
+  std::vector<Made>& made = s_.made;
+  std::vector<Candidate>& out = s_.beam_out;
+  std::vector<SeenEnd>& seen = s_.seen;
+  std::vector<std::pair<uint64_t, uint64_t>>& keys = s_.keys;
+  std::vector<uint64_t>& packed_keys = s_.packed_keys;
+  std::vector<std::pair<uint32_t, Vec2>>& expanded = s_.expanded;
+  int furthest = -1;
+  int guide = -1;  // the node the greedy chain would be at: the beam never does worse
+  size_t step = 0;
+  while (!layer.empty()) {
+    made.clear();
+    // The greedy chain's next primitive: read off `greedy` (whose first kink ends it) when
+    // given, else chosen again.
+    std::optional<Chosen> g;
+    if (guide == -1) {
+      guide = layer.front();
+      if (greedy) {
+        if (const Chosen* c = greedy->at(0); c && !c->kinked) g = *c;
+      } else {
+        g = arrives_along(a) ? best_near(a, *in_tangent_, limit) : std::optional<Chosen>(best_free(a, limit));
+      }
+    } else if (guide >= 0) {
+      if (greedy) {
+        if (const Chosen* c = greedy->at(step); c && !c->kinked) g = *c;
+      } else {
+        g = best_near(nodes[guide].v, nodes[guide].T, limit);
+      }
+    }
+    ++step;
+    // Each chain goes on along its end tangent or turned by all of the joint allowance
+    // either way, and where the input runs straight ahead by half of it too: a line's chord
+    // lies within a quarter of the G1 angle of the tangent scanned, so whole turns alone
+    // would offer no line whose chord lies between. A tangent another chain at the same
+    // vertex follows already is not followed twice.
+    expanded.clear();
+    for (int i : layer) {
+      const Node nd = nodes[i];
+      const bool straight = nd.parent >= 0 && straight_ahead(nd.v, limit);  // (roots take no turns)
+      for (const Turn* turn : {(const Turn*)nullptr, &full_left_, &full_right_, &half_left_, &half_right_}) {
+        if (turn && nd.parent < 0) break;
+        if ((turn == &half_left_ || turn == &half_right_) && !straight) break;
+        const Vec2 T = turn ? (*turn)(nd.T) : nd.T;
+        auto same = [&](const auto& x) { return x.first == nd.v && same_tangent_cone_.holds(x.second, T); };
+        if (std::any_of(expanded.begin(), expanded.end(), same)) continue;
+        expanded.push_back({nd.v, T});
+        const GuideScan* kept = pick(nd.v, T, limit, o_.beam_branch, out, true, i == guide);
+        for (const Candidate& cd : out) {
+          if (cd.e >= limit) {
+            if (auto c = made_from(nd, T, cd)) {
+              nodes.push_back({*c, i, c->prim.end_vertex, c->end_tangent});
+              return chain_to(nodes, static_cast<int>(nodes.size()) - 1);
+            }
+            continue;
+          }
+          Chosen lite = unchecked(nd.v, T, cd);
+          made.push_back({i, T, cd, lite, kept ? guide_score(*kept, lite, limit) : score(lite, limit)});
+        }
+      }
+    }
+    // Half the beam goes to the chains whose next step reaches furthest, two places to
+    // those whose primitive itself ends furthest, the rest to those heading where the input
+    // heads (then reaching furthest): each alone loses chains the others find. (A chain
+    // that must pass a narrow place, plum's inner tips, with the one arc that fits there
+    // reaches least after its primitive ends at the entrance, and the chains that turn in
+    // sooner with a longer reach get stuck past it: 53 blocks for plum at 0.003 mm, 49 with
+    // the two places.)
+    next.clear();
+    seen.clear();
+    if (g) {
+      nodes.push_back({*g, guide, g->prim.end_vertex, g->end_tangent});
+      guide = static_cast<int>(nodes.size()) - 1;
+      if (g->prim.end_vertex >= limit) return chain_to(nodes, guide);
+      next.push_back(guide);
+      if (furthest < 0 || nodes[furthest].v < g->prim.end_vertex) furthest = guide;
+    } else {
+      guide = -2;
+    }
+    // A layer keeps few of its candidates, so most are never put in order: each ranking
+    // packs its keys into integers and takes them best first from a heap, ties in the order
+    // made. A tangent's bin is worked out only when another kept chain ends at its vertex.
+    auto bin_of = [&](const Vec2& t) { return std::lround(std::atan2(t.y(), t.x()) / bin_rad); };
+    // Keeps made[k] when it passes the exact check and no kept chain ends at its vertex
+    // with a tangent in the same bin.
+    auto take = [&](uint32_t k) {
+      Made& m = made[k];
+      const uint32_t e = m.c.prim.end_vertex;
+      std::optional<long> bin;
+      for (SeenEnd& s : seen) {
+        if (s.v != e) continue;
+        if (!bin) bin = bin_of(m.c.end_tangent);
+        if (!s.bin) s.bin = bin_of(s.T);
+        if (*s.bin == *bin) return;
+      }
+      auto c = made_from(nodes[m.from], m.T, m.cand);
+      const int from = m.from;
+      m.from = -1;
+      if (!c) return;
+      seen.push_back({e, m.c.end_tangent, bin});
+      nodes.push_back({*c, from, e, c->end_tangent});
+      int id = static_cast<int>(nodes.size()) - 1;
+      if (furthest < 0 || nodes[furthest].v < e) furthest = id;
+      next.push_back(id);
+    };
+    // A ranking orders by (flag, x, y) from each score, then by the order made. Where the
+    // vertices and the candidates fit in 21 bits each, as they do but on runs of more than
+    // two million moves, the key is one 64-bit integer; else two.
+    const bool packed = limit + 2 < (uint32_t(1) << kKeyBits) && made.size() < (size_t(1) << kKeyBits);
+    constexpr uint64_t kIndexMask = (uint64_t(1) << kKeyBits) - 1;
+    // One ranking in `heap`: key_of(fields, k) makes a key, place_of(key) reads k back.
+    auto rank = [&](auto& heap, size_t count, auto fields, auto key_of, auto place_of) {
+      heap.clear();
+      for (uint32_t k = 0; k < made.size(); ++k)
+        if (made[k].from >= 0) heap.push_back(key_of(fields(made[k].sc), k));  // not yet kept, nor failed
+      std::make_heap(heap.begin(), heap.end());
+      for (auto end = heap.end(); end != heap.begin() && next.size() < count; --end) {
+        std::pop_heap(heap.begin(), end);
+        take(place_of(*(end - 1)));
+      }
+    };
+    auto keep_best = [&](size_t count, auto fields) {
+      if (packed) {
+        rank(
+            packed_keys, count, fields,
+            [&](const auto& f, uint32_t k) {
+              const auto [flag, x, y] = f;
+              return uint64_t(flag) << (3 * kKeyBits) | uint64_t(x) << (2 * kKeyBits) | uint64_t(y) << kKeyBits |
+                     (kIndexMask - k);
+            },
+            [&](uint64_t key) { return uint32_t(kIndexMask - (key & kIndexMask)); });
+      } else {
+        rank(
+            keys, count, fields,
+            [](const auto& f, uint32_t k) {
+              const auto [flag, x, y] = f;
+              return std::pair(uint64_t(flag) << 32 | x, uint64_t(y) << 32 | (UINT32_MAX - k));
+            },
+            [](const std::pair<uint64_t, uint64_t>& key) { return UINT32_MAX - uint32_t(key.second); });
+      }
+    };
+    using Fields = std::tuple<uint32_t, uint32_t, uint32_t>;
+    keep_best(width / 2, [](const Score& x) { return Fields{0, x.reach, x.end}; });
+    keep_best(width / 2 + kFurthestEnds, [](const Score& x) { return Fields{0, x.end, x.reach}; });
+    keep_best(width, [](const Score& x) { return Fields{x.on_course, x.reach, x.end}; });
+    layer.swap(next);
+  }
+  return furthest < 0 ? std::vector<Chosen>{} : chain_to(nodes, furthest);
+}
+
+/// Whether the input runs straight from vertex v for kStraightAheadMm (or to `limit`): every
+/// vertex up to there within the band of the chord there.
+bool RunFitter::straight_ahead(uint32_t v, uint32_t limit) const {
+  uint32_t e = v + 1;
+  while (e < limit && (q(e) - q(v)).squaredNorm() < kStraightAheadMm * kStraightAheadMm) ++e;
+  const Vec2 chord = q(e) - q(v);
+  const double len = chord.norm();
+  if (len <= kLengthEpsMm) return false;
+  for (uint32_t m = v + 1; m < e; ++m)
+    if (std::abs(cross2(chord, q(m) - q(v))) > eps_ * len) return false;
+  return true;
+}
+
+/// Candidate `cd` from node `nd` along `T` (its tangent, or that turned at the joint),
+/// checked exactly, and held to the joint allowance: a line's chord may lie off T by the
+/// line allowance, on top of the turn. (The beam's and the layered search's.)
+std::optional<Chosen> RunFitter::made_from(const Node& nd, const Vec2& T, const Candidate& cd) const {
+  auto c = make(nd.v, T, cd);
+  if (c && !joint_cone_.holds(nd.T, start_tangent(*c, nd.v))) return std::nullopt;
+  return c;
+}
+
+/// The beam search's chain from `a` to `limit`. Where no chain goes on tangentially, the
+/// tangent breaks at the furthest one's end (counted in `forced`) and the search restarts.
+std::vector<Chosen> RunFitter::beam_stretch(uint32_t a, uint32_t limit, GreedyWalk& greedy, size_t& forced) const {
+  std::vector<Chosen> chain;
+  while (a < limit) {
+    // After the first part, the tangent breaks where the chain before could not go on; the
+    // first part breaks it only when nothing leaves along the incoming tangent.
+    bool breaks = !chain.empty();
+    auto part = beam_chain(a, limit, chain.empty() ? &greedy : nullptr);
+    if (part.empty()) {
+      part.push_back(best_free(a, limit));
+      breaks = breaks || arrives_along(a);
+    }
+    part.front().kinked = breaks;
+    if (breaks) ++forced;
+    chain.insert(chain.end(), part.begin(), part.end());
+    a = part.back().prim.end_vertex;
+  }
+  return chain;
+}
+
+}  // namespace arcpress::fit_detail

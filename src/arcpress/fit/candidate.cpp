@@ -1,0 +1,126 @@
+// Building a line or arc between two vertices and checking it exactly against the band,
+// the plane's normal axis and the extra axes.
+#include "arcpress/fit/run_fitter.hpp"
+
+namespace arcpress::fit_detail {
+
+/// Builds and checks the primitive for candidate `c` from `a` along `T`.
+std::optional<Chosen> RunFitter::make(uint32_t a, const Vec2& T, const Candidate& c) const {
+  if (c.line) return make_line(a, c.e, T);
+  return make_arc(a, c.e, q(a) + left_normal(T) / c.k, c.k > 0);
+}
+
+/// Whether every extra axis that moves, carried linearly by path length from vertex a to
+/// vertex e as the controller carries it along one block, passes within the band of its
+/// value at each vertex between (the band's number read in the axis's unit: mm, or
+/// degrees for A/B/C, which keeps a point within the band up to 57 mm from the axis).
+/// The vertices' rates per mm agree with their neighbours' (soft_), but a rate that
+/// drifts slowly would still bend the axis away from the line over a long primitive.
+bool RunFitter::extra_axes_linear(uint32_t a, uint32_t e) const {
+  const size_t k = extra_.size();
+  if (k == 0 || e <= a + 1) return true;
+  const double span = length_[e] - length_[a];
+  for (uint32_t m = a + 1; m < e; ++m) {
+    const double t = span > 0 ? (length_[m] - length_[a]) / span : 0;
+    for (size_t i = 0; i < k; ++i) {
+      const double va = extra_values_[a * k + i], ve = extra_values_[e * k + i];
+      if (std::abs(extra_values_[m * k + i] - (va + t * (ve - va))) > eps_) return false;
+    }
+  }
+  return true;
+}
+
+/// The line from vertex a to vertex e, if the moves between stay inside the band.
+std::optional<Chosen> RunFitter::make_line(uint32_t a, uint32_t e, const Vec2& fallback_tangent) const {
+  if (!extra_axes_linear(a, e)) return std::nullopt;
+  std::span<const Vec3> pts(p_.data() + a, e - a + 1);
+  Deviation d = line_deviation(pts, eps_);
+  if (!d.ordered || d.max_mm > eps_) return std::nullopt;
+  Chosen ch;
+  ch.prim.end_vertex = e;
+  ch.prim.kind = Primitive::Kind::Line;
+  Vec2 chord = q(e) - q(a);
+  ch.end_tangent = chord.norm() > 0 ? Vec2(chord.normalized()) : fallback_tangent;
+  return ch;
+}
+
+/// The arc from vertex a to vertex e about `center`, if the moves between stay inside the
+/// band (in-plane share when it climbs) and the arc keeps the options' limits.
+std::optional<Chosen> RunFitter::make_arc(uint32_t a, uint32_t e, const Vec2& center, bool ccw) const {
+  if (!arcs_ || e - a < std::max<uint32_t>(o_.min_arc_moves, 1) || !extra_axes_linear(a, e)) return std::nullopt;
+  std::span<const Vec3> pts(p_.data() + a, e - a + 1);
+  bool flat = true;
+  for (const auto& p : pts) flat = flat && std::abs(p.z() - pts.front().z()) <= kLengthEpsMm;
+  if (!flat && !o_.helical) return std::nullopt;
+  if ((q(e) - q(a)).squaredNorm() < o_.min_chord_mm * o_.min_chord_mm) return std::nullopt;
+  ArcGeom g = ArcGeom::through(pts.front(), pts.back(), center, ccw);
+  if (!std::isfinite(g.radius_mm) || g.radius_mm < o_.min_radius_mm || g.radius_mm > o_.max_radius_mm)
+    return std::nullopt;
+  const double sweep_deg = std::abs(g.sweep) * 180 / kPi;
+  if (sweep_deg > o_.max_sweep_deg + 1e-9 || sweep_deg < o_.min_sweep_deg) return std::nullopt;
+  if (g.radius_mm * std::abs(g.sweep) < o_.min_arc_length_mm) return std::nullopt;
+  const double band = flat ? eps_ : eps_ * kPlaneShare;
+  Deviation d = arc_deviation(pts, g, band);
+  if (!d.ordered || d.max_mm > band) return std::nullopt;
+  if (!flat) {
+    // Height must follow the helix closely enough for the 3D distance to stay in the band.
+    double len_sum = 0;
+    for (size_t m = 1; m < pts.size(); ++m)
+      len_sum += (Vec2(pts[m].x(), pts[m].y()) - Vec2(pts[m - 1].x(), pts[m - 1].y())).norm();
+    double s = 0;
+    for (size_t m = 1; m + 1 < pts.size(); ++m) {
+      s += (Vec2(pts[m].x(), pts[m].y()) - Vec2(pts[m - 1].x(), pts[m - 1].y())).norm();
+      double h = g.h0 + (g.h1 - g.h0) * (len_sum > 0 ? s / len_sum : 0);
+      if (std::abs(pts[m].z() - h) > eps_ * kHeightShare) return std::nullopt;
+    }
+  }
+  Chosen ch;
+  ch.prim.end_vertex = e;
+  ch.prim.kind = Primitive::Kind::Arc;
+  ch.prim.ccw = ccw;
+  ch.prim.center = center;
+  ch.prim.radius_mm = g.radius_mm;
+  ch.end_tangent = arc_tangent(q(e) - center, ccw);
+  return ch;
+}
+
+/// The line or arc leaving vertex a along T and ending exactly at vertex e, if scan()
+/// would offer it (not yet checked exactly).
+std::optional<Candidate> RunFitter::through_candidate(uint32_t a, const Vec2& T, uint32_t e) const {
+  Vec2 u = q(e) - q(a);
+  double uu = u.squaredNorm();
+  if (uu <= kLengthEpsMm * kLengthEpsMm || u.dot(T) <= 0) return std::nullopt;
+  if (soft_between(a, e)) return std::nullopt;
+  Vec2 N = left_normal(T);
+  const Candidate c{e, 2 * u.dot(N) / uu, pseudo_angle(u.dot(T), std::abs(u.dot(N))) <= line_alpha_};
+  if (!on_circle(a, T, c)) return std::nullopt;
+  return c;
+}
+
+/// The line or arc leaving vertex a along T and ending exactly at vertex e, checked.
+std::optional<Chosen> RunFitter::through(uint32_t a, const Vec2& T, uint32_t e) const {
+  auto c = through_candidate(a, T, e);
+  if (!c) return std::nullopt;
+  return make(a, T, *c);
+}
+
+/// scan()'s test of one end: every vertex between `a` and c.e lies within the band of the
+/// full circle (or line) leaving `a` along T with curvature c.k: scan()'s vertex test
+/// without a division. Cheap, and necessary for the exact check, so most candidates that
+/// would fail it are turned away here.
+bool RunFitter::on_circle(uint32_t a, const Vec2& T, const Candidate& c) const {
+  const Vec2 N = left_normal(T);
+  const double h0 = p_[a].z();
+  bool flat = std::abs(p_[c.e].z() - h0) <= kLengthEpsMm;
+  for (uint32_t m = a + 1; m < c.e && flat; ++m) flat = std::abs(p_[m].z() - h0) <= kLengthEpsMm;
+  const double eps = flat ? eps_ : eps_ * kPlaneShare;
+  const double slack = 1e-12 * (1 + std::abs(c.k));
+  for (uint32_t m = a + 1; m < c.e; ++m) {
+    const Vec2 u = q(m) - q(a);
+    const double w = u.squaredNorm() - eps * eps;
+    if (w > 0 && std::abs(c.k * w - 2 * u.dot(N)) > 2 * eps + slack * w) return false;
+  }
+  return true;
+}
+
+}  // namespace arcpress::fit_detail

@@ -1,0 +1,293 @@
+// RunFitter's run: its vertices (past moves that go nowhere), the corner rule and the
+// vertices where a primitive must end, the stretches between corners, and the method each
+// stretch is fitted with (fit_kept()).
+#include "arcpress/fit/run_fitter.hpp"
+
+namespace arcpress::fit_detail {
+
+/// `run` spans the moves to fit; `fixed` (per move, empty: none) says which stay as they
+/// are, and `pinned` (per vertex, empty: none) where a primitive must end (where one run
+/// meets the next or a fixed move), the tangent going on there.
+RunFitter::RunFitter(const Interpretation& in, const Run& run, const FitOptions& o, const std::vector<FixedMove>& fixed,
+                     std::vector<uint8_t> pinned)
+    : FitAngles(FitAngles::of(o)), o_(o) {
+  vertices_kept(in, run, fixed, pinned, at_);
+  n_ = uint32_t(at_.size() - 1);
+  if (!pinned.empty())
+    for (uint32_t v = 0; v <= n_; ++v) pinned[v] = pinned[at_[v]];
+  fixed_.clear();
+  for (uint32_t v = 0; v < n_; ++v) fixed_.push_back(fixed.empty() ? FixedMove{} : fixed[at_[v]]);
+  auto vertex = [&](uint32_t v) -> const AxisValues& { return run.vertex(in, at_[v]); };
+  auto ax = axes_of(run.plane);
+  p_.resize(n_ + 1);
+  q_.resize(n_ + 1);
+  middle_.resize(n_);
+  // (With the extra axes (A/B/C, U/V/W) that move in the run, bit by axis.)
+  unsigned moving = 0;
+  for (uint32_t v = 0; v <= n_; ++v) {
+    const auto& a = vertex(v);
+    p_[v] = Vec3(a[ax.first], a[ax.second], a[ax.normal]);
+    q_[v] = Vec2(a[ax.first], a[ax.second]);
+    if (v > 0) {
+      const auto& before = vertex(v - 1);
+      for (int x = kA; x < kE; ++x) moving |= unsigned(a[x] != before[x]) << x;
+    }
+  }
+  for (uint32_t v = 0; v < n_; ++v) middle_[v] = 0.5 * (q_[v] + q_[v + 1]);
+  // Level: no vertex lies above or below another by more than the scans' test of a climb.
+  const auto [low, high] =
+      std::minmax_element(p_.begin(), p_.end(), [](const Vec3& x, const Vec3& y) { return x.z() < y.z(); });
+  level_ = high->z() - low->z() <= kLengthEpsMm;
+  // The extra axes that move in the run, their values at each vertex, and the path length
+  // to each vertex they are carried along.
+  for (int x = kA; x < kE; ++x)
+    if (moving >> x & 1) extra_.push_back(x);
+  extra_values_.clear();
+  length_.clear();
+  if (!extra_.empty()) {
+    length_.assign(n_ + 1, 0.0);
+    for (uint32_t v = 1; v <= n_; ++v) length_[v] = length_[v - 1] + (p_[v] - p_[v - 1]).norm();
+    for (uint32_t v = 0; v <= n_; ++v)
+      for (int x : extra_) extra_values_.push_back(vertex(v)[x]);
+  }
+  arcs_ = o.arcs && (o.extra_axes || extra_.empty());
+  eps_ = o.tolerance_mm * (1.0 - kRoundingReserve);
+  hard_.assign(n_ + 1, 0);
+  heading_.assign(n_ + 1, std::nullopt);
+  soft_.assign(n_ + 1, 0);
+  auto corner = [&](uint32_t a, uint32_t b, uint32_t c) {
+    return is_corner(p_[a], p_[b], p_[c], o.tolerance_mm, o.corner_angle_deg);
+  };
+  // Seed 004's spikes (option): a lone vertex where the path jags out and back, within half
+  // the band of its neighbours' chord, with the path smooth once it is skipped. Noise, not
+  // a corner; the fitted path still passes within the band of it.
+  std::vector<uint8_t>& spike = b_.spike;
+  spike.assign(n_ + 1, 0);
+  for (uint32_t v = 2; o.spikes && v + 2 <= n_; ++v)
+    spike[v] = !spike[v - 1] && corner(v - 1, v, v + 1) &&
+               point_segment_distance(p_[v], p_[v - 1], p_[v + 1]) <= 0.5 * o.tolerance_mm &&
+               !corner(v - 2, v - 1, v + 1) && !corner(v - 1, v + 1, v + 2);
+  // Moves that go nowhere and stay (fixed ones, or those between two vertices that must
+  // stay): the corner rule steps past them, as the verifier does.
+  std::vector<uint8_t>& nowhere = b_.nowhere;
+  nowhere.assign(n_, 0);
+  for (uint32_t v = 0; v < n_; ++v)
+    nowhere[v] = in.moves_going(run.first_move + at_[v], run.first_move + at_[v + 1]) == 0;
+  // The same corner rule, with the same band, as the verifier uses to judge joints (with
+  // spikes skipped when asked): first each vertex alone, then with its neighbours' corners.
+  // A vertex's neighbours are the nearest vertices elsewhere, past spikes when skipped.
+  auto corners = [&](const std::vector<uint8_t>& skipped, std::vector<uint8_t>& hard) {
+    auto before = [&](uint32_t v, bool past_spikes) {
+      uint32_t u = v - 1;
+      while (u > 0 && (nowhere[u] || (past_spikes && skipped[u]))) --u;
+      return u;
+    };
+    auto after = [&](uint32_t v, bool past_spikes) {
+      uint32_t u = v + 1;
+      while (u < n_ && (nowhere[u - 1] || (past_spikes && skipped[u]))) ++u;
+      return u;
+    };
+    std::vector<uint8_t>& alone = b_.alone;
+    alone.assign(n_ + 1, 0);
+    hard.assign(n_ + 1, 0);
+    for (uint32_t v = 1; v < n_; ++v) alone[v] = !skipped[v] && corner(before(v, true), v, after(v, true));
+    for (uint32_t v = 1; v < n_; ++v) {
+      const uint32_t b = before(v, true), a = after(v, true);
+      hard[v] =
+          alone[v] || (!skipped[v] && is_corner_beside_corner(b > 0 ? &p_[before(b, false)] : nullptr, p_[b], p_[v],
+                                                              p_[a], a < n_ ? &p_[after(a, false)] : nullptr, alone[b],
+                                                              alone[a], o.tolerance_mm));
+    }
+  };
+  corners(spike, hard_);
+  // The verifier knows no spikes: a joint it calls smooth that only skipping a spike made a
+  // corner is reported where the tangent breaks there (see report_spike_corners()).
+  plain_hard_.clear();
+  if (std::find(spike.begin(), spike.end(), 1) != spike.end()) {
+    b_.none.assign(n_ + 1, 0);
+    corners(b_.none, plain_hard_);
+  }
+  for (uint32_t v = 1; v < n_; ++v) {
+    double l1 = (p_[v] - p_[v - 1]).norm(), l2 = (p_[v + 1] - p_[v]).norm();
+    // Extrusion and the extra axes per mm must stay (nearly) constant inside one primitive:
+    // a primitive ends where one starts or stops moving or changes its rate.
+    auto rate_changes = [&](int x) {
+      double d1 = vertex(v)[x] - vertex(v - 1)[x];
+      double d2 = vertex(v + 1)[x] - vertex(v)[x];
+      double r1 = d1 / l1, r2 = d2 / l2;
+      return (d1 == 0) != (d2 == 0) || std::abs(r1 - r2) > kRateShare * std::max(std::abs(r1), std::abs(r2));
+    };
+    if (rate_changes(kE)) soft_[v] = 1;
+    for (int x : extra_)
+      if (rate_changes(x)) soft_[v] = 1;
+    if (!pinned.empty() && pinned[v]) soft_[v] = 1;
+  }
+  next_soft_.assign(n_ + 1, n_ + 1);
+  for (uint32_t v = n_; v-- > 0;) next_soft_[v] = soft_[v + 1] ? v + 1 : next_soft_[v + 1];
+}
+
+/// The primitives over all moves (fixed moves as themselves), each marked `kinked` where
+/// the tangent breaks at a smooth joint because the band allows nothing tangent there.
+/// Their end vertices are the run's.
+std::vector<Chosen> RunFitter::fit() {
+  std::vector<Chosen> out = fit_kept();
+  for (Chosen& c : out) c.prim.end_vertex = at_[c.prim.end_vertex];
+  return out;
+}
+
+/// The run's vertices the fitter works on: all, less those that only repeat the one before
+/// (after a move that goes nowhere: no direction, so no corner either), which the
+/// primitive over their neighbours steps over. Where such a vertex must stay
+/// (the run's end, a pinned vertex) the one it repeats goes instead, unless that must stay
+/// too. (The keep method never gets here: fit_chain() keeps every move itself.)
+void RunFitter::vertices_kept(const Interpretation& in, const Run& run, const std::vector<FixedMove>& fixed,
+                              const std::vector<uint8_t>& pinned, std::vector<uint32_t>& at) {
+  const uint32_t n = run.move_count;
+  auto must_stay = [&](uint32_t v) { return v == 0 || v == n || (!pinned.empty() && pinned[v]); };
+  at.assign(1, 0);
+  for (uint32_t v = 1; v <= n; ++v) {
+    const bool nowhere = (fixed.empty() || !fixed[v - 1].fixed) && in.goes_nowhere(run.first_move + v - 1);
+    if (!nowhere)
+      at.push_back(v);
+    else if (must_stay(v) && !must_stay(at.back()))
+      at.back() = v;
+    else if (must_stay(v))
+      at.push_back(v);
+  }
+}
+
+std::vector<Chosen> RunFitter::fit_kept() {
+  if (n_ < 2) return keep();
+  std::vector<Chosen> out;
+  out.reserve(n_);  // at most one primitive per move
+  // Stretches run from corner to corner, or to a fixed move; the tangent is free at a
+  // corner and follows the fixed move's direction where the path is smooth.
+  bool after_fitted = false;  // the last primitive in `out` was fitted, not fixed
+  for (uint32_t a = 0; a < n_;) {
+    if (fixed_[a].fixed) {
+      Chosen m = input_move(a);
+      if (fixed_[a].end) m.end_tangent = *fixed_[a].end;
+      const auto& dir = fixed_[a].start;
+      m.kinked = made_joint(a, !after_fitted) && !hard_[a] && dir && !out.empty() &&
+                 !joint_cone_.holds(out.back().end_tangent, *dir);
+      out.push_back(m);
+      after_fitted = false;
+      ++a;
+      continue;
+    }
+    uint32_t limit = a + 1;
+    while (limit < n_ && !hard_[limit] && !fixed_[limit].fixed) ++limit;
+    in_tangent_ = a > 0 && fixed_[a - 1].fixed && !hard_[a] ? fixed_[a - 1].end : std::nullopt;
+    out_tangent_ = limit < n_ && fixed_[limit].fixed && !hard_[limit] ? fixed_[limit].start : std::nullopt;
+    stretch_start_ = a;
+    stretch_end_ = limit;
+    lim_ = scan_limits();
+    stretch_id_ = ++s_.stretches;
+    after_fitted = true;
+    if (limit == a + 1) {  // one move: its own answer, or the arc over it that meets a fixed move
+      Chosen m = one_move(a);
+      m.kinked = in_tangent_ && !g1_cone_.holds(*in_tangent_, start_tangent(m, a));
+      out.push_back(m);
+      a = limit;
+      continue;
+    }
+    const bool search = o_.method == FitOptions::Method::Arcs || o_.method == FitOptions::Method::Global;
+    if (search || o_.method == FitOptions::Method::Greedy)
+      for (uint32_t v = a + 1; v < limit; ++v)
+        heading_[v] = search ? sided_tangent(v, a, limit) : input_tangent(v, a, limit);
+    size_t forced = 0;
+    std::vector<Chosen> chain;
+    if (o_.method == FitOptions::Method::Stream) {
+      chain = stream_chain(a, limit, forced);
+    } else if (o_.method == FitOptions::Method::Lowe) {
+      chain = lowe_chain(a, limit, forced);
+    } else {
+      // The greedy chain is the answer for stretches it covers in one or two primitives
+      // joined tangentially; longer ones, and those it could only cover with a forced
+      // kink, are searched again, and the chain with fewer kinks, then fewer primitives,
+      // wins. The greedy chain is walked only as far as the search and that choice need.
+      GreedyWalk greedy(*this, a, limit);
+      const bool searched = search && o_.beam_width > 1 && (greedy.longer_than(2) || greedy.kinks() > 0);
+      size_t beam_forced = 0;
+      std::vector<Chosen> b;
+      if (searched) b = beam_stretch(a, limit, greedy, beam_forced);
+      // A beam chain of k primitives without kinks beats a greedy chain with more than k.
+      const bool beam_shorter = searched && beam_forced == 0 && greedy.longer_than(b.size());
+      if (!beam_shorter) greedy.finish();
+      if (beam_shorter || (searched && std::pair(beam_forced, b.size()) < std::pair(greedy.kinks(), greedy.length()))) {
+        chain.swap(b);
+        forced = beam_forced;
+      } else {
+        chain = std::move(greedy.chain);
+        forced = greedy.kinks();
+      }
+    }
+    if (search && o_.merge) tighten_between_kinks(a, chain);
+    // The global method also searches every (vertex, tangent) state layer by layer, for
+    // every stretch the greedy chain does not cover with one primitive, and keeps that
+    // chain when, merged too, it has fewer kinks, or as few and fewer primitives. The
+    // default method does so where its chain wiggles.
+    if ((o_.method == FitOptions::Method::Global && chain.size() > 1) ||
+        (o_.method == FitOptions::Method::Arcs && wiggles(chain))) {
+      auto g = layered_chain(a, limit);
+      if (!g.empty() && o_.merge) tighten(a, g, in_tangent_);
+      if (!g.empty() && std::pair(size_t(0), g.size()) < std::pair(forced, chain.size())) {
+        chain.swap(g);
+        forced = 0;
+      }
+    }
+    if ((search || o_.method == FitOptions::Method::Greedy) && wiggles(chain)) untangle(a, limit, chain, forced);
+    out.insert(out.end(), chain.begin(), chain.end());
+    a = limit;
+  }
+  report_spike_corners(out);
+  return out;
+}
+
+/// Whether the joint at vertex v, after a move that is fixed or not, is one the fit made:
+/// between two moves left as they are it is the input's own, unless one side is a line
+/// that replaced several moves in another plane.
+bool RunFitter::made_joint(uint32_t v, bool fixed_before) const {
+  return !fixed_[v].fixed || !fixed_before || fixed_[v].fitted_start || (v > 0 && fixed_[v - 1].fitted_end);
+}
+
+std::vector<Chosen> RunFitter::keep() const {
+  std::vector<Chosen> out;
+  for (uint32_t v = 0; v < n_; ++v) out.push_back(input_move(v));
+  return out;
+}
+
+RunFitter::Scratch& RunFitter::thread_scratch() {
+  thread_local Scratch s;
+  return s;
+}
+
+/// A stretch of the one move from vertex a: the move itself, or, where a fixed move's
+/// direction is to be met at either end (in_tangent_, out_tangent_), the arc over it that
+/// meets both within the joint's turn, when the band and the options allow it. (The input
+/// turns there by less than a corner; kept as a line, the joint would break.)
+Chosen RunFitter::one_move(uint32_t a) const {
+  const uint32_t e = a + 1;
+  std::optional<Vec2> T;
+  if (in_tangent_) {
+    T = aimed(a, *in_tangent_, e, out_tangent_);
+  } else if (out_tangent_) {
+    T = reflected_end(a, *out_tangent_, e);
+  }
+  if (T)
+    if (auto c = through(a, *T, e); c && (!in_tangent_ || joint_cone_.holds(*in_tangent_, start_tangent(*c, a))) &&
+                                    (!out_tangent_ || joint_cone_.holds(c->end_tangent, *out_tangent_)))
+      return *c;
+  return input_move(a);
+}
+
+/// The input's own move from vertex a to a + 1 as a line: always inside the band.
+Chosen RunFitter::input_move(uint32_t a) const {
+  Vec2 chord = q(a + 1) - q(a);
+  Chosen line;
+  line.prim = {a + 1, Primitive::Kind::Line};
+  line.end_tangent = chord.norm() > kLengthEpsMm ? Vec2(chord.normalized()) : Vec2(1, 0);
+  return line;
+}
+
+}  // namespace arcpress::fit_detail

@@ -1,0 +1,110 @@
+#pragma once
+// The curvature-interval scan's loop, a template over what receives each end, for the
+// files that scan (private to fit/; scan.cpp explains it).
+#include "arcpress/fit/run_fitter.hpp"
+
+namespace arcpress::fit_detail {
+
+template <class Sink>
+void RunFitter::scan_ends(uint32_t a, const Vec2& T, uint32_t limit, Sink&& sink) const {
+  if (level_) {
+    scan_ends_in<true>(a, T, limit, sink);
+  } else {
+    scan_ends_in<false>(a, T, limit, sink);
+  }
+}
+
+template <bool level, class Sink>
+void RunFitter::scan_ends_in(uint32_t a, const Vec2& T, uint32_t limit, Sink& sink) const {
+  const Vec2 N = left_normal(T);
+  const Vec2 qa = q(a);
+  const double h0 = p_[a].z();
+  // The stretch's limits, read once: the sink writes memory, so the compiler would read
+  // them again at every vertex.
+  const ScanLimits lim = lim_;
+  // The band a vertex must stay in: all of it while the primitive is flat, the in-plane
+  // share once it climbs (from then on, for every vertex from `a`).
+  double eps = eps_;
+  double lo = -kInf, hi = kInf;  // curvature interval (1/mm) the interior vertices allow
+  // A point u from `a`, off T by b = u·N, is within ε of the circle of curvature k when
+  // |k·(|u|² - ε²) - 2b| <= 2ε (exact for the full circle).
+  auto narrow_by = [&](const Vec2& u, double uu) {  // u from `a`, uu = |u|²
+    const double w = uu - eps * eps;
+    if (w > 0) {
+      const double b = u.dot(N), inv = 1 / w;
+      lo = std::max(lo, (2 * b - 2 * eps) * inv);
+      hi = std::min(hi, (2 * b + 2 * eps) * inv);
+    }
+  };
+  auto narrow = [&](uint32_t m) {
+    const Vec2 u = q(m) - qa;
+    narrow_by(u, u.squaredNorm());
+  };
+  double arc_lo = -kInf, arc_hi = kInf;
+  // No input move may cut inside an arc by more than the band. A move whose middle lies
+  // more than ε off T is more than ε inside every circle that turns towards it less than
+  // the middle's own lower bound above (a circle turning the other way leaves it more than
+  // ε outside, which the bounds of the move's end points already rule out), and the move's
+  // point nearest the centre is nearer still, so the exact check would fail. Lines are the
+  // chord, not this circle, and are not held to it.
+  auto narrow_move = [&](uint32_t m) {  // the move from vertex m to m + 1
+    const Vec2 u = middle_[m] - qa;
+    const double b = u.dot(N);
+    if (b > eps) arc_lo = std::max(arc_lo, (2 * b - 2 * eps) / (u.squaredNorm() - eps * eps));
+    if (b < -eps) arc_hi = std::min(arc_hi, (2 * b + 2 * eps) / (u.squaredNorm() - eps * eps));
+  };
+  bool flat = true;
+  Vec2 u{0, 0};  // the end before, from `a`, and its squared length
+  double uu = 0;
+  // A primitive ends at the first soft vertex at the latest.
+  const uint32_t last = std::min(limit, next_soft_[a]);
+  for (uint32_t e = a + 1; e <= last; ++e) {
+    if (e > a + 1) narrow_by(u, uu);  // vertex e - 1 becomes an interior vertex
+    narrow_move(e - 1);
+    if (!level && flat && std::abs(p_[e].z() - h0) > kLengthEpsMm) {
+      flat = false;
+      eps = eps_ * kPlaneShare;
+      lo = arc_lo = -kInf;
+      hi = arc_hi = kInf;
+      for (uint32_t m = a + 1; m < e; ++m) narrow(m);
+      for (uint32_t m = a; m < e; ++m) narrow_move(m);
+    }
+    if (lo > hi) break;
+    u = q(e) - qa;
+    uu = u.squaredNorm();
+    if (uu <= kLengthEpsMm * kLengthEpsMm) {
+      if (level || flat) break;  // back at the start: a full circle is not a single primitive here
+      // Straight above or below the start (a plunge written in steps): no direction in
+      // the plane, so only a line can end here, which the exact check measures in 3D.
+      sink(Candidate{e, 0.0, true});
+      continue;
+    }
+    // The tangent-chord angle alpha (sweep = 2 alpha), held to the limits as the
+    // pseudo-angle of |alpha|, and the curvature.
+    const double ut = u.dot(T), un = u.dot(N), abs_un = std::abs(un);
+    if (pseudo_angle_above(ut, abs_un, lim.max_alpha)) break;
+    // The curvature k = K / uu of the circle through e, held to the intervals with a
+    // relative slack of 1e-12 for rounding, multiplied through by uu > 0.
+    const double K = 2 * un, slack = 1e-12 * (uu + std::abs(K));
+    if (K + slack < lo * uu || K - slack > hi * uu) continue;
+    const bool line = !pseudo_angle_above(ut, abs_un, lim.line_alpha);
+    if (!line) {
+      if (!lim.arcs || K + slack < arc_lo * uu || K - slack > arc_hi * uu) continue;
+      // The radius uu / |K| within the options' limits.
+      if (std::abs(K) < lim.min_curvature * uu || std::abs(K) > lim.max_curvature * uu) continue;
+      if (e - a < lim.min_arc_moves || pseudo_angle_below(ut, abs_un, lim.min_alpha)) continue;
+      if (!level && !flat && !lim.helical) continue;
+      if (lim.min_arc_length_mm > 0 && 2 * std::atan2(abs_un, ut) * uu / std::abs(K) < lim.min_arc_length_mm)
+        continue;
+    }
+    // Before a fixed move, the stretch must end heading along it.
+    if (e == lim.stretch_end && lim.out_tangent) {
+      const Vec2 c = u / std::sqrt(uu);
+      const Vec2 end = line ? c : Vec2(2 * c.dot(T) * c - T);
+      if (!joint_cone_.holds(end, *lim.out_tangent)) continue;
+    }
+    sink(Candidate{e, K / uu, line});
+  }
+}
+
+}  // namespace arcpress::fit_detail

@@ -1,0 +1,273 @@
+// Tangency repair: seed 000's G1 adjustment of a chain fitted without regard to its joints,
+// local merging of neighbouring primitives (tighten()), and breaking the tangent where a
+// chain can only follow the path in S-bends (untangle()).
+#include "arcpress/fit/run_fitter.hpp"
+
+namespace arcpress::fit_detail {
+
+/// A chain that still wiggles may be paying with S-bends, all the way along, for one joint
+/// the path cannot pass tangentially: a hook, where the input turns at a vertex by more
+/// than a primitive ending there can follow within the band (a pass clipped to the floor it
+/// meets), so every chain that keeps the tangent leaves that vertex heading off the path.
+/// The tangent breaks instead at the joint where the first wiggle starts, or at the one
+/// before or after it, when that at least halves the primitives after the joint and saves
+/// kKinkWorth of them for each kink it adds; the break is a forced kink. The chain after
+/// the break may meet such a joint again further on (the next of plum's inner tips), so
+/// it is mended the same way, up to kUntangleDepth joints deep, before it is weighed:
+/// mended only at its first wiggle, a greedy chain over plum crept through the rest in
+/// S-bends (sampled with 6 000 points and turned by 0.7 rad, at 0.005 mm: 667 blocks; 59
+/// now, with two kinks).
+void RunFitter::untangle(uint32_t a, uint32_t limit, std::vector<Chosen>& chain, size_t& forced, int depth) const {
+  const size_t first = wiggle_start(chain);
+  std::vector<Chosen> best;
+  size_t best_forced = forced;
+  // Each forced kink counts as kKinkWorth primitives.
+  size_t best_cost = chain.size() + kKinkWorth * forced;
+  for (size_t k = std::max<size_t>(first, 2) - 1; k <= first + 1 && k < chain.size(); ++k) {
+    const uint32_t v = chain[k - 1].prim.end_vertex;  // the joint at the start of primitive k
+    if (chain[k].kinked || hard_[v]) continue;
+    size_t rest_forced = 0;
+    GreedyWalk greedy(*this, v, limit);
+    greedy.tangent.reset();
+    std::vector<Chosen> rest;
+    if (o_.method == FitOptions::Method::Greedy) {
+      greedy.finish();
+      rest = std::move(greedy.chain);
+      rest_forced = greedy.kinks();
+    } else {
+      rest = beam_stretch(v, limit, greedy, rest_forced);
+    }
+    if (rest.empty()) continue;
+    if (depth < kUntangleDepth && wiggles(rest)) untangle(v, limit, rest, rest_forced, depth + 1);
+    const size_t after = chain.size() - k;
+    if (2 * rest.size() > after || rest.size() + kKinkWorth > after) continue;
+    rest.front().kinked = true;
+    std::vector<Chosen> made(chain.begin(), chain.begin() + static_cast<long>(k));
+    made.insert(made.end(), rest.begin(), rest.end());
+    if (o_.merge && o_.method != FitOptions::Method::Greedy) tighten_between_kinks(a, made);
+    size_t made_forced = 0;
+    for (const Chosen& c : made) made_forced += c.kinked;
+    if (made.size() + kKinkWorth * made_forced < best_cost) {
+      best_cost = made.size() + kKinkWorth * made_forced;
+      best.swap(made);
+      best_forced = made_forced;
+    }
+  }
+  if (best.empty()) return;
+  chain.swap(best);
+  forced = best_forced;
+}
+
+/// The index of the first primitive of the first wiggle in `chain` (see wiggles()), or
+/// its size when none.
+size_t RunFitter::wiggle_start(const std::vector<Chosen>& chain) const {
+  int run = 0;
+  for (size_t i = 1; i < chain.size(); ++i) {
+    const Primitive &p = chain[i].prim, &before = chain[i - 1].prim;
+    const bool back = p.kind == Primitive::Kind::Arc && before.kind == Primitive::Kind::Arc && p.ccw != before.ccw;
+    run = back ? run + 1 : 0;
+    if (run >= kWiggleArcs) return i - static_cast<size_t>(run);
+  }
+  return chain.size();
+}
+
+/// Marks as kinked the joints of `chain` (the whole fit) that are corners only because a
+/// spike next to them was skipped, where the tangent breaks there: the verifier, which
+/// skips no spikes, judges them as smooth joints.
+void RunFitter::report_spike_corners(std::vector<Chosen>& chain) const {
+  if (plain_hard_.empty()) return;
+  for (size_t i = 1; i < chain.size(); ++i) {
+    const uint32_t before = i > 1 ? chain[i - 2].prim.end_vertex : 0, from = chain[i - 1].prim.end_vertex;
+    if (!hard_[from] || plain_hard_[from] || chain[i].kinked || !made_joint(from, fixed_[before].fixed)) continue;
+    const std::optional<Vec2> dir =
+        fixed_[from].fixed ? fixed_[from].start : std::optional<Vec2>(start_tangent(chain[i], from));
+    if (dir && !joint_cone_.holds(chain[i - 1].end_tangent, *dir)) chain[i].kinked = true;
+  }
+}
+
+/// Seed 000's G1 adjustment of a chain from `a` fitted without regard to its joints, joint
+/// by joint from the start. Where the tangent breaks at a smooth joint, the primitive after
+/// it is replaced, where the band allows, by the one through the same end vertex that
+/// leaves along the tangent arriving there, turned within kTurnShare of the G1 angle to
+/// meet the primitive after it (the seed moves the arc's centre so that the tangents
+/// agree); failing that, the two primitives on either side are split again at another
+/// vertex, joined tangentially, leaving the joint before them as the first did and
+/// meeting the one after them (the joint moves, which fixes arcs that overshot it).
+/// Joints that stay broken are marked kinked and counted in `forced`.
+void RunFitter::make_tangent(uint32_t a, std::vector<Chosen>& chain, size_t& forced) const {
+  auto from_of = [&](size_t i) { return i == 0 ? a : chain[i - 1].prim.end_vertex; };
+  // The tangent arriving at the start of primitive i, where that joint is smooth and unbroken.
+  auto arriving = [&](size_t i) -> std::optional<Vec2> {
+    if (hard_[from_of(i)] || chain[i].kinked) return std::nullopt;
+    return i == 0 ? in_tangent_ : std::optional<Vec2>(chain[i - 1].end_tangent);
+  };
+  // The tangent primitive i must meet at its end, if any.
+  auto leaving = [&](size_t i) -> std::optional<Vec2> {
+    const uint32_t to = chain[i].prim.end_vertex;
+    if (i + 1 < chain.size()) return start_tangent(chain[i + 1], to);
+    return to == stretch_end_ ? out_tangent_ : std::nullopt;
+  };
+  std::vector<Vec2> starts;
+  for (size_t i = 0; i < chain.size(); ++i) {
+    const uint32_t from = from_of(i), to = chain[i].prim.end_vertex;
+    const std::optional<Vec2> in = arriving(i);
+    if (!in || joint_cone_.holds(*in, start_tangent(chain[i], from))) continue;
+    const std::optional<Vec2> out = leaving(i);
+    std::optional<Chosen> one;
+    for (const std::optional<Vec2>& T : {aimed(from, *in, to, out), in})
+      if (!one && T && (one = through(from, *T, to)) && !joint_cone_.holds(*in, start_tangent(*one, from))) one.reset();
+    if (one) {
+      chain[i] = *one;
+      continue;
+    }
+    std::optional<std::pair<Chosen, Chosen>> two;
+    if (i > 0) {
+      const uint32_t before = from_of(i - 1);
+      starts.clear();
+      if (auto arrive = arriving(i - 1)) {
+        starts = {*arrive, half_left_(*arrive), half_right_(*arrive)};
+      } else {
+        start_tangents(before, to, starts);
+      }
+      for (const Vec2& T : starts)
+        if ((two = split_through(before, T, to, out, SIZE_MAX))) break;
+    }
+    if (two) {
+      two->first.kinked = chain[i - 1].kinked;
+      chain[i - 1] = two->first;
+      chain[i] = two->second;
+    } else {
+      chain[i].kinked = true;
+      ++forced;
+    }
+  }
+}
+
+/// Two primitives from `from` to `to`, the first leaving along T, joined tangentially, the
+/// second turned within kTurnShare of the G1 angle to meet `out` (where given) within it.
+/// Splits whose second primitive can meet `out` are tried longest first; at most `tries`
+/// of them, spread evenly, are checked exactly. (Inlined: tighten() calls it in its
+/// innermost loop, where a call costs 0.3 % of all instructions on the corpus.)
+[[gnu::always_inline]] inline std::optional<std::pair<Chosen, Chosen>> RunFitter::split_through(
+    uint32_t from, const Vec2& T, uint32_t to, const std::optional<Vec2>& out, size_t tries) const {
+  std::vector<Candidate>& cand = s_.tighten_cand;
+  std::vector<size_t>& split = s_.split;
+  scan(from, T, to - 1, cand);
+  split.clear();
+  for (size_t k = cand.size(); k-- > 0;)
+    if (aimed(cand[k].e, reflected_end(from, T, cand[k].e), to, out)) split.push_back(k);
+  const double stride = std::max(1.0, double(split.size()) / double(tries));
+  for (double x = 0; x < double(split.size()); x += stride) {
+    const Candidate& c = cand[split[size_t(x)]];
+    // The second primitive's own cheap test first: it fails far more often.
+    auto T2_lite = aimed(c.e, unchecked(from, T, c).end_tangent, to, out);
+    if (!T2_lite || !through_candidate(c.e, *T2_lite, to)) continue;
+    auto first = make(from, T, c);
+    if (!first) continue;
+    auto T2 = aimed(c.e, first->end_tangent, to, out);
+    if (!T2) continue;
+    auto second = through(c.e, *T2, to);
+    if (second && (!out || turn_cone_.holds(second->end_tangent, *out))) return std::pair(*first, *second);
+  }
+  return std::nullopt;
+}
+
+/// tighten() on each tangent-continuous part of a chain that starts at `a`: a forced kink
+/// frees the tangent on both sides of it, as a corner does.
+void RunFitter::tighten_between_kinks(uint32_t a, std::vector<Chosen>& chain) const {
+  std::vector<Chosen> out, part;
+  for (size_t i = 0; i < chain.size(); ++i) {
+    part.push_back(chain[i]);
+    if (i + 1 < chain.size() && !chain[i + 1].kinked) continue;
+    const bool kinked = part.front().kinked;
+    tighten(a, part, out.empty() && !kinked ? in_tangent_ : std::nullopt);
+    part.front().kinked = kinked;
+    a = part.back().prim.end_vertex;
+    out.insert(out.end(), part.begin(), part.end());
+    part.clear();
+  }
+  chain.swap(out);
+}
+
+/// Local merging after the search: wherever two consecutive primitives can become one, or
+/// three can become two, that leave the joint before them and meet the joint after them
+/// within the turn allowed at a joint, they are replaced, and the joint before is tried again.
+/// The tangent at the start is `incoming` (free when none) and at the end free, or a fixed
+/// move's direction where the chain ends at one. Turning an arc's
+/// start tangent by φ turns its end tangent by -φ (the end tangent is the start tangent
+/// reflected about the chord), so the turn that meets the next joint is solved for, and
+/// only primitives that can meet it are checked exactly.
+void RunFitter::tighten(uint32_t a, std::vector<Chosen>& chain, const std::optional<Vec2>& incoming) const {
+  std::vector<Vec2>& starts = s_.starts;
+  std::vector<Vec2>& firsts = s_.firsts;
+  std::vector<Chosen> repl;
+  // After a merge at i, the joint before it may merge too: step back one.
+  for (size_t i = 0; i + 1 < chain.size();) {
+    bool changed = false;
+    {
+      const uint32_t from = i == 0 ? a : chain[i - 1].prim.end_vertex;
+      for (size_t w : {size_t(2), size_t(3)}) {
+        if (i + w > chain.size()) break;
+        const uint32_t to = chain[i + w - 1].prim.end_vertex;
+        std::optional<Vec2> out;
+        if (i + w < chain.size()) {
+          out = start_tangent(chain[i + w], to);
+        } else if (to == stretch_end_) {
+          out = out_tangent_;
+        }
+        // The tangent arriving at `from`: the previous primitive's, or at the start `incoming`.
+        const std::optional<Vec2> in = i > 0 ? std::optional<Vec2>(chain[i - 1].end_tangent) : incoming;
+        auto meets = [&](const Chosen& c) { return !out || turn_cone_.holds(c.end_tangent, *out); };
+        // Start tangents: the incoming one (turned below), or at the stretch's start the
+        // input's own directions; with a fixed next joint, the one ending exactly on it.
+        starts.clear();
+        if (in) {
+          starts.push_back(*in);
+        } else if (w == 2) {
+          // One primitive from `a` to `to`: its start lies in the range that reaches `to`
+          // (the chord first where the line does).
+          if (out) starts.push_back(reflected_end(from, *out, to));
+          if (const auto [lo, hi] = start_range(a, to); lo <= hi) {
+            if (lo <= 0 && 0 <= hi) starts.push_back((q(to) - q(a)).normalized());
+            for (double share : {0.5, kStartRangeInset, 1 - kStartRangeInset})
+              starts.push_back(range_start(a, {to, lo, hi}, share));
+          }
+        } else {
+          start_tangents(a, to, starts);
+        }
+        repl.clear();
+        for (const Vec2& T0 : starts) {
+          if (w == 2) {
+            std::optional<Vec2> T = in ? aimed(from, T0, to, out) : std::optional<Vec2>(T0);
+            if (!T || (!in && out && !turn_line_cone_.holds(reflected_end(from, T0, to), *out))) continue;
+            auto c = through(from, *T, to);
+            if (c && meets(*c)) repl = {*c};
+          } else {
+            firsts.clear();
+            if (in) {
+              firsts.push_back(T0);
+              firsts.push_back(half_left_(T0));
+              firsts.push_back(half_right_(T0));
+            } else {
+              firsts.push_back(T0);
+            }
+            for (const Vec2& T : firsts)
+              if (auto two = split_through(from, T, to, out, kSplitsTried)) {
+                repl = {two->first, two->second};
+                break;
+              }
+          }
+          if (!repl.empty()) break;
+        }
+        if (repl.empty()) continue;
+        chain.erase(chain.begin() + i, chain.begin() + i + w);
+        chain.insert(chain.begin() + i, repl.begin(), repl.end());
+        changed = true;
+        break;
+      }
+    }
+    i = changed ? (i > 0 ? i - 1 : 0) : i + 1;
+  }
+}
+
+}  // namespace arcpress::fit_detail
