@@ -6,7 +6,8 @@
 // comparing it with the input). Prints megabytes and the ratio to the input's size, and
 // fails (exit 1) where any run takes more than 64 MiB or the default's peak on the biggest
 // program lies more than 8 MiB above its peak on the bunny alone.
-//   bench_memory [MB]
+//   bench_memory [--markdown] [MB]
+// With --markdown, the table alone, as docs/streaming.md shows it (scripts/docs_figures.sh).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -35,6 +36,8 @@ std::optional<double> peak_mib(const fs::path& file, const std::vector<std::stri
   return r.peak_mib;
 }
 
+bool g_markdown = false;  // print Markdown rows
+
 struct Peaks {
   std::string name;
   std::optional<double> keep, fit, all;
@@ -48,7 +51,12 @@ Peaks measure(const std::string& name, const fs::path& file) {
   auto cell = [&](const std::optional<double>& m) {
     return m ? fmt::format("{:>8.0f} {:>5.0f}x", *m, *m / in_mib) : fmt::format("{:>15}", "failed");
   };
-  fmt::print("{:<46} {:>8.1f}  {}  {}  {}\n", name, in_mib, cell(keep), cell(fit), cell(all));
+  if (g_markdown) {
+    auto md = [](const std::optional<double>& m) { return m ? fmt::format("{:.0f}", *m) : std::string("failed"); };
+    fmt::print("| {} | {:.1f} | {} | {} | {} |\n", name, in_mib, md(keep), md(fit), md(all));
+  } else {
+    fmt::print("{:<46} {:>8.1f}  {}  {}  {}\n", name, in_mib, cell(keep), cell(fit), cell(all));
+  }
   std::fflush(stdout);
   return {name, keep, fit, all};
 }
@@ -62,6 +70,8 @@ constexpr double kLimitMib = 64;
 constexpr double kGrowthMib = 8;
 
 int main(int argc, char** argv) {
+  g_markdown = argc > 1 && std::string(argv[1]) == "--markdown";
+  if (g_markdown) --argc, ++argv;
   // Bytes of the biggest program: 520 MB unless the first argument says otherwise (MB).
   const double big_mb = argc > 1 ? std::max(1.0, std::atof(argv[1])) : 520;
   const fs::path corpus = ARCPRESS_CORPUS_DIR;
@@ -70,9 +80,13 @@ int main(int argc, char** argv) {
     fmt::print("no corpus at {}\n", corpus.string());
     return 0;
   }
-  fmt::print("peak resident set of `arcpress FILE -o -`, MiB and times the input's size\n");
-  fmt::print("{:<46} {:>8}  {:>15}  {:>15}  {:>15}\n", "file", "in MiB", "keep,no-verify", "--no-verify",
-             "default");
+  if (g_markdown) {
+    fmt::print("| file | input MiB | keep, no check | no check | default |\n|---|---|---|---|---|\n");
+  } else {
+    fmt::print("peak resident set of `arcpress FILE -o -`, MiB and times the input's size\n");
+    fmt::print("{:<46} {:>8}  {:>15}  {:>15}  {:>15}\n", "file", "in MiB", "keep,no-verify", "--no-verify",
+               "default");
+  }
   // The corpus files of 1 MB or more, then the biggest repeated 8 times and to `big_mb`.
   std::vector<fs::path> files;
   for (const auto& sub : {"cnc", "printer"})
@@ -118,6 +132,6 @@ int main(int argc, char** argv) {
                *bunny_peak, *biggest_peak, big_mb, kGrowthMib);
     ok = false;
   }
-  fmt::print("{}\n", ok ? "memory: flat in the input's size and under the limit" : "memory: FAILED");
+  if (!g_markdown || !ok) fmt::print("{}\n", ok ? "memory: flat in the input's size and under the limit" : "memory: FAILED");
   return ok ? 0 : 1;
 }

@@ -5,7 +5,8 @@
 // with verification (the default) through Compressor in 1 MiB pushes on one thread and on
 // every hardware thread, in MB/s and as a share of it; and the fit's quality: blocks out and
 // the measured maximum deviation. Best of three runs each.
-//   bench_throughput [PARSE_CEILING]
+//   bench_throughput [--markdown] [PARSE_CEILING]
+// With --markdown, the table alone, as docs/streaming.md shows it (scripts/docs_figures.sh).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -84,6 +85,8 @@ Streamed stream(const std::string& text, unsigned threads) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  const bool markdown = argc > 1 && std::string(argv[1]) == "--markdown";
+  if (markdown) --argc, ++argv;
   const std::string ceiling = argc > 1 ? argv[1] : ARCPRESS_PARSE_CEILING;
   const fs::path corpus = ARCPRESS_CORPUS_DIR;
   const fs::path bunny = corpus / "printer" / "prusaslicer-2.5_bunny_marlin.gcode";
@@ -107,10 +110,16 @@ int main(int argc, char** argv) {
       {"bunny x 8", bunny8},
   }};
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-  fmt::print("throughput against the bare tokenizer ({}), best of {}; {} hardware threads\n", ceiling, kRepeats, cores);
-  fmt::print("{:<10} {:>6} {:>9} | {:>9} {:>6} | {:>9} {:>6} {:>9} {:>6} {:>6} | {:>9} {:>10}\n", "file", "MB",
-             "tokenizer", "read", "ratio", "1 thread", "ratio", fmt::format("{} thr.", cores), "ratio", "gain",
-             "lines out", "max dev mm");
+  if (markdown) {
+    fmt::print("| file | MB | tokenizer MB/s | read MB/s | ratio | compress, 1 thread | ratio | {} threads | ratio | gain | "
+               "lines out | max deviation mm |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+               cores);
+  } else {
+    fmt::print("throughput against the bare tokenizer ({}), best of {}; {} hardware threads\n", ceiling, kRepeats, cores);
+    fmt::print("{:<10} {:>6} {:>9} | {:>9} {:>6} | {:>9} {:>6} {:>9} {:>6} {:>6} | {:>9} {:>10}\n", "file", "MB",
+               "tokenizer", "read", "ratio", "1 thread", "ratio", fmt::format("{} thr.", cores), "ratio", "gain",
+               "lines out", "max dev mm");
+  }
   bool all_ok = true;
   for (const auto& [name, file] : files) {
     const std::string text = file_text(file);
@@ -147,13 +156,15 @@ int main(int argc, char** argv) {
     const bool same = one.lines_out == many.lines_out && one.result.check.max_deviation_mm == many.result.check.max_deviation_mm;
     all_ok = all_ok && same && many.result.within_band();
     auto ratio = [&](double mb_s) { return tok ? fmt::format("{:.3f}", mb_s / *tok) : std::string("-"); };
-    fmt::print("{:<10} {:>6.1f} {:>9} | {:>9.1f} {:>6} | {:>9.1f} {:>6} {:>9.1f} {:>6} {:>5.2f}x | {:>9} {:>10.6f}{}\n", name,
-               mb, tok ? fmt::format("{:.0f}", *tok) : "-", mb / read_s, ratio(mb / read_s), mb / one_s,
-               ratio(mb / one_s), mb / many_s, ratio(mb / many_s), one_s / many_s, many.lines_out,
-               many.result.check.max_deviation_mm, same ? "" : "  (threads differ!)");
+    const std::string row_format = markdown ? "| {} | {:.1f} | {} | {:.1f} | {} | {:.1f} | {} | {:.1f} | {} | {:.2f}× | {} | {:.6f}{} |\n"
+                                            : "{:<10} {:>6.1f} {:>9} | {:>9.1f} {:>6} | {:>9.1f} {:>6} {:>9.1f} {:>6} "
+                                              "{:>5.2f}x | {:>9} {:>10.6f}{}\n";
+    fmt::print(fmt::runtime(row_format), name, mb, tok ? fmt::format("{:.0f}", *tok) : "-", mb / read_s,
+               ratio(mb / read_s), mb / one_s, ratio(mb / one_s), mb / many_s, ratio(mb / many_s), one_s / many_s,
+               many.lines_out, many.result.check.max_deviation_mm, same ? "" : "  (threads differ!)");
     std::fflush(stdout);
   }
   fs::remove_all(dir);
-  fmt::print("MB/s; ratio: of the tokenizer's MB/s on the same file; gain: 1 thread's time over all threads'\n");
+  if (!markdown) fmt::print("MB/s; ratio: of the tokenizer's MB/s on the same file; gain: 1 thread's time over all threads'\n");
   return all_ok ? 0 : 1;
 }

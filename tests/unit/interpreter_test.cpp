@@ -190,3 +190,25 @@ TEST_CASE("blocks no controller runs are diagnosed with their place and never re
   interpret(q, strict);
   CHECK(strict.error_count() == 1);
 }
+
+TEST_CASE("two readers read on alike when their positions and offsets differ by floating noise only, never by a place",
+          "[model]") {
+  DiagnosticSink sink;
+  ModalState a = initial_state(Dialect{});
+  a.pos[kE] = 0.1 + 0.2 + 0.3;  // a relative E counter summed in one order...
+  a.frame.offset[kE] = a.pos[kE];
+  ModalState b = a;
+  b.pos[kE] = 0.3 + 0.2 + 0.1;  // ... and in another (0.6000000000000001 against 0.6)
+  b.frame.offset[kE] = b.pos[kE];
+  REQUIRE(a.pos[kE] != b.pos[kE]);
+  CHECK(a.reads_as(b, true));
+  b.pos[kE] += 0.00001;  // the least E step a printer is sent
+  CHECK_FALSE(a.reads_as(b, true));
+  b = a;
+  b.motion = 20;
+  CHECK(a.reads_as(b, false));
+  CHECK_FALSE(a.reads_as(b, true));
+  b = a;
+  b.known |= 1u << kZ;  // Z placed in one, not in the other
+  CHECK_FALSE(a.reads_as(b, false));
+}

@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Rewrites the tables of figures in the README and docs/ from the program and the benches,
+# so that none goes stale: each table sits between `<!-- figures: NAME -->` and
+# `<!-- /figures -->` and is replaced whole by what its command prints now.
+#   scripts/docs_figures.sh [NAME...]     (default: every table; needs `scripts/build.sh --test`)
+# Tables: corpus (README: scripts/corpus_table.sh 0.01), throughput (docs/streaming.md:
+# bench_throughput), memory (docs/streaming.md: bench_memory, about a minute).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+[ -x build/bench/bench_throughput ] || { echo "docs_figures: build with 'bash scripts/build.sh --test' first" >&2; exit 2; }
+
+# replace FILE NAME: the table named NAME in FILE becomes standard input.
+replace() {
+  python3 -c "$replacer" "$1" "$2"
+}
+replacer=$(cat <<'PY'
+import re, sys
+path, name = sys.argv[1], sys.argv[2]
+table = sys.stdin.read().rstrip("\n")
+text = open(path).read()
+pattern = re.compile(r"(<!-- figures: %s -->\n).*?(\n<!-- /figures -->)" % re.escape(name), re.S)
+if not pattern.search(text):
+    sys.exit("docs_figures: no table '%s' in %s" % (name, path))
+open(path, "w").write(pattern.sub(lambda m: m.group(1) + table + m.group(2), text, count=1))
+print("docs_figures: %s in %s" % (name, path))
+PY
+)
+
+wanted=("$@")
+[ ${#wanted[@]} -eq 0 ] && wanted=(corpus throughput memory)
+for name in "${wanted[@]}"; do
+  case $name in
+    corpus) bash scripts/corpus_table.sh 0.01 | replace README.md corpus ;;
+    throughput) ./build/bench/bench_throughput --markdown | replace docs/streaming.md throughput ;;
+    memory)
+      out=$(./build/bench/bench_memory --markdown) || { echo "$out" >&2; echo "docs_figures: bench_memory failed" >&2; exit 1; }
+      replace docs/streaming.md memory <<<"$out" ;;
+    *) echo "docs_figures: no table '$name' (corpus, throughput, memory)" >&2; exit 2 ;;
+  esac
+done
