@@ -1,6 +1,6 @@
 // Peak memory of the arcpress command: each corpus file of 1 MB or more, then the bunny
 // printer program once, 8 times over and repeated to 520 MB (or the megabytes the argument
-// gives), each run as a child process whose peak resident set the kernel reports (wait4).
+// gives), and one zigzag path of a million moves that no piece can end at a chain's end, each run as a child process whose peak resident set the kernel reports (wait4).
 // Three runs per file: `--method keep --no-verify` (reading and writing back: the floor),
 // `--no-verify` (fitting) and the default (fitting, then reading the output back and
 // comparing it with the input). Prints megabytes and the ratio to the input's size, and
@@ -114,6 +114,19 @@ int main(int argc, char** argv) {
     peaks.push_back(p);
     if (copies == 1) bunny_peak = p.all;
     biggest_peak = p.all;
+    fs::remove(file);
+  }
+  // One path no piece can end at a chain's end (every vertex a corner of a zigzag, no move
+  // that closes a chain): pieces are cut at vertices, every kMaxPieceBytes.
+  {
+    const fs::path file = dir / "zigzag.nc";
+    {
+      std::ofstream out(file, std::ios::binary);
+      out << "G21 G90\nG0 X0 Y0 Z1\nG1 Z0 F600\n";
+      for (long i = 1; i <= 1000000; ++i) out << fmt::format("G1 X{:.4f} Y{:.4f}\n", double(i) * 0.001, double(i % 2) * 0.001);
+      out << "M2\n";
+    }
+    peaks.push_back(measure(fmt::format("one zigzag path ({:.0f} MB)", double(fs::file_size(file)) / 1e6), file));
     fs::remove(file);
   }
   fs::remove_all(dir);

@@ -119,12 +119,13 @@ TEST_CASE("output comes out before the input ends, and all of a big program is n
 
 TEST_CASE("a path that goes on for longer than a piece may hold is cut at a vertex and still kept in the band",
           "[stream]") {
-  const std::string text = spiral(60000);  // about 1.3 MB of one smooth path
+  const std::string text = spiral(60000);  // about 1.3 MB of one smooth path, five pieces' worth
   REQUIRE(text.size() > kMaxPieceBytes);
   CompressOptions opt;
   opt.threads = 2;
   const Streamed s = stream(text, opt, [] { return size_t(4096); });
-  CHECK(s.forced_cuts == 1);
+  CHECK(s.forced_cuts >= text.size() / kMaxPieceBytes - 1);  // a cut every kMaxPieceBytes
+  CHECK(s.forced_cuts <= text.size() / kMaxPieceBytes);
   CHECK(s.result.ok);
   CHECK(s.result.verified);
   CHECK(s.result.within_band());

@@ -24,7 +24,7 @@ namespace arcpress {
 /// Input bytes a piece gathers before it may end at the next move no fit joins.
 inline constexpr size_t kPieceBytes = size_t(1) << 17;
 /// Input bytes after which a piece ends at the next vertex whatever it is (a forced cut).
-inline constexpr size_t kMaxPieceBytes = size_t(1) << 20;
+inline constexpr size_t kMaxPieceBytes = size_t(1) << 18;
 /// Pieces per worker thread that may be read, queued, worked on or waiting for their turn.
 inline constexpr size_t kPiecesInFlight = 2;
 
