@@ -4,7 +4,9 @@
 # `<!-- /figures -->` and is replaced whole by what its command prints now.
 #   scripts/docs_figures.sh [NAME...]     (default: every table; needs `scripts/build.sh --test`)
 # Tables: corpus (README: scripts/corpus_table.sh 0.01), throughput (docs/streaming.md:
-# bench_throughput), memory (docs/streaming.md: bench_memory, about a minute).
+# bench_throughput), memory (docs/streaming.md: bench_memory, about a minute), and the
+# benches' own output in docs/benchmarks.md: curves (bench_curves 1, about a minute), diff
+# (bench_diff), pathological (bench_pathological).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 [ -x build/bench/bench_throughput ] || { echo "docs_figures: build with 'bash scripts/build.sh --test' first" >&2; exit 2; }
@@ -18,16 +20,18 @@ import re, sys
 path, name = sys.argv[1], sys.argv[2]
 table = sys.stdin.read().rstrip("\n")
 text = open(path).read()
-pattern = re.compile(r"(<!-- figures: %s -->\n).*?(\n<!-- /figures -->)" % re.escape(name), re.S)
+pattern = re.compile(r"(<!-- figures: %s -->\n).*?(<!-- /figures -->)" % re.escape(name), re.S)
 if not pattern.search(text):
     sys.exit("docs_figures: no table '%s' in %s" % (name, path))
-open(path, "w").write(pattern.sub(lambda m: m.group(1) + table + m.group(2), text, count=1))
+open(path, "w").write(pattern.sub(lambda m: m.group(1) + table + "\n" + m.group(2), text, count=1))
 print("docs_figures: %s in %s" % (name, path))
 PY
 )
 
 wanted=("$@")
-[ ${#wanted[@]} -eq 0 ] && wanted=(corpus throughput memory)
+[ ${#wanted[@]} -eq 0 ] && wanted=(corpus throughput memory curves diff pathological)
+# A bench's own output, as a block of text.
+as_text() { printf '```text\n%s\n```\n' "$(cat)"; }
 for name in "${wanted[@]}"; do
   case $name in
     corpus) bash scripts/corpus_table.sh 0.01 | replace README.md corpus ;;
@@ -35,6 +39,9 @@ for name in "${wanted[@]}"; do
     memory)
       out=$(./build/bench/bench_memory --markdown) || { echo "$out" >&2; echo "docs_figures: bench_memory failed" >&2; exit 1; }
       replace docs/streaming.md memory <<<"$out" ;;
-    *) echo "docs_figures: no table '$name' (corpus, throughput, memory)" >&2; exit 2 ;;
+    curves) ./build/bench/bench_curves 1 | as_text | replace docs/benchmarks.md curves ;;
+    diff) ./build/bench/bench_diff | as_text | replace docs/benchmarks.md diff ;;
+    pathological) ./build/bench/bench_pathological | as_text | replace docs/benchmarks.md pathological ;;
+    *) echo "docs_figures: no table '$name' (corpus, throughput, memory, curves, diff, pathological)" >&2; exit 2 ;;
   esac
 done
