@@ -13,6 +13,7 @@
 #include "arcpress/api/piece.hpp"
 #include "arcpress/core/error.hpp"
 #include "arcpress/core/workers.hpp"
+#include "arcpress/extract/run.hpp"
 #include "arcpress/lex/lexer.hpp"
 #include "arcpress/lex/refusal_scan.hpp"
 #include "arcpress/model/interpreter.hpp"
@@ -114,10 +115,27 @@ struct Compressor::Impl {
     return n;
   }
 
+  /// Where a piece stood before a line was read into it: what reading it added, to be
+  /// taken out again when the piece ends before that line.
+  struct Mark {
+    size_t text = 0, blocks = 0, words = 0, moves = 0, frames = 0, unplaced = 0, reported = 0;
+    ModalState state;
+  };
+
   /// One whole line (with its end of line, or the program's last without).
   void add_line(std::string_view text) {
     if (!cur) open_piece();
     Program& p = cur->program;
+    Interpretation& in = cur->in;
+    // Past kPieceBytes the piece ends after the first move that ends chains; past
+    // kCornerPieceBytes also before a move that starts at a corner (where a chain ends too,
+    // though the corner rule then judges the vertices beside it without their neighbours
+    // across the cut).
+    const bool ending = p.text.size() >= kPieceBytes;
+    Mark mark;
+    if (ending)
+      mark = {p.text.size(), p.blocks.size(), p.words.size(), in.moves.size(), in.frames.size(), in.unplaced.size(),
+              sink.reported(), reader.state()};
     const size_t begin = p.text.size();
     p.text.append(text);
     lex_line(p, begin, ++line, sink);
@@ -129,14 +147,37 @@ struct Compressor::Impl {
       ready.clear();
       return;
     }
-    if (p.text.size() < kPieceBytes) return;
-    const int32_t m = cur->in.move_of_block[bi];
-    if (m >= 0 && ends_chains(cur->in.moves[size_t(m)])) {
+    if (!ending) return;
+    const int32_t m = in.move_of_block[bi];
+    if (m >= 0 && ends_chains(in.moves[size_t(m)])) {
       close_piece(true);
+    } else if (p.text.size() >= kCornerPieceBytes && m >= 1 && sink.reported() == mark.reported &&
+               starts_at_corner(size_t(m))) {
+      // Taken out and read again as the next piece's first line (it said nothing the first
+      // time, so reading it again repeats no diagnostic).
+      p.text.resize(mark.text);
+      p.blocks.resize(mark.blocks);
+      p.words.resize(mark.words);
+      in.moves.resize(mark.moves);
+      in.move_of_block.resize(mark.blocks);
+      in.frames.resize(mark.frames);
+      in.unplaced.resize(mark.unplaced);
+      reader.reset(mark.state);
+      --line;
+      close_piece(false);
+      add_line(text);
     } else if (p.text.size() >= kMaxPieceBytes) {
       ++forced;
       close_piece(false);
     }
+  }
+
+  /// Whether move m of the piece, a G1 a fit may rewrite after another, starts at a corner
+  /// of the path: its chain of runs ends there (chain_runs()).
+  bool starts_at_corner(size_t m) const {
+    const Interpretation& in = cur->in;
+    return in.moves[m].fittable() && in.moves[m - 1].fittable() && in.moves[m].frame == in.moves[m - 1].frame &&
+           corner_at(in, m, opt.fit.tolerance_mm, opt.fit.corner_angle_deg);
   }
 
   void open_piece() {

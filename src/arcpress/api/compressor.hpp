@@ -5,8 +5,9 @@
 // caller's thread, and gathered into pieces (piece.hpp) of about kPieceBytes: a piece ends
 // after the first move no fit may join (a rapid, a retraction, a move with a comment or
 // from an unknown position...) once it holds that much, so a chain of runs is never cut
-// there and the fit is the one the whole program would get; a path that goes on for
-// kMaxPieceBytes without one is cut at a vertex (a forced cut, counted in the result). Each
+// there and the fit is the one the whole program would get; past kCornerPieceBytes it may
+// also end before a move that starts at a corner, and a path that goes on for kMaxPieceBytes
+// without either is cut at a vertex (a forced cut, counted in the result). Each
 // closed piece is fitted, written and checked on a worker thread; finished pieces are
 // released in program order. At most kPiecesInFlight pieces per worker wait or are worked
 // on, so memory does not grow with the program: push() waits for the oldest while they are
@@ -23,6 +24,8 @@ namespace arcpress {
 
 /// Input bytes a piece gathers before it may end at the next move no fit joins.
 inline constexpr size_t kPieceBytes = size_t(1) << 17;
+/// Input bytes after which a piece may also end before a move that starts at a corner.
+inline constexpr size_t kCornerPieceBytes = size_t(3) << 16;
 /// Input bytes after which a piece ends at the next vertex whatever it is (a forced cut).
 inline constexpr size_t kMaxPieceBytes = size_t(1) << 18;
 /// Pieces per worker thread that may be read, queued, worked on or waiting for their turn.

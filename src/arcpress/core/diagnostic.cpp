@@ -6,10 +6,12 @@ namespace arcpress {
 
 void DiagnosticSink::error(SourceLoc at, std::string_view code, std::string message) {
   ++errors_;
+  ++reported_;
   list_.push_back({Severity::Error, at, std::string(code), std::move(message)});
 }
 
 void DiagnosticSink::warning(SourceLoc at, std::string_view code, std::string message) {
+  ++reported_;
   for (auto& [c, n] : warn_counts_) {
     if (c == code) {
       ++n;

@@ -43,6 +43,8 @@ class DiagnosticSink {
 
   const std::vector<Diagnostic>& all() const { return list_; }
   size_t error_count() const { return errors_; }
+  /// Every diagnostic reported so far, suppressed repeats included.
+  size_t reported() const { return reported_; }
   /// Number of warnings of `code`, including the suppressed repeats.
   size_t warning_count(std::string_view code) const;
   const std::string& file() const { return file_; }
@@ -57,6 +59,7 @@ class DiagnosticSink {
   std::vector<Diagnostic> list_;
   std::vector<std::pair<std::string, size_t>> warn_counts_;
   size_t errors_ = 0;
+  size_t reported_ = 0;
   bool strict_ = false;
 };
 

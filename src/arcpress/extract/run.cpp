@@ -21,20 +21,6 @@ bool within_spread(double lo, double hi, double spread_mm) {
 /// The principal plane whose normal is `axis` (0 X, 1 Y, 2 Z).
 Plane plane_with_normal(int axis) { return axis == 2 ? Plane::XY : axis == 1 ? Plane::ZX : Plane::YZ; }
 
-/// Whether the path has a corner at vertex k (the start of move k): is_corner() in the plane
-/// of move k, with the vertices beside it past moves that go nowhere; so where the feed path
-/// ends on either side.
-bool corner_at(const Interpretation& in, size_t k, double band_mm, double corner_angle_deg) {
-  const Plane pl = in.moves[std::min(k, in.moves.size() - 1)].plane;
-  auto point = [&](size_t v) {  // vertex v in the plane's coordinates, as the verifier reads it
-    const auto& a = in.from(v);
-    const auto ax = axes_of(pl);
-    return Vec3(a[ax.first], a[ax.second], a[ax.normal]);
-  };
-  const auto b = in.vertex_beside(k, -1), a = in.vertex_beside(k, +1);
-  return !b || !a || is_corner(point(*b), point(k), point(*a), band_mm, corner_angle_deg);
-}
-
 /// What split_by_plane() asks of the moves [i, j) again and again, worked out once in a pass
 /// or two over them, so that trying every start costs the same at each: linear in the moves.
 class Stretch {
@@ -201,6 +187,17 @@ void split_by_plane(const Interpretation& in, size_t i, size_t j, uint32_t min_m
 }
 
 }  // namespace
+
+bool corner_at(const Interpretation& in, size_t k, double band_mm, double corner_angle_deg) {
+  const Plane pl = in.moves[std::min(k, in.moves.size() - 1)].plane;
+  auto point = [&](size_t v) {  // vertex v in the plane's coordinates, as the verifier reads it
+    const auto& a = in.from(v);
+    const auto ax = axes_of(pl);
+    return Vec3(a[ax.first], a[ax.second], a[ax.normal]);
+  };
+  const auto b = in.vertex_beside(k, -1), a = in.vertex_beside(k, +1);
+  return !b || !a || is_corner(point(*b), point(k), point(*a), band_mm, corner_angle_deg);
+}
 
 std::vector<Run> extract_runs(const Interpretation& in, uint32_t min_moves, const PlaneChoice& choice) {
   std::vector<Run> runs;

@@ -41,6 +41,11 @@ struct PlaneChoice {
   double corner_angle_deg = 30;
 };
 
+/// Whether the path has a corner at vertex k (the start of move k): is_corner() in the plane
+/// of move k, with the vertices beside it past moves that go nowhere; so where the feed path
+/// ends on either side. A chain of runs ends there (chain_runs()).
+bool corner_at(const Interpretation& in, size_t k, double band_mm, double corner_angle_deg);
+
 /// Finds all runs of at least `min_moves` fittable moves.
 std::vector<Run> extract_runs(const Interpretation& in, uint32_t min_moves = 2, const PlaneChoice& choice = {});
 

@@ -51,6 +51,7 @@ class Interpreter {
   }
 
   const ModalState& state() const { return s_; }
+  void reset(const ModalState& s) { s_ = s; }
 
  private:
   void block(uint32_t bi, const Block& b) {
@@ -493,6 +494,7 @@ ModalInterpreter::ModalInterpreter(ModalInterpreter&&) noexcept = default;
 void ModalInterpreter::begin(const Program& program, Interpretation& out) { impl_->begin(program, out); }
 void ModalInterpreter::step(uint32_t block) { impl_->step(block); }
 const ModalState& ModalInterpreter::state() const { return impl_->state(); }
+void ModalInterpreter::reset(const ModalState& state) { impl_->reset(state); }
 
 Interpretation interpret(const Program& program, DiagnosticSink& sink, const Dialect& dialect, ModalState* state) {
   Interpretation out;

@@ -70,6 +70,10 @@ class ModalInterpreter {
   /// Reads block `block` of the program; blocks are read in order, each once.
   void step(uint32_t block);
   const ModalState& state() const;
+  /// Goes back to `state` (one the reader was in before a block it read since), as if the
+  /// blocks after it had not been read; the caller takes them out of the program and its
+  /// interpretation.
+  void reset(const ModalState& state);
 
  private:
   struct Impl;
