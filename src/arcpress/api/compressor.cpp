@@ -184,6 +184,12 @@ struct Compressor::Impl {
     cur = std::make_unique<Piece>();
     cur->index = pieces++;
     cur->program.name = name;
+    // What a piece of kPieceBytes typically holds, so that it is not grown step by step.
+    cur->program.text.reserve(kPieceBytes + (size_t(1) << 12));
+    cur->program.blocks.reserve(kPieceBytes / 20);
+    cur->program.words.reserve(kPieceBytes / 6);
+    cur->in.moves.reserve(kPieceBytes / 24);
+    cur->in.move_of_block.reserve(kPieceBytes / 20);
     cur->start = reader.state();
     cur->emit = next_emit;
     reader.begin(cur->program, cur->in);

@@ -45,7 +45,7 @@ struct Dialect {
   bool centre_mode_words = true;                ///< G90.1/G91.1 are understood
   bool radius_word = true;                      ///< R form accepted
   ArcFormat format = ArcFormat::Centre;         ///< what arcpress writes unless told otherwise
-  std::string arc_header;                       ///< a block written once before the first arc, e.g. "G91.1"
+  std::string arc_header;                       ///< a block written before the first arc (of each piece of a stream), e.g. "G91.1"
   uint8_t planes = 0b111;                       ///< bit 0 XY (G17), bit 1 ZX (G18), bit 2 YZ (G19)
   bool helical = true;                          ///< linear motion along the plane's normal inside an arc
   bool extra_axes = false;                      ///< A/B/C, U/V/W words inside an arc, moved linearly
