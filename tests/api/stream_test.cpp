@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <random>
+#include <stdexcept>
 #include <string>
 
 #include "arcpress/api/compressor.hpp"
@@ -167,4 +168,21 @@ TEST_CASE("an empty program and one without a last end of line stream as they ar
   const Streamed s = stream("G0 X1 Y0\nG1 X2 F100\nG1 X3 Y1\r\nG1 X4 Y3", opt, [] { return size_t(3); });
   CHECK(s.output == "G0 X1 Y0\nG1 X2 F100\nG1 X3 Y1\r\nG1 X4 Y3");  // a corner at each vertex: nothing to fit
   CHECK(s.result.ok);
+}
+
+TEST_CASE("a compressor takes no bytes after finish(), and one dropped half way stops at once", "[stream]") {
+  CompressOptions opt;
+  opt.threads = 2;
+  DiagnosticSink sink("late");
+  {
+    Compressor c("late", opt, sink);
+    c.push("G0 X0 Y0\nG1 X1 F100\n");
+    c.finish();
+    c.finish();
+    CHECK_THROWS_AS(c.push("G1 X2\n"), std::logic_error);
+  }
+  // Dropped with pieces in flight: the destructor returns without working through them.
+  const std::string text = spiral(40000);
+  Compressor dropped("dropped", opt, sink);
+  dropped.push(text);
 }

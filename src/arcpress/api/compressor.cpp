@@ -5,6 +5,7 @@
 #include <exception>
 #include <mutex>
 #include <optional>
+#include <stdexcept>
 #include <thread>
 #include <vector>
 
@@ -64,6 +65,7 @@ struct Compressor::Impl {
 
   void push(std::string_view bytes) {
     rethrow();
+    if (finished) throw std::logic_error("Compressor::push() after finish()");
     if (failed) return;
     bytes_read += bytes.size();
     pending.append(bytes);
@@ -76,6 +78,8 @@ struct Compressor::Impl {
 
   void finish() {
     rethrow();
+    if (finished) return;
+    finished = true;
     if (!failed && !pending.empty()) add_line(pending);
     pending.clear();
     if (!failed && cur) {
@@ -257,7 +261,7 @@ struct Compressor::Impl {
       {
         std::unique_lock lk(mu);
         cv_work.wait(lk, [&] { return stopping || !todo.empty(); });
-        if (todo.empty()) return;
+        if (stopping || todo.empty()) return;  // stopping: the compressor is destroyed unfinished
         slot = todo.front();
         todo.pop_front();
       }
@@ -291,6 +295,7 @@ struct Compressor::Impl {
   size_t pieces = 0, bytes_read = 0, forced = 0, lines_out = 0, limit = 1;
   bool centre_mode_set = false;
   bool failed = false;
+  bool finished = false;
   std::optional<OutputHabits> habits;
   EmitStart next_emit;
   CompressResult total;

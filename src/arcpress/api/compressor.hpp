@@ -42,12 +42,15 @@ class Compressor {
   Compressor& operator=(const Compressor&) = delete;
 
   /// Takes the next bytes of the program, cut anywhere (in a line, in a CRLF). May wait for
-  /// the workers while the pieces in flight are as many as allowed.
+  /// the workers while the pieces in flight are as many as allowed. Throws std::logic_error
+  /// after finish().
   void push(std::string_view bytes);
   /// Appends the output finished so far, in order, to `out` and returns how many bytes that
   /// was. Output is final once taken: it is never revised.
   size_t take(std::string& out);
   /// Ends the input and waits for every piece; take() then gives the rest of the output.
+  /// Calling it again does nothing. A compressor destroyed before it stops its workers and
+  /// drops what they had not finished.
   void finish();
 
   /// The counts and checks of the pieces taken so far (all of them after finish()). `ok` is
