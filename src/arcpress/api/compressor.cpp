@@ -50,8 +50,7 @@ struct Compressor::Impl {
     total.verified = opt.verify && !opt.passthrough;
     total.unplaced_kept = true;
     total.band_mm = opt.fit.tolerance_mm;
-    if (threads > 1)
-      for (size_t w = 0; w < threads; ++w) workers.emplace_back([this] { work(); });
+    pool_size = threads > 1 ? threads : 0;
   }
 
   ~Impl() {
@@ -214,12 +213,16 @@ struct Compressor::Impl {
   }
 
   void dispatch(std::unique_ptr<Piece> piece) {
-    if (workers.empty()) {
+    // One thread, or a program that is one piece (its threads then work inside it): here.
+    // Otherwise the workers, started with the first piece that goes to them.
+    if (pool_size == 0 || (piece->last && workers.empty())) {
       compress_piece(*piece, opt);
       flight.push_back({std::move(piece), true});
       release(false);
       return;
     }
+    if (workers.empty())
+      for (size_t w = 0; w < pool_size; ++w) workers.emplace_back([this] { work(); });
     {
       std::lock_guard lk(mu);
       flight.push_back({std::move(piece), false});
@@ -292,7 +295,7 @@ struct Compressor::Impl {
   std::string pending;          // bytes after the last whole line
   std::unique_ptr<Piece> cur;   // the piece being read
   uint32_t line = 0;
-  size_t pieces = 0, bytes_read = 0, forced = 0, lines_out = 0, limit = 1;
+  size_t pieces = 0, bytes_read = 0, forced = 0, lines_out = 0, limit = 1, pool_size = 0;
   bool centre_mode_set = false;
   bool failed = false;
   bool finished = false;
