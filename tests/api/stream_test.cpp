@@ -140,6 +140,10 @@ TEST_CASE("a path that goes on for longer than a piece may hold is cut at a vert
   const Interpretation ii = interpret(in, sink);
   verify_output(in, ii, opt, whole);
   CHECK(whole.within_band());
+  // The joints across the cuts are measured as the whole program's check measures them.
+  CHECK(s.result.comparison.smooth_joints == whole.comparison.smooth_joints);
+  CHECK(s.result.comparison.smooth_joints_over_g1 == whole.comparison.smooth_joints_over_g1);
+  CHECK(s.result.comparison.max_smooth_kink_deg == Approx(whole.comparison.max_smooth_kink_deg));
   // The same text for one thread and for any chunking.
   opt.threads = 1;
   CHECK(stream_lines(text, opt).output == s.output);

@@ -252,6 +252,20 @@ struct Compressor::Impl {
       }
       if (failed) continue;
       add_piece(total, *slot.piece, lines_out);
+      // The joint across the cut, which neither piece's check saw whole.
+      if (slot.piece->index > 0 && total.verified) {
+        if (const auto turn = joint_turn_deg(prev_tail, slot.piece->head, opt.fit.tolerance_mm, opt.fit.corner_angle_deg)) {
+          PathComparison& c = total.comparison;
+          ++c.smooth_joints;
+          c.max_smooth_kink_deg = std::max(c.max_smooth_kink_deg, *turn);
+          if (*turn > opt.fit.g1_angle_deg) {
+            ++c.smooth_joints_over_g1;
+            c.kink_lines.push_back(slot.piece->head.input_line);
+            total.forced_kink_lines.push_back(slot.piece->head.input_line);  // forced by the cut
+          }
+        }
+      }
+      prev_tail = slot.piece->tail;
       lines_out += slot.piece->output_lines;
       ready += slot.piece->result.output;
     }
@@ -301,6 +315,7 @@ struct Compressor::Impl {
   bool finished = false;
   std::optional<OutputHabits> habits;
   EmitStart next_emit;
+  PieceEnd prev_tail;           // the path's end in the last piece released
   CompressResult total;
   std::string ready;            // output released and not yet taken
 

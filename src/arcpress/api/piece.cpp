@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "arcpress/core/deviation.hpp"
 #include "arcpress/core/workers.hpp"
 #include "arcpress/extract/run.hpp"
 #include "arcpress/fit/fitter.hpp"
@@ -15,8 +16,57 @@
 
 namespace arcpress {
 
+namespace {
+
+Vec3 in_plane(const AxisValues& v, Plane pl) {
+  const auto a = axes_of(pl);
+  return {v[a.first], v[a.second], v[a.normal]};
+}
+
+/// Whether output move j is a fit's rather than input move i as it was.
+bool fitted_move(const Interpretation& in, size_t i, const Interpretation& out, size_t j) {
+  const Move& a = in.moves[i];
+  const Move& b = out.moves[j];
+  return a.kind != b.kind || a.to != b.to || in.from(i) != out.from(j) || (is_arc(a.kind) && a.center != b.center);
+}
+
+/// The ends of a piece's path as the output reads back (see PieceEnd).
+void piece_ends(const Program& input, const Interpretation& in, const Interpretation& out, PieceEnd& head,
+                PieceEnd& tail) {
+  head = tail = PieceEnd{};
+  if (in.moves.empty() || out.moves.empty()) return;
+  const Move& first = out.moves.front();
+  head.feed = is_feed(first.kind) && first.known && is_feed(in.moves.front().kind);
+  head.fitted = fitted_move(in, 0, out, 0);
+  head.plane = first.plane;
+  head.tangent = move_start_tangent(out, 0);
+  head.at = in_plane(in.from(0), first.plane);
+  if (const auto v = in.vertex_beside(0, +1)) head.beside = in_plane(in.from(*v), first.plane);
+  head.input_line = input.blocks[in.moves.front().block].line;
+  const size_t i = in.moves.size() - 1, j = out.moves.size() - 1;
+  const Move& last = out.moves.back();
+  tail.feed = is_feed(last.kind) && last.known && is_feed(in.moves.back().kind);
+  tail.fitted = fitted_move(in, i, out, j);
+  tail.plane = last.plane;
+  tail.tangent = move_end_tangent(out, j);
+  tail.at = in_plane(in.moves.back().to, last.plane);
+  if (const auto v = in.vertex_beside(in.moves.size(), -1)) tail.beside = in_plane(in.from(*v), last.plane);
+  tail.input_line = input.blocks[in.moves.back().block].line;
+}
+
+}  // namespace
+
+std::optional<double> joint_turn_deg(const PieceEnd& tail, const PieceEnd& head, double band_mm,
+                                     double corner_angle_deg) {
+  if (!tail.feed || !head.feed || !(tail.fitted || head.fitted) || tail.plane != head.plane || !tail.beside ||
+      !head.beside || is_corner(*tail.beside, head.at, *head.beside, band_mm, corner_angle_deg))
+    return std::nullopt;
+  return turn_deg(tail.tangent, head.tangent);
+}
+
 void verify_piece_output(const Program& input, const Interpretation& in, const CompressOptions& opt, CompressResult& r,
-                         std::span<const Run> runs, const ModalState& start, const ModalState* end, bool with_motion) {
+                         std::span<const Run> runs, const ModalState& start, const ModalState* end, bool with_motion,
+                         PieceEnd* head, PieceEnd* tail) {
   const std::string name = input.name + " (output)";
   DiagnosticSink out_sink(name);
   Program out_prog = lex(name, r.output, out_sink);
@@ -33,6 +83,7 @@ void verify_piece_output(const Program& input, const Interpretation& in, const C
       std::fill_n(co.fitted_plane.begin() + run.first_move, run.move_count, run.plane);
   }
   r.comparison = compare_paths(input, in, out_prog, out_in, co);
+  if (head && tail) piece_ends(input, in, out_in, *head, *tail);
   DiffOptions dopt;
   dopt.tolerance_mm = opt.fit.tolerance_mm;
   dopt.top = 1;
@@ -200,7 +251,8 @@ void compress_piece(Piece& piece, const CompressOptions& options) {
   r.ok = true;
   r.band_mm = opt.fit.tolerance_mm;
   auto verify = [&] {
-    verify_piece_output(prog, in, opt, r, runs, piece.start, piece.last ? nullptr : &piece.end, piece.clean_end);
+    verify_piece_output(prog, in, opt, r, runs, piece.start, piece.last ? nullptr : &piece.end, piece.clean_end,
+                        &piece.head, &piece.tail);
   };
   if (opt.verify && !opt.passthrough) {
     verify();

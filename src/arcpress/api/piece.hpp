@@ -7,6 +7,7 @@
 // vertex (a forced cut). Everything the fit, the emitter and the check need is in the piece:
 // pieces are worked on in any order, on any thread.
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -20,6 +21,24 @@ namespace arcpress {
 /// its maximum is exact above it, and where the paths are nowhere that far apart it reports
 /// at most that (DiffOptions::least_mm).
 inline constexpr double kExactShare = 0.05;
+
+/// One end of a piece's path, kept to measure the joint with the next piece across the cut
+/// (a piece's own check sees only the joints inside it).
+struct PieceEnd {
+  bool feed = false;        ///< the output's move at the cut is a placed feed move
+  bool fitted = false;      ///< ... a fit's, not the input's own move
+  Plane plane = Plane::XY;  ///< its plane; the points below are in it
+  Vec2 tangent{0, 0};       ///< its direction at the cut
+  Vec3 at{0, 0, 0};         ///< the cut's vertex
+  std::optional<Vec3> beside;  ///< the input's vertex next to the cut on this side (past moves that go nowhere)
+  uint32_t input_line = 0;  ///< the input line of the move at the cut
+};
+
+/// Whether the path is smooth at the cut between a piece ending in `tail` and the next
+/// starting with `head`, where a fit made the joint: its turn there, degrees (none
+/// otherwise), as compare_paths() judges the joints inside a piece.
+std::optional<double> joint_turn_deg(const PieceEnd& tail, const PieceEnd& head, double band_mm,
+                                     double corner_angle_deg);
 
 struct Piece {
   size_t index = 0;        ///< 0, 1, 2 ... in program order
@@ -39,6 +58,7 @@ struct Piece {
 
   // What compress_piece() makes of it.
   CompressResult result;   ///< its text, counts and checks; output lines (line_b) counted from the piece's first
+  PieceEnd head, tail;     ///< the ends of its path as checked (where it was)
   size_t output_lines = 0; ///< lines in result.output
 };
 
@@ -52,7 +72,8 @@ void compress_piece(Piece& piece, const CompressOptions& opt);
 /// given it must end in a state that reads on as `end` does (with the modal motion where
 /// `with_motion`).
 void verify_piece_output(const Program& input, const Interpretation& in, const CompressOptions& opt, CompressResult& r,
-                         std::span<const Run> runs, const ModalState& start, const ModalState* end, bool with_motion);
+                         std::span<const Run> runs, const ModalState& start, const ModalState* end, bool with_motion,
+                         PieceEnd* head = nullptr, PieceEnd* tail = nullptr);
 
 /// Adds the counts and checks of `piece` (the next in order, whose output begins after
 /// `lines_before` lines of output) to `total`.

@@ -38,7 +38,9 @@ double append_path(const Interpretation& in, size_t i, Plane pl, double chord_mm
   return sagitta_mm;
 }
 
-Vec2 start_tangent(const Interpretation& in, size_t i) {
+}  // namespace
+
+Vec2 move_start_tangent(const Interpretation& in, size_t i) {
   const Move& m = in.moves[i];
   Vec3 s = in_plane(in.from(i), m.plane), e = in_plane(m.to, m.plane);
   if (is_arc(m.kind)) {
@@ -49,20 +51,18 @@ Vec2 start_tangent(const Interpretation& in, size_t i) {
   return d.norm() > 0 ? Vec2(d.normalized()) : Vec2(0, 0);
 }
 
-Vec2 end_tangent(const Interpretation& in, size_t i) {
+Vec2 move_end_tangent(const Interpretation& in, size_t i) {
   const Move& m = in.moves[i];
-  if (!is_arc(m.kind)) return start_tangent(in, i);
+  if (!is_arc(m.kind)) return move_start_tangent(in, i);
   Vec3 e = in_plane(m.to, m.plane), c = in_plane(m.center, m.plane);
   return arc_tangent(Vec2(e.x() - c.x(), e.y() - c.y()), m.kind == MoveKind::ArcCCW);
 }
 
-double angle_deg(const Vec2& a, const Vec2& b) {
+double turn_deg(const Vec2& a, const Vec2& b) {
   if (a.squaredNorm() == 0 || b.squaredNorm() == 0) return 0;
   return rad_to_deg(std::atan2(std::abs(cross2(a, b)), a.dot(b)));
 }
 
-
-}  // namespace
 
 PathComparison compare_paths(const Program& a, const Interpretation& ia, const Program& b,
                              const Interpretation& ib, const CompareOptions& opt) {
@@ -184,8 +184,8 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
             const Vec3 step = in_plane(ib.moves[q].to, pl) - in_plane(ib.from(q), pl);
             return Vec2(step.x(), step.y());
           };
-          const double kink = pl == mb.plane ? angle_deg(end_tangent(ib, size_t(prev_j)), start_tangent(ib, j))
-                                             : angle_deg(line_in_plane(size_t(prev_j)), line_in_plane(j));
+          const double kink = pl == mb.plane ? turn_deg(move_end_tangent(ib, size_t(prev_j)), move_start_tangent(ib, j))
+                                             : turn_deg(line_in_plane(size_t(prev_j)), line_in_plane(j));
           r.max_smooth_kink_deg = std::max(r.max_smooth_kink_deg, kink);
           if (kink > opt.g1_angle_deg) {
             ++r.smooth_joints_over_g1;

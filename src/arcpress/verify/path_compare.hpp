@@ -45,6 +45,13 @@ struct PathComparison {
   bool within(double tolerance_mm) const { return matched && max_deviation_mm <= tolerance_mm; }
 };
 
+/// The direction in which move i leaves its start, and arrives at its end, in the move's plane
+/// (unit; zero for a line that goes nowhere in it).
+Vec2 move_start_tangent(const Interpretation& in, size_t i);
+Vec2 move_end_tangent(const Interpretation& in, size_t i);
+/// The angle between two directions, degrees (0 where either is zero).
+double turn_deg(const Vec2& a, const Vec2& b);
+
 PathComparison compare_paths(const Program& a, const Interpretation& ia, const Program& b,
                              const Interpretation& ib, const CompareOptions& opt);
 
