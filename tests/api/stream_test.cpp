@@ -12,6 +12,7 @@
 #include "arcpress/api/compressor.hpp"
 #include "arcpress/lex/lexer.hpp"
 #include "arcpress/model/interpreter.hpp"
+#include "random_program.hpp"
 #include "support.hpp"
 
 using namespace arcpress;
@@ -189,4 +190,37 @@ TEST_CASE("a compressor takes no bytes after finish(), and one dropped half way 
   const std::string text = spiral(40000);
   Compressor dropped("dropped", opt, sink);
   dropped.push(text);
+}
+
+TEST_CASE("random programs long enough to be cut into pieces keep every promise, checked piece by piece and whole",
+          "[stream][property]") {
+  for (uint32_t seed = 1; seed <= 6; ++seed) {
+    std::mt19937 rng(seed);
+    std::vector<uint8_t> bytes(3 + 3 * 30000);
+    for (auto& b : bytes) b = uint8_t(rng());
+    test::RandomCase c = test::random_case(bytes);
+    INFO("seed " << seed << ", " << c.text.size() << " bytes");
+    REQUIRE(c.text.size() > 2 * kPieceBytes);
+    c.opt.threads = 1;
+    DiagnosticSink sink("random");
+    const CompressResult whole = compress("random", c.text, c.opt, sink);
+    CHECK(test::broken_promise(whole).empty());
+    INFO(test::broken_promise(whole));
+    // Any chunks, any threads: the same text.
+    c.opt.threads = 2;
+    std::uniform_int_distribution<size_t> size(1, 50000);
+    const Streamed chunks = stream(c.text, c.opt, [&] { return size(rng); });
+    CHECK(chunks.output == whole.output);
+    // The whole output, checked as one program, is inside the band, no farther from the
+    // input than the pieces' checks measured it (to the whole-path measure's precision).
+    if (!whole.ok || !whole.verified) continue;
+    DiagnosticSink check_sink("random");
+    CompressResult again;
+    again.output = whole.output;
+    const Program in = lex("random", c.text, check_sink);
+    const Interpretation ii = interpret(in, check_sink, c.opt.dialect);
+    verify_output(in, ii, c.opt, again);  // (no runs given: every joint read in the output's plane)
+    CHECK(again.within_band());
+    CHECK(again.check.max_deviation_mm <= whole.comparison.max_deviation_mm + again.check.arc_chord_mm);
+  }
 }

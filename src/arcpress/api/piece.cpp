@@ -41,7 +41,10 @@ void piece_ends(const Program& input, const Interpretation& in, const Interpreta
   head.plane = first.plane;
   head.tangent = move_start_tangent(out, 0);
   head.at = in_plane(in.from(0), first.plane);
-  if (const auto v = in.vertex_beside(0, +1)) head.beside = in_plane(in.from(*v), first.plane);
+  if (const auto v = in.vertex_beside(0, +1)) {
+    head.beside = in_plane(in.from(*v), first.plane);
+    if (const auto w = in.vertex_beside(*v, +1)) head.beside2 = in_plane(in.from(*w), first.plane);
+  }
   head.input_line = input.blocks[in.moves.front().block].line;
   const size_t i = in.moves.size() - 1, j = out.moves.size() - 1;
   const Move& last = out.moves.back();
@@ -50,7 +53,10 @@ void piece_ends(const Program& input, const Interpretation& in, const Interpreta
   tail.plane = last.plane;
   tail.tangent = move_end_tangent(out, j);
   tail.at = in_plane(in.moves.back().to, last.plane);
-  if (const auto v = in.vertex_beside(in.moves.size(), -1)) tail.beside = in_plane(in.from(*v), last.plane);
+  if (const auto v = in.vertex_beside(in.moves.size(), -1)) {
+    tail.beside = in_plane(in.from(*v), last.plane);
+    if (const auto w = in.vertex_beside(*v, -1)) tail.beside2 = in_plane(in.from(*w), last.plane);
+  }
   tail.input_line = input.blocks[in.moves.back().block].line;
 }
 
@@ -59,7 +65,15 @@ void piece_ends(const Program& input, const Interpretation& in, const Interpreta
 std::optional<double> joint_turn_deg(const PieceEnd& tail, const PieceEnd& head, double band_mm,
                                      double corner_angle_deg) {
   if (!tail.feed || !head.feed || !(tail.fitted || head.fitted) || tail.plane != head.plane || !tail.beside ||
-      !head.beside || is_corner(*tail.beside, head.at, *head.beside, band_mm, corner_angle_deg))
+      !head.beside)
+    return std::nullopt;
+  // The corner rule as compare_paths() applies it: the vertex itself, and beside a corner.
+  const Vec3 &before = *tail.beside, &at = head.at, &after = *head.beside;
+  const bool before_corner = tail.beside2 && is_corner(*tail.beside2, before, at, band_mm, corner_angle_deg);
+  const bool after_corner = head.beside2 && is_corner(at, after, *head.beside2, band_mm, corner_angle_deg);
+  if (is_corner(before, at, after, band_mm, corner_angle_deg) ||
+      is_corner_beside_corner(tail.beside2 ? &*tail.beside2 : nullptr, before, at, after,
+                              head.beside2 ? &*head.beside2 : nullptr, before_corner, after_corner, band_mm))
     return std::nullopt;
   return turn_deg(tail.tangent, head.tangent);
 }

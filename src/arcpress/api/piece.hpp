@@ -31,6 +31,7 @@ struct PieceEnd {
   Vec2 tangent{0, 0};       ///< its direction at the cut
   Vec3 at{0, 0, 0};         ///< the cut's vertex
   std::optional<Vec3> beside;  ///< the input's vertex next to the cut on this side (past moves that go nowhere)
+  std::optional<Vec3> beside2; ///< ... and the one after it, further from the cut
   uint32_t input_line = 0;  ///< the input line of the move at the cut
 };
 
