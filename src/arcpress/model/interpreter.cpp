@@ -25,6 +25,14 @@ int axis_of_letter(char c) {
   }
 }
 
+/// Per letter (from 'A'): whether a controller refuses to see it twice in one block (the
+/// axes, the centre words, R, F and P).
+constexpr auto kOncePerBlock = [] {
+  std::array<bool, 32> once{};
+  for (char c : std::string_view("XYZABCUVWEIJKRFP")) once[size_t(c - 'A')] = true;
+  return once;
+}();
+
 /// G-code number times ten, so G90.1 is 901 and G1 is 10.
 int gcode10(double v) { return int(std::lround(v * 10.0)); }
 
@@ -100,7 +108,7 @@ class Interpreter {
     uint32_t letters_seen = 0;
     for (auto* w = p_->words_begin(b); w != p_->words_end(b); ++w) {
       char L = w->letter;
-      if (std::string_view("XYZABCUVWEIJKRFP").find(L) != std::string_view::npos && !w->flag) {
+      if (kOncePerBlock[uint8_t(L - 'A') & 31] && L >= 'A' && L <= 'Z' && !w->flag) {
         const uint32_t bit = 1u << (L - 'A');
         if (letters_seen & bit) {
           repeated = true;
