@@ -18,11 +18,6 @@ namespace arcpress {
 
 namespace {
 
-Vec3 in_plane(const AxisValues& v, Plane pl) {
-  const auto a = axes_of(pl);
-  return {v[a.first], v[a.second], v[a.normal]};
-}
-
 /// Whether output move j is a fit's rather than input move i as it was.
 bool fitted_move(const Interpretation& in, size_t i, const Interpretation& out, size_t j) {
   const Move& a = in.moves[i];

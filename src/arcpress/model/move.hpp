@@ -17,6 +17,12 @@ inline constexpr char kAxisLetters[kAxisCount] = {'X', 'Y', 'Z', 'A', 'B', 'C', 
 inline constexpr bool kAxisIsLinear[kAxisCount] = {true, true, true, false, false, false, true, true, true, true};
 using AxisValues = std::array<double, kAxisCount>;
 
+/// Position `v`'s X, Y, Z in the coordinates of plane `p` (first, second, normal).
+inline Vec3 in_plane(const AxisValues& v, Plane p) {
+  const auto a = axes_of(p);
+  return {v[a.first], v[a.second], v[a.normal]};
+}
+
 /// How program words turn into absolute positions. A new Frame starts whenever any of these
 /// modal settings changes, so every Move can be written back in its own frame.
 struct Frame {

@@ -12,11 +12,6 @@ namespace {
 /// different order of operations in unit conversion.
 constexpr double kSamePointMm = 1e-7;
 
-Vec3 in_plane(const AxisValues& v, Plane pl) {
-  auto a = axes_of(pl);
-  return {v[a.first], v[a.second], v[a.normal]};
-}
-
 }  // namespace
 
 ArcGeom arc_of_move(const Interpretation& in, size_t i) {

@@ -24,11 +24,6 @@ bool same_point(const AxisValues& p, const AxisValues& q) {
   return true;
 }
 
-Vec3 in_plane(const AxisValues& v, Plane pl) {
-  auto a = axes_of(pl);
-  return {v[a.first], v[a.second], v[a.normal]};
-}
-
 /// Appends the path of move i to `pts`, in `pl` coordinates; returns how far its chords lie
 /// from it (see move_path()).
 double append_path(const Interpretation& in, size_t i, Plane pl, double chord_mm, std::vector<Vec3>& pts) {
