@@ -142,7 +142,7 @@ int main(int argc, char** argv) {
           const size_t end = nl == std::string::npos ? text.size() : nl + 1;
           const size_t begin = p.text.size();
           p.text.append(text, at, end - at);
-          lex_line(p, begin, ++line, sink);
+          lex_line(p, begin, p.text.size(), ++line, sink);
           reader.step(uint32_t(p.blocks.size() - 1));
           at = end;
         }

@@ -67,11 +67,20 @@ struct Compressor::Impl {
     if (finished) throw std::logic_error("Compressor::push() after finish()");
     if (failed) return;
     bytes_read += bytes.size();
-    pending.append(bytes);
-    size_t pos = 0;
-    for (size_t nl; !failed && (nl = pending.find('\n', pos)) != std::string::npos; pos = nl + 1)
-      add_line(std::string_view(pending).substr(pos, nl + 1 - pos));
-    pending.erase(0, pos);
+    // Whole lines go from `bytes` to their piece; only a line cut by the push waits in
+    // `pending` for its end.
+    size_t at = 0;
+    if (!pending.empty()) {
+      const size_t nl = bytes.find('\n');
+      pending.append(bytes.substr(0, nl == std::string_view::npos ? bytes.size() : nl + 1));
+      if (nl == std::string_view::npos) return release(false);
+      add_line(pending);
+      pending.clear();
+      at = nl + 1;
+    }
+    for (size_t nl; !failed && (nl = bytes.find('\n', at)) != std::string_view::npos; at = nl + 1)
+      add_line(bytes.substr(at, nl + 1 - at));
+    if (!failed) pending.assign(bytes.substr(at));
     release(false);
   }
 
@@ -141,7 +150,7 @@ struct Compressor::Impl {
               sink.reported(), reader.state()};
     const size_t begin = p.text.size();
     p.text.append(text);
-    lex_line(p, begin, ++line, sink);
+    lex_line(p, begin, p.text.size(), ++line, sink);
     const uint32_t bi = uint32_t(p.blocks.size() - 1);
     reader.step(bi);
     if (sink.error_count() > 0) {  // strict mode: nothing more is written

@@ -260,18 +260,17 @@ class LineLexer {
 
 }  // namespace
 
-size_t lex_line(Program& p, size_t begin, uint32_t line, DiagnosticSink& sink) {
+void lex_line(Program& p, size_t begin, size_t end, uint32_t line, DiagnosticSink& sink) {
   const std::string& t = p.text;
-  const size_t nl = t.find('\n', begin);
   Block b;
   b.line = line;
   b.begin = uint32_t(begin);
-  const size_t end = nl == std::string::npos ? t.size() : nl;
   size_t content_end = end;
-  if (nl != std::string::npos) {
+  if (end > begin && t[end - 1] == '\n') {
+    content_end = end - 1;
     b.eol_length = 1;
-    if (end > begin && t[end - 1] == '\r') {
-      content_end = end - 1;
+    if (content_end > begin && t[content_end - 1] == '\r') {
+      --content_end;
       b.eol_length = 2;
     }
   }
@@ -279,7 +278,6 @@ size_t lex_line(Program& p, size_t begin, uint32_t line, DiagnosticSink& sink) {
   b.first_word = uint32_t(p.words.size());
   p.blocks.push_back(b);
   LineLexer(p, p.blocks.back(), sink).run();
-  return nl == std::string::npos ? t.size() : nl + 1;
 }
 
 Program lex(std::string name, std::string text, DiagnosticSink& sink) {
@@ -289,7 +287,12 @@ Program lex(std::string name, std::string text, DiagnosticSink& sink) {
   p.blocks.reserve(p.text.size() / 24 + 1);
   p.words.reserve(p.text.size() / 6 + 1);
   uint32_t line = 0;
-  for (size_t pos = 0; pos < p.text.size();) pos = lex_line(p, pos, ++line, sink);
+  for (size_t pos = 0; pos < p.text.size();) {
+    const size_t nl = p.text.find('\n', pos);
+    const size_t end = nl == std::string::npos ? p.text.size() : nl + 1;
+    lex_line(p, pos, end, ++line, sink);
+    pos = end;
+  }
   return p;
 }
 

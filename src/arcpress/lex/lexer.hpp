@@ -10,9 +10,9 @@ namespace arcpress {
 /// Diagnostics (codes E-LEX-*) go to `sink`; lexing always completes.
 Program lex(std::string name, std::string text, DiagnosticSink& sink);
 
-/// Lexes the one line of `program.text` that starts at offset `begin` (up to and with its
-/// "\n", or to the end of the text) into a new block numbered `line`, for a program that is
-/// read as it arrives. Returns the offset after the line.
-size_t lex_line(Program& program, size_t begin, uint32_t line, DiagnosticSink& sink);
+/// Lexes the one line of `program.text` at offsets [begin, end) (with its "\n", unless it is
+/// the program's last line and has none) into a new block numbered `line`, for a program
+/// that is read as it arrives.
+void lex_line(Program& program, size_t begin, size_t end, uint32_t line, DiagnosticSink& sink);
 
 }  // namespace arcpress
