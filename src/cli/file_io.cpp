@@ -123,14 +123,7 @@ std::string read_input(const std::string& path) {
   return data;
 }
 
-void write_stdout(std::string_view data) {
-  if (g_stdout_failed) throw Error(kExitIo, "cannot write standard output");
-  std::fflush(stdout);  // whatever stdio holds goes first
-  if (const int err = write_all(STDOUT_FILENO, data); err != 0) {
-    g_stdout_failed = true;
-    throw Error(kExitIo, fmt::format("cannot write standard output: {}", error_text(err)));
-  }
-}
+void write_stdout(std::string_view data) { write_output("-", data); }
 
 /// The descriptor a path names outright: /dev/stdout, /dev/stderr, /dev/fd/N,
 /// /proc/self/fd/N; -1 for any other path. Written through that descriptor, the output

@@ -1,12 +1,11 @@
 #include "arcpress/api/arcpress.hpp"
 
-#include "arcpress/api/compressor.hpp"
-#include "arcpress/api/piece.hpp"
-
 #include <algorithm>
 
 #include <fmt/format.h>
 
+#include "arcpress/api/compressor.hpp"
+#include "arcpress/api/piece.hpp"
 #include "arcpress/core/error.hpp"
 
 namespace arcpress {

@@ -22,14 +22,6 @@
 namespace arcpress {
 namespace {
 
-/// Whether the block sets the arc centre mode itself (G90.1 or G91.1).
-bool sets_centre_mode(const Program& p, const Block& b) {
-  for (const Word* w = p.words_begin(b); w != p.words_end(b); ++w)
-    if (w->letter == 'G' && !w->is_expr && (std::lround(w->value * 10) == 901 || std::lround(w->value * 10) == 911))
-      return true;
-  return false;
-}
-
 /// Whether no chain of runs goes on across the end of move `m`: it is no move a fit may
 /// rewrite and no input arc a chain keeps tangent to (chain_runs() closes its chain there).
 bool ends_chains(const Move& m) { return !m.fittable() && !(is_arc(m.kind) && m.known); }
@@ -214,7 +206,7 @@ struct Compressor::Impl {
     if (!habits) habits = output_habits(p.program);
     p.emit.habits = habits;
     scan_refusals(p.program, opt.dialect, sink);
-    for (const Block& b : p.program.blocks) centre_mode_set = centre_mode_set || sets_centre_mode(p.program, b);
+    for (const Word& w : p.program.words) centre_mode_set = centre_mode_set || sets_centre_mode(w);
     next_emit.in_motion = p.end.motion;
     next_emit.out_motion = clean ? p.end.motion : -1;
     next_emit.header_done = centre_mode_set;

@@ -95,8 +95,7 @@ class Emitter {
       const Word* n_word = nullptr;
       for (auto* w = p_.words_begin(b); w != p_.words_end(b); ++w) {
         if (w->letter == 'G' && !w->is_expr && is_motion_gcode(w->value)) explicit_motion = int(std::lround(w->value * 10));
-        if (w->letter == 'G' && !w->is_expr && (std::lround(w->value * 10) == 901 || std::lround(w->value * 10) == 911))
-          header_done_ = true;  // the program sets the centre mode itself
+        if (sets_centre_mode(*w)) header_done_ = true;  // the program sets the centre mode itself
         if (moves_axis(w->letter)) axes = true;
         if (w->letter == 'N' && w == p_.words_begin(b)) n_word = w;
       }
@@ -540,6 +539,10 @@ class Emitter {
 };
 
 }  // namespace
+
+bool sets_centre_mode(const Word& w) {
+  return w.letter == 'G' && !w.is_expr && (std::lround(w.value * 10) == 901 || std::lround(w.value * 10) == 911);
+}
 
 OutputHabits output_habits(const Program& p) {
   OutputHabits h;

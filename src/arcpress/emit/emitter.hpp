@@ -43,6 +43,10 @@ struct OutputHabits {
 /// The habits of `program` (the first 200 motion words decide G01 or G1).
 OutputHabits output_habits(const Program& program);
 
+/// Whether `w` sets the arc centre mode (G90.1 or G91.1): the dialect's arc header is then
+/// not written.
+bool sets_centre_mode(const Word& w);
+
 /// How the output stands before the first block of a program emitted in pieces (a stream):
 /// the defaults are a program's start.
 struct EmitStart {
