@@ -22,6 +22,7 @@
 #include "arcpress/lex/lexer.hpp"
 #include "arcpress/model/interpreter.hpp"
 #include "arcpress/verify/diff_plot.hpp"
+#include "arcpress/verify/executed_path.hpp"
 #include "file_io.hpp"
 #include "progress.hpp"
 
@@ -109,6 +110,7 @@ struct CompressArgs {
   std::string dialect_file;
   std::string arc_format;
   std::string method = "arcs";
+  std::string band;  ///< "program", "executed"; empty: the dialect's choice
   bool in_place = false;
   bool stats = false;
   bool quiet = false;
@@ -145,6 +147,8 @@ int run_compress(const CompressArgs& a) {
                    : a.method == "stream" ? FitOptions::Method::Stream
                    : a.method == "lowe"   ? FitOptions::Method::Lowe
                                           : FitOptions::Method::Arcs;
+  if (a.band == "program") opt.band = CompressOptions::Band::Program;
+  if (a.band == "executed") opt.band = CompressOptions::Band::Executed;
   if (a.arc_format == "ijk") opt.arc_format = ArcFormat::Centre;
   if (a.arc_format == "r") opt.arc_format = ArcFormat::Radius;
 
@@ -163,6 +167,10 @@ int run_compress(const CompressArgs& a) {
   std::string why_dialect;
   opt.dialect = dialect_for(a.dialect, a.dialect_given, a.dialect_file, chunk,
                             head == 0 || chunk.size() < head ? std::string() : input.tail(kFlavorBytes), &why_dialect);
+  if (opt.band == CompressOptions::Band::Executed && !opt.dialect.executed.moves_on_chords())
+    throw Error(kExitInput, fmt::format("--band executed: dialect {} names no arc segmentation ([arcs.executed] rule); "
+                                        "its controller moves on the programmed circles",
+                                        opt.dialect.name));
   DiagnosticSink sink(name);
   Compressor compressor(name, opt, sink);
   cli::OutputFile out(out_path);
@@ -255,9 +263,14 @@ int run_compress(const CompressArgs& a) {
       const double floor_mm = kExactShare * r.band_mm;
       if (r.check.max_deviation_mm < floor_mm) where = fmt::format(", under {:.6f} mm everywhere (measured no closer)", floor_mm);
       fmt::print(stderr,
-                 "  deviation      {:.6f} mm max (band {} mm){}\n"
+                 "  deviation      {:.6f} mm max (band {} mm{}){}\n"
                  "  smooth joints  {} made, max kink {:.3f} deg, {} over {} deg ({} forced by the band or the digits)\n",
-                 r.check.max_deviation_mm, r.band_mm, where, c.smooth_joints, c.max_smooth_kink_deg,
+                 r.check.max_deviation_mm, r.band_mm,
+                 opt.executed_rule().moves_on_chords()
+                     ? fmt::format(", on the path {}'s firmware moves: arcs as its chords",
+                                   rule_name(opt.executed_rule().rule))
+                     : std::string(", on the programmed path"),
+                 where, c.smooth_joints, c.max_smooth_kink_deg,
                  c.smooth_joints_over_g1, a.opt.fit.g1_angle_deg, r.forced_kinks);
     } else {
       fmt::print(stderr,
@@ -287,6 +300,7 @@ struct DiffArgs {
   std::string plane = "xy";
   size_t top = 5;
   unsigned threads = 0;
+  bool executed = false;  ///< compare the paths the dialect's firmware moves along (arcs as its chords)
 };
 
 /// `arcpress diff A B`: any two programs, read the same way, compared by path, rapids,
@@ -306,6 +320,14 @@ int run_diff(const DiffArgs& d) {
   opt.tolerance_mm = d.tolerance_mm;
   opt.top = d.top;
   opt.threads = d.threads;
+  if (d.executed) {
+    if (!dialect.executed.moves_on_chords())
+      throw Error(kExitInput, fmt::format("--executed: dialect {} names no arc segmentation ([arcs.executed] rule); "
+                                          "its controller moves on the programmed circles",
+                                          dialect.name));
+    ia = executed_path(ia, dialect.executed);
+    ib = executed_path(ib, dialect.executed);
+  }
   ProgramDiff r = diff_programs(pa, ia, pb, ib, opt);
   DiffNames names{d.a, d.b};
   // The report first: a plot that cannot be written (exit 3) never costs the verdict.
@@ -379,6 +401,11 @@ int main(int argc, char** argv) {
       ->check(finite_in(kMaxSweepRange))->capture_default_str();
   app.add_option("--min-arc-length", a.opt.fit.min_arc_length_mm, "Shorter arcs (mm) become lines")
       ->check(finite_in(kMinArcLengthRange))->capture_default_str();
+  app.add_option("--band", a.band,
+                 "program: hold the band on the programmed path (arcs as circles); executed: on the chords the "
+                 "dialect's firmware cuts each arc into (its [arcs.executed] rule); absent: executed where the "
+                 "dialect names a rule")
+      ->check(CLI::IsMember({"program", "executed"}));
   bool no_helical = false;
   app.add_flag("--no-helical", no_helical, "Never move the plane's normal axis inside an arc");
   app.add_flag("--passthrough", a.opt.passthrough, "Read and write the program back unchanged");
@@ -411,6 +438,9 @@ int main(int argc, char** argv) {
                        "line), else rs274")
           ->capture_default_str();
   diff_cmd->add_option("--dialect-file", diff.dialect_file, "Read both programs with this dialect file");
+  diff_cmd->add_flag("--executed", diff.executed,
+                     "Compare the paths the dialect's firmware really moves along: every arc of both programs cut "
+                     "into the chords of its [arcs.executed] rule");
   diff_cmd->add_flag("--json", diff.json, "Print one JSON document instead of text");
   diff_cmd->add_option("--plot", diff.plot, "Write an SVG picture of both paths, B coloured by deviation");
   diff_cmd->add_option("--plane", diff.plane, "Plane of the picture")->check(CLI::IsMember({"xy", "zx", "yz"}))

@@ -220,11 +220,11 @@ TEST_CASE("compression measures its own output and reports the deviation", "[cli
   auto c = run_arcpress("'" + in.string() + "' --stats");
   CHECK(c.exit_code == 0);
   CHECK(c.out.find("G3 ") != std::string::npos);
-  CHECK(c.err.find("mm max (band 0.01 mm), input line ") != std::string::npos);
+  CHECK(c.err.find("mm max (band 0.01 mm, on the programmed path), input line ") != std::string::npos);
   // A path written back as it was has no worst place to name; the check measures it exactly
   // down to a twentieth of the band, and says so.
   auto kept = run_arcpress("--stats --method keep", kProgram);
-  CHECK(kept.err.find("0.000000 mm max (band 0.01 mm), under 0.000500 mm everywhere (measured no closer)\n") !=
+  CHECK(kept.err.find("0.000000 mm max (band 0.01 mm, on the programmed path), under 0.000500 mm everywhere (measured no closer)\n") !=
         std::string::npos);
   auto n = run_arcpress("'" + in.string() + "' --stats --no-verify");
   CHECK(n.err.find("not measured") != std::string::npos);

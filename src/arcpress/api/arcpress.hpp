@@ -33,6 +33,16 @@ struct CompressOptions {
   /// Threads that fit runs at once; 0: one per hardware thread. Runs are independent, so
   /// the output is the same for any count.
   unsigned threads = 0;
+  /// Which path the band is held on: the programmed one (the circles as written), or the
+  /// one the firmware moves along (each arc cut into the chords of the dialect's rule,
+  /// Dialect::executed); Dialect: the latter where the dialect names a rule.
+  enum class Band : uint8_t { Dialect, Program, Executed };
+  Band band = Band::Dialect;
+  /// The arc segmentation the band is held on: the dialect's where `band` asks for the
+  /// executed path, else Rule::None.
+  ArcSegmentation executed_rule() const {
+    return band == Band::Program ? ArcSegmentation{} : dialect.executed;
+  }
 };
 
 /// G1 moves that were put in no run, for one reason (see left_out_moves()).

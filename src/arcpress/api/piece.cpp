@@ -13,6 +13,7 @@
 #include "arcpress/extract/run.hpp"
 #include "arcpress/fit/fitter.hpp"
 #include "arcpress/lex/lexer.hpp"
+#include "arcpress/verify/executed_path.hpp"
 
 namespace arcpress {
 
@@ -105,7 +106,13 @@ void verify_piece_output(const Program& input, const Interpretation& in, const C
   // its maximum: a piece written back as it was is not measured down to nothing.
   dopt.least_mm = std::max(kExactShare * opt.fit.tolerance_mm,
                            std::min(r.comparison.max_deviation_mm, opt.fit.tolerance_mm) * (1 - kReadingShare));
-  r.check = diff_programs(input, in, out_prog, out_in, dopt);
+  // With the band on the executed path, the whole-path measure compares the chords the
+  // firmware moves along, of the input's arcs and of the output's; the move-by-move one
+  // above keeps measuring the programmed path (and its joints).
+  if (const ArcSegmentation rule = opt.executed_rule(); rule.moves_on_chords())
+    r.check = diff_programs(input, executed_path(in, rule), out_prog, executed_path(out_in, rule), dopt);
+  else
+    r.check = diff_programs(input, in, out_prog, out_in, dopt);
   if (out_sink.error_count() > 0)
     r.check.findings.insert(r.check.findings.begin(), "the output does not read back: " + out_sink.format_all());
   // What follows is read by the controller from the state the output leaves: it must be
@@ -188,7 +195,9 @@ std::vector<FitResult> fit_runs(const Interpretation& in, const std::vector<Run>
   auto fit_one = [&](size_t i) {
     const RunChain& c = chains[i];
     auto got = fit_chain(in, c, runs, [&](const Run& r) {
-      return fit_options_for(opt.fit, opt.dialect, in.frames[r.frame], r.plane);
+      FitOptions o = fit_options_for(opt.fit, opt.dialect, in.frames[r.frame], r.plane);
+      o.executed = opt.executed_rule();
+      return o;
     });
     std::move(got.begin(), got.end(), fits.begin() + c.first_run);
   };

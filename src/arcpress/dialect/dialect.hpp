@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "arcpress/core/geometry.hpp"
+#include "arcpress/dialect/arc_segmentation.hpp"
 
 namespace arcpress {
 
@@ -63,6 +64,9 @@ struct Dialect {
   /// 0 for radius_abs_mm: the controller does not check (printers jump at the end).
   double radius_abs_mm = 0.0283;
   double radius_rel = 0.001;
+  /// How the firmware cuts arcs into the chords it moves along ([arcs.executed]); where it
+  /// has a rule, the band is held on those chords by default (--band executed).
+  ArcSegmentation executed;
 
   // --- machine ----------------------------------------------------------------------
   /// X words are diameters from the start, as on lathes that power up in diameter mode

@@ -193,6 +193,19 @@ Dialect parse_dialect(const std::string& text, const std::string& path) {
     r.number("min_chord_mm", d.min_chord_mm, 0, 10);
     r.number("radius_check_mm", d.radius_abs_mm, 0, 100);
     r.number("radius_check_relative", d.radius_rel, 0, 1);
+    if (const toml::table* e = r.table("executed")) {
+      TableReader x(*e, path, "arcs.executed.");
+      // (In the order of ArcSegmentation::Rule.)
+      if (int c = x.choice("rule", {"none", "marlin", "klipper", "reprapfirmware", "grbl", "smoothieware"}); c >= 0)
+        d.executed.rule = ArcSegmentation::Rule(c);
+      x.number("max_segment_mm", d.executed.max_segment_mm, 0, 1000);
+      x.number("min_segment_mm", d.executed.min_segment_mm, 0, 1000);
+      x.integer("min_circle_segments", d.executed.min_circle_segments, 0, 100000);
+      x.number("max_deviation_mm", d.executed.max_deviation_mm, 0, 10);
+      x.finish();
+      if (d.executed.rule == ArcSegmentation::Rule::Klipper && d.executed.max_segment_mm <= 0)
+        x.fail(e->source(), "max_segment_mm", "klipper's resolution must be above 0");
+    }
     r.finish();
     if (d.format == ArcFormat::Radius && !d.radius_word)
       top.fail(t->source(), "arcs.format", "\"radius\" needs radius_word = true");

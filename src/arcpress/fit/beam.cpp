@@ -23,7 +23,7 @@ std::vector<Chosen> RunFitter::beam_chain(uint32_t a, uint32_t limit, GreedyWalk
   roots(a, limit, s_.roots);
   for (const Vec2& T : s_.roots) nodes.push_back({{}, -1, a, T});
   for (int i = 0; i < static_cast<int>(nodes.size()); ++i) layer.push_back(i);
-  const double bin_rad = deg_to_rad(o_.g1_angle_deg) / 8;
+  const double bin_rad = deg_to_rad(std::min(o_.g1_angle_deg, 2 * kFinestJointTurnDeg)) / 8;
   const size_t width = o_.beam_width;
   // Candidates are scored first and checked exactly only when the beam keeps them.
   std::vector<Made>& made = s_.made;
@@ -64,9 +64,12 @@ std::vector<Chosen> RunFitter::beam_chain(uint32_t a, uint32_t limit, GreedyWalk
     for (int i : layer) {
       const Node nd = nodes[i];
       const bool straight = nd.parent >= 0 && straight_ahead(nd.v, limit);  // (roots take no turns)
-      for (const Turn* turn : {(const Turn*)nullptr, &full_left_, &full_right_, &half_left_, &half_right_}) {
-        if (turn && nd.parent < 0) break;
-        if ((turn == &half_left_ || turn == &half_right_) && !straight) break;
+      const size_t turns = nd.parent < 0 ? 0 : joint_turns_.size() + (straight ? 2 : 0);
+      for (size_t t = 0; t <= turns; ++t) {
+        const Turn* turn = t == 0                         ? nullptr
+                           : t <= joint_turns_.size() ? &joint_turns_[t - 1]
+                           : t == turns - 1           ? &half_left_
+                                                      : &half_right_;
         const Vec2 T = turn ? (*turn)(nd.T) : nd.T;
         auto same = [&](const auto& x) { return x.first == nd.v && same_tangent_cone_.holds(x.second, T); };
         if (std::any_of(expanded.begin(), expanded.end(), same)) continue;

@@ -15,6 +15,10 @@ constexpr double kJointShare = 0.9;
 /// Share of the G1 angle by which the greedy step first turns the tangent at a joint, each
 /// way; twice this (kJointShare) is its largest turn, and the searches' turn.
 constexpr double kTurnShare = 0.45;
+/// The searches turn a chain's tangent at a joint by the whole allowance and, where that is
+/// wide, by halves of it down to about this (degrees; the whole turn of the default 0.5°
+/// G1 angle): a wider allowance adds finer turns, so it never offers fewer than a narrower.
+constexpr double kFinestJointTurnDeg = 0.45;
 /// A primitive whose end tangent is within this of the input's direction is "on course".
 constexpr double kOnCourseRad = 1.5 * kPi / 180;
 
@@ -50,7 +54,7 @@ class FitAngles {
         max_sweep_deg_(o.max_sweep_deg),
         min_sweep_deg_(o.min_sweep_deg),
         method_(o.method) {
-    line_kink_ = deg_to_rad(o.g1_angle_deg) / 4;
+    line_kink_ = deg_to_rad(std::min(o.g1_angle_deg, 2 * kFinestJointTurnDeg)) / 4;
     const double g1 = deg_to_rad(o.g1_angle_deg);
     half_left_ = Turn(kTurnShare * g1);
     half_right_ = Turn(-kTurnShare * g1);
@@ -68,8 +72,14 @@ class FitAngles {
       near_turns_ = {full_left_, full_right_, Turn(), Turn()};
       near_turn_count_ = 2;
     }
+    joint_turns_.clear();
+    for (double t = 2 * kTurnShare * g1;; t /= 2) {
+      joint_turns_.push_back(Turn(t));
+      joint_turns_.push_back(Turn(-t));
+      if (t / 2 < deg_to_rad(kFinestJointTurnDeg) * (1 - 1e-9)) break;
+    }
     g1_cone_ = Cone(g1);
-    same_tangent_cone_ = Cone(g1 / 32);
+    same_tangent_cone_ = Cone(deg_to_rad(std::min(o.g1_angle_deg, 2 * kFinestJointTurnDeg)) / 32);
     // (The margin keeps the largest turn the searches make from failing by rounding.)
     joint_cone_ = Cone(kJointShare * g1 + 1e-9);
     joint_miss_ = 1 - std::cos(kJointShare * g1);
@@ -78,7 +88,13 @@ class FitAngles {
     turn_cone_ = Cone(kTurnShare * g1);
     turn_line_cone_ = Cone(kTurnShare * g1 + line_kink_);
     two_turns_line_cone_ = Cone(2 * kTurnShare * g1 + line_kink_);
+    // (Where the allowance is wide, halves of the smaller turn too, down to its size at the
+    // default angle.)
     root_turns_ = {Turn(0.3 * g1), Turn(-0.3 * g1), Turn(0.6 * g1), Turn(-0.6 * g1)};
+    for (double t = 0.15 * g1; t >= 0.3 * deg_to_rad(2 * kFinestJointTurnDeg) * (1 - 1e-9); t /= 2) {
+      root_turns_.push_back(Turn(t));
+      root_turns_.push_back(Turn(-t));
+    }
     start_sweep_ = Turn(std::min(deg_to_rad(o.max_sweep_deg) / 2, kPi / 2));
     for (size_t i = 0; i < 4; ++i) {
       const double deg = 0.5 * double(1u << i);  // 0.5, 1, 2, 4
@@ -111,9 +127,10 @@ class FitAngles {
   Turn half_left_,
       half_right_;  // kTurnShare of the G1 angle each way: the greedy step's first turns, the beam's for lines
   Turn full_left_, full_right_;     // twice that, the whole joint allowance: its largest, and the searches' turn
+  std::vector<Turn> joint_turns_;   // the searches' turns at a joint: the whole allowance, then halves (kFinestJointTurnDeg)
   std::array<Turn, 4> near_turns_;  // best_near(): the first near_turn_count_ of them
   size_t near_turn_count_ = 0;
-  std::array<Turn, 4> root_turns_;  // roots(): 0.3 and 0.6 of it each way
+  std::vector<Turn> root_turns_;    // roots(): 0.3 and 0.6 of it each way (and halves of 0.3 where wide)
   Turn start_sweep_;                // start_range(): half the largest sweep, at most a quarter turn
   std::array<Turn, 8> fan_turns_;   // fanned_input_tangents(): 0.5, 1, 2 and 4 degrees each way
   Cone g1_cone_;                    // the G1 angle: a joint within it is smooth

@@ -24,8 +24,10 @@ double normal_axis_spread_mm(const FitOptions& o) {
   return o.helical ? o.tolerance_mm * (1.0 - fit_detail::kRoundingReserve) * fit_detail::kHeightShare : 0.0;
 }
 
-std::vector<FitResult> fit_chain(const Interpretation& in, const RunChain& chain, std::span<const Run> runs,
-                                 const std::function<FitOptions(const Run&)>& options_for) {
+namespace {
+
+std::vector<FitResult> fit_chain_once(const Interpretation& in, const RunChain& chain, std::span<const Run> runs,
+                                      const std::function<FitOptions(const Run&)>& options_for) {
   std::span<const Run> own(&runs[chain.first_run], chain.run_count);
   // The keep method: every move its own line, with none of the fit's preparation (the
   // corner rule, the vertices where a primitive must end), so that the pipeline it times is
@@ -148,6 +150,32 @@ std::vector<FitResult> fit_chain(const Interpretation& in, const RunChain& chain
     std::sort(f.forced_at.begin(), f.forced_at.end());
     f.forced_at.erase(std::unique(f.forced_at.begin(), f.forced_at.end()), f.forced_at.end());
   }
+  return out;
+}
+
+size_t primitive_count(const std::vector<FitResult>& fits) {
+  size_t n = 0;
+  for (const FitResult& f : fits) n += f.prims.size();
+  return n;
+}
+
+}  // namespace
+
+std::vector<FitResult> fit_chain(const Interpretation& in, const RunChain& chain, std::span<const Run> runs,
+                                 const std::function<FitOptions(const Run&)>& options_for) {
+  std::vector<FitResult> out = fit_chain_once(in, chain, runs, options_for);
+  // A wider G1 angle allows every chain the default allows, but the searches turn by other
+  // angles and may miss one of them: the default's chain is searched too and kept when it
+  // is shorter, so relaxing the angle never costs blocks.
+  const double default_deg = FitOptions{}.g1_angle_deg;
+  if (chain.run_count == 0 || options_for(runs[chain.first_run]).g1_angle_deg <= default_deg) return out;
+  auto tighter = [&](const Run& r) {
+    FitOptions o = options_for(r);
+    o.g1_angle_deg = std::min(o.g1_angle_deg, default_deg);
+    return o;
+  };
+  std::vector<FitResult> narrow = fit_chain_once(in, chain, runs, tighter);
+  if (primitive_count(narrow) < primitive_count(out)) out = std::move(narrow);
   return out;
 }
 

@@ -33,7 +33,7 @@ std::vector<Chosen> RunFitter::layered_chain(uint32_t a, uint32_t limit) const {
     states.push_back({{}, -1, a, T});
     layer.push_back(static_cast<int>(states.size()) - 1);
   }
-  const double bin_rad = kTangentBinShare * deg_to_rad(o_.g1_angle_deg);
+  const double bin_rad = kTangentBinShare * deg_to_rad(std::min(o_.g1_angle_deg, 2 * kFinestJointTurnDeg));
   const size_t max_states = kMaxStatesPerVertex * (limit - a) + states.size();
   std::unordered_set<uint64_t> seen;
   std::vector<Candidate> cand;
@@ -42,13 +42,13 @@ std::vector<Chosen> RunFitter::layered_chain(uint32_t a, uint32_t limit) const {
     next.clear();
     uint32_t next_front = front;
     // A state reached by a primitive goes on along its end tangent, or turned at the joint
-    // by all of kJointShare of the G1 angle either way (the turns between come in through
+    // by all of kJointShare of the G1 angle either way and by halves of it (joint_turns_; the turns between come in through
     // the states' own spread of tangents).
     for (int i : layer) {
-      for (const Turn* turn : {(const Turn*)nullptr, &full_left_, &full_right_}) {
-        if (turn && states[i].parent < 0) break;
+      const size_t turns = states[i].parent < 0 ? 0 : joint_turns_.size();
+      for (size_t t = 0; t <= turns; ++t) {
         const uint32_t v = states[i].v;
-        const Vec2 T = turn ? (*turn)(states[i].T) : states[i].T;
+        const Vec2 T = t > 0 ? joint_turns_[t - 1](states[i].T) : states[i].T;
         cand.clear();  // only the ends at or beyond the front are taken
         scan_ends(v, T, limit, [&](const Candidate& c) {
           if (c.e >= front) cand.push_back(c);

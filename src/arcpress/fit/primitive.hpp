@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "arcpress/core/geometry.hpp"
+#include "arcpress/dialect/arc_segmentation.hpp"
 
 namespace arcpress {
 
@@ -52,6 +53,10 @@ struct FitOptions {
   int beam_branch = 3;             ///< Arcs and Global methods: checked primitives per chain and start tangent
   bool merge = true;               ///< Arcs and Global methods: merge neighbouring primitives after the search
   uint32_t stream_window = 256;    ///< Stream method: most moves one primitive may replace
+  /// The firmware's arc segmentation when the band is held on the chords it moves along
+  /// (--band executed): an arc must keep the band with its chords' sagitta taken off it.
+  /// Rule::None: the band is held on the programmed circle.
+  ArcSegmentation executed;
 };
 
 struct FitResult {

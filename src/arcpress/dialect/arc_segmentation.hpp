@@ -1,0 +1,49 @@
+#pragma once
+// How a controller cuts an arc into the chords it really moves along. Printer firmwares and
+// Grbl never move on the circle: they split each G2/G3 into straight segments, and the
+// part is made by those. A dialect names its firmware's rule and the settings it uses
+// (dialects/README.md cites each rule's source); the fitter holds the band on the chords
+// (--band executed) and the verifier measures them (executed_path()).
+#include <cstdint>
+#include <string_view>
+
+namespace arcpress {
+
+struct ArcSegmentation {
+  enum class Rule : uint8_t {
+    None,            ///< the controller moves on the circle (or its rule is not known): the program is the path
+    Marlin,          ///< Marlin 2.1 plan_arc(): MAX/MIN_ARC_SEGMENT_MM, MIN_CIRCLE_SEGMENTS
+    Klipper,         ///< Klipper gcode_arcs: floor(length / resolution) segments, at least 1
+    RepRapFirmware,  ///< RRF 3: segment sqrt(8 r MaxArcDeviation) within [min, max], count rounded up from 0.2
+    Grbl,            ///< Grbl and grblHAL mc_arc(): floor(half the length / sqrt($12 (2r - $12))), 0 meaning one chord
+    Smoothieware,    ///< Smoothieware append_arc(): segment from mm_max_arc_error (or mm_per_arc_segment), floor
+  };
+  Rule rule = Rule::None;
+  /// Longest segment, mm: Marlin MAX_ARC_SEGMENT_MM, Klipper `resolution`, RRF
+  /// MaxArcSegmentLength, Smoothieware mm_per_arc_segment (0: from the arc error only).
+  double max_segment_mm = 1.0;
+  /// Shortest segment, mm: Marlin MIN_ARC_SEGMENT_MM, RRF MinArcSegmentLength.
+  double min_segment_mm = 0.1;
+  /// Marlin MIN_CIRCLE_SEGMENTS: segments in a whole circle at the least.
+  int min_circle_segments = 72;
+  /// The chord error the firmware aims at, mm: RRF MaxArcDeviation, Grbl $12 arc_tolerance,
+  /// Smoothieware mm_max_arc_error.
+  double max_deviation_mm = 0.002;
+
+  bool moves_on_chords() const { return rule != Rule::None; }
+};
+
+/// The rule's name as dialect files write it ("marlin", "klipper", "reprapfirmware", "grbl",
+/// "smoothieware", "none").
+std::string_view rule_name(ArcSegmentation::Rule rule);
+
+/// How many straight segments the firmware moves along for an arc of `radius_mm` turning
+/// by `sweep_rad` (either sign) while the plane's normal axis travels `normal_travel_mm`:
+/// 1 means one chord from start to end. Always at least 1; 0 for Rule::None (the circle).
+uint32_t executed_segments(const ArcSegmentation& s, double radius_mm, double sweep_rad, double normal_travel_mm = 0);
+
+/// How far (mm) the firmware's chords of that arc lie inside the circle at most: the
+/// sagitta of one segment's angle. 0 for Rule::None.
+double executed_sagitta_mm(const ArcSegmentation& s, double radius_mm, double sweep_rad, double normal_travel_mm = 0);
+
+}  // namespace arcpress

@@ -1,0 +1,46 @@
+#include "arcpress/verify/executed_path.hpp"
+
+#include <algorithm>
+
+#include "arcpress/verify/move_geometry.hpp"
+
+namespace arcpress {
+
+Interpretation executed_path(const Interpretation& in, const ArcSegmentation& rule) {
+  auto placed_arc = [](const Move& m) { return is_arc(m.kind) && m.known; };
+  if (!rule.moves_on_chords() || std::none_of(in.moves.begin(), in.moves.end(), placed_arc)) return in;
+  Interpretation out = in;
+  out.moves.clear();
+  std::vector<uint32_t> index_of(in.moves.size());  // input move -> its last move in `out`
+  for (size_t i = 0; i < in.moves.size(); ++i) {
+    const Move& m = in.moves[i];
+    if (placed_arc(m)) {
+      const ArcGeom g = arc_of_move(in, i);
+      const uint32_t n = executed_segments(rule, g.radius_mm, g.sweep, g.h1 - g.h0);
+      const AxisValues& from = in.from(i);
+      const auto ax = axes_of(m.plane);
+      for (uint32_t k = 1; k < n; ++k) {
+        const double t = double(k) / n;
+        Move c = m;
+        c.kind = MoveKind::Line;
+        for (int a = 0; a < kAxisCount; ++a) c.to[a] = from[a] + (m.to[a] - from[a]) * t;
+        const Vec3 p = g.point_at(t);  // in the plane's coordinates; its height is the normal axis's
+        c.to[ax.first] = p.x();
+        c.to[ax.second] = p.y();
+        out.moves.push_back(c);
+      }
+      Move last = m;
+      last.kind = MoveKind::Line;
+      out.moves.push_back(last);
+    } else {
+      out.moves.push_back(m);
+    }
+    index_of[i] = static_cast<uint32_t>(out.moves.size() - 1);
+  }
+  for (int32_t& mv : out.move_of_block)
+    if (mv >= 0) mv = static_cast<int32_t>(index_of[mv]);
+  for (UnplacedMove& u : out.unplaced) u.move = index_of[u.move];
+  return out;
+}
+
+}  // namespace arcpress

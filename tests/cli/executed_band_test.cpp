@@ -1,0 +1,74 @@
+// --band executed and `diff --executed`: the band held on the chords the firmware moves along.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "support.hpp"
+
+using namespace arcpress::test;
+
+namespace {
+
+/// Half a circle of radius `r_mm` about (50, 50) in 1-degree G1 moves, printed to 3 decimals.
+std::string half_circle(double r_mm) {
+  std::string p = "G21 G90 G17\nG0 X" + fmt::format("{:.3f}", 50 + r_mm) + " Y50\nG1 F1200\n";
+  for (int i = 1; i <= 180; ++i)
+    p += fmt::format("G1 X{:.3f} Y{:.3f}\n", 50 + r_mm * std::cos(i * M_PI / 180), 50 + r_mm * std::sin(i * M_PI / 180));
+  return p + "M2\n";
+}
+
+}  // namespace
+
+TEST_CASE("with --band executed the chords the firmware cuts each arc into stay in the band; with --band program they "
+          "may not, and diff --executed says so",
+          "[cli][executed]") {
+  auto dir = temp_dir("executed");
+  const auto in = dir / "in.gcode";
+  write_file(in, half_circle(3.0));
+  // Klipper cuts a 3 mm radius into 1 mm chords, 0.04 mm inside the circle: four times the band.
+  const std::string io = fmt::format("{} --tolerance 0.01 --dialect klipper", in.string());
+  REQUIRE(run_arcpress(io + " --band program -o " + (dir / "program.gcode").string()).exit_code == 0);
+  REQUIRE(run_arcpress(io + " -o " + (dir / "executed.gcode").string()).exit_code == 0);
+  CHECK(read_file(dir / "program.gcode").find("G3") != std::string::npos);
+  const std::string diff = fmt::format("diff {} ", in.string());
+  auto programmed = run_arcpress(diff + (dir / "program.gcode").string() + " --dialect klipper --tolerance 0.01");
+  CHECK(programmed.exit_code == 0);
+  auto executed = run_arcpress(diff + (dir / "program.gcode").string() + " --dialect klipper --tolerance 0.01 --executed");
+  CHECK(executed.exit_code == 1);
+  CHECK(executed.out.find("DIFFERENT") != std::string::npos);
+  auto held = run_arcpress(diff + (dir / "executed.gcode").string() + " --dialect klipper --tolerance 0.01 --executed");
+  CHECK(held.exit_code == 0);
+  INFO(held.out);
+  CHECK(held.out.find("SAME") != std::string::npos);
+}
+
+TEST_CASE("every firmware rule's dialect holds the band on its executed path by default, at any radius",
+          "[cli][executed]") {
+  auto dir = temp_dir("executed_rules");
+  for (const char* dialect : {"marlin", "klipper", "reprapfirmware", "grbl", "smoothieware", "prusa"}) {
+    for (double r : {0.8, 3.0, 40.0}) {
+      INFO(dialect << " r " << r);
+      const auto in = dir / "in.gcode", out = dir / "out.gcode";
+      write_file(in, half_circle(r));
+      auto c = run_arcpress(fmt::format("{} -o {} --tolerance 0.01 --dialect {} --stats", in.string(), out.string(), dialect));
+      REQUIRE(c.exit_code == 0);
+      CHECK(c.err.find("on the path") != std::string::npos);
+      auto d = run_arcpress(
+          fmt::format("diff {} {} --tolerance 0.01 --dialect {} --executed", in.string(), out.string(), dialect));
+      CHECK(d.exit_code == 0);
+    }
+  }
+}
+
+TEST_CASE("--band executed and diff --executed refuse a dialect whose controller moves on the circle", "[cli][executed]") {
+  auto dir = temp_dir("executed_none");
+  const auto in = dir / "in.gcode";
+  write_file(in, half_circle(3.0));
+  auto c = run_arcpress(fmt::format("{} --dialect fanuc --band executed", in.string()));
+  CHECK(c.exit_code == 2);
+  CHECK(c.err.find("names no arc segmentation") != std::string::npos);
+  auto d = run_arcpress(fmt::format("diff {} {} --dialect fanuc --executed", in.string(), in.string()));
+  CHECK(d.exit_code == 2);
+}
