@@ -401,6 +401,10 @@ int main(int argc, char** argv) {
       ->check(finite_in(kMaxSweepRange))->capture_default_str();
   app.add_option("--min-arc-length", a.opt.fit.min_arc_length_mm, "Shorter arcs (mm) become lines")
       ->check(finite_in(kMinArcLengthRange))->capture_default_str();
+  app.add_option("--extrusion-variance", a.opt.fit.extrusion_variance,
+                 "How much E per mm may vary between neighbouring moves inside one arc or line, as a share of the "
+                 "larger rate (0.05: 5 %); extrusion starting or stopping always ends one")
+      ->check(finite_in(kExtrusionVarianceRange))->capture_default_str();
   app.add_option("--band", a.band,
                  "program: hold the band on the programmed path (arcs as circles); executed: on the chords the "
                  "dialect's firmware cuts each arc into (its [arcs.executed] rule); absent: executed where the "

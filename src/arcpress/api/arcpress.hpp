@@ -103,6 +103,7 @@ inline constexpr OptionRange kMinRadiusRange{0, 1e6, false, "mm"};
 inline constexpr OptionRange kMaxRadiusRange{0, 1e6, true, "mm"};
 inline constexpr OptionRange kMaxSweepRange{1, 359, false, "degrees"};
 inline constexpr OptionRange kMinArcLengthRange{0, 1e4, false, "mm"};
+inline constexpr OptionRange kExtrusionVarianceRange{0, 1, false, "(share of the rate)"};
 
 /// Throws Error(kExitInput) unless every number of `o` is finite and in its documented range
 /// (the CLI's options table); compress() calls it, so no search is ever asked to run for a

@@ -43,6 +43,7 @@ void check_options(const FitOptions& o) {
   check("the maximum radius", o.max_radius_mm, kMaxRadiusRange);
   check("the maximum sweep", o.max_sweep_deg, kMaxSweepRange);
   check("the minimum arc length", o.min_arc_length_mm, kMinArcLengthRange);
+  check("the extrusion variance", o.extrusion_variance, kExtrusionVarianceRange);
 }
 
 CompressResult compress(const std::string& name, std::string text, const CompressOptions& opt,

@@ -53,6 +53,11 @@ struct FitOptions {
   int beam_branch = 3;             ///< Arcs and Global methods: checked primitives per chain and start tangent
   bool merge = true;               ///< Arcs and Global methods: merge neighbouring primitives after the search
   uint32_t stream_window = 256;    ///< Stream method: most moves one primitive may replace
+  /// How much the extrusion (E) or an extra axis per mm of path may differ between two
+  /// neighbouring moves inside one primitive, as a share of the larger rate: a primitive
+  /// ends where the rate changes by more, and wherever extrusion starts or stops (a travel,
+  /// a retraction or a wipe never joins an extruding primitive).
+  double extrusion_variance = 0.05;
   /// The firmware's arc segmentation when the band is held on the chords it moves along
   /// (--band executed): an arc must keep the band with its chords' sagitta taken off it.
   /// Rule::None: the band is held on the programmed circle.

@@ -115,7 +115,7 @@ RunFitter::RunFitter(const Interpretation& in, const Run& run, const FitOptions&
       double d1 = vertex(v)[x] - vertex(v - 1)[x];
       double d2 = vertex(v + 1)[x] - vertex(v)[x];
       double r1 = d1 / l1, r2 = d2 / l2;
-      return (d1 == 0) != (d2 == 0) || std::abs(r1 - r2) > kRateShare * std::max(std::abs(r1), std::abs(r2));
+      return (d1 == 0) != (d2 == 0) || std::abs(r1 - r2) > o.extrusion_variance * std::max(std::abs(r1), std::abs(r2));
     };
     if (rate_changes(kE)) soft_[v] = 1;
     for (int x : extra_)

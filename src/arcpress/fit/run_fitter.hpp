@@ -29,9 +29,6 @@ constexpr double kRoundingReserve = 0.03;
 /// 0.8² + 0.6² = 1, so the 3D distance stays inside the band.
 constexpr double kPlaneShare = 0.8;
 constexpr double kHeightShare = 0.6;
-/// How much the extrusion or an extra axis per mm may differ between two neighbouring moves
-/// inside one primitive, as a share of the larger rate.
-constexpr double kRateShare = 0.05;
 /// Seed 000: pieces of the line detection this short (in moves) are not split further
 /// unless they leave the band.
 constexpr uint32_t kLoweMinMoves = 2;
