@@ -62,7 +62,7 @@ TEST_CASE("every firmware rule's dialect holds the band on its executed path by 
   }
 }
 
-TEST_CASE("--band executed and diff --executed refuse a dialect whose controller moves on the circle", "[cli][executed]") {
+TEST_CASE("the executed band (--band executed, diff --executed) is refused for a dialect whose controller moves on the circle", "[cli][executed]") {
   auto dir = temp_dir("executed_none");
   const auto in = dir / "in.gcode";
   write_file(in, half_circle(3.0));

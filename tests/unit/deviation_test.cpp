@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdint>
+#include <random>
 #include <vector>
 
 #include "arcpress/core/deviation.hpp"
@@ -148,4 +149,55 @@ TEST_CASE("with a stop, the arc measure fails exactly the arcs whose whole measu
   // Both outcomes, or the check proves nothing.
   CHECK(passed > 500);
   CHECK(failed > 500);
+}
+
+TEST_CASE("the chords a firmware moves along are bounded from the polyline both ways, no less than the distance found "
+          "by dense sampling and little more",
+          "[deviation][executed]") {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0, 1);
+  // Two-sided distance between two polylines, sampled every `step` mm along each.
+  auto sampled = [](const std::vector<Vec3>& a, const std::vector<Vec3>& b, double step) {
+    auto one_way = [&](const std::vector<Vec3>& from, const std::vector<Vec3>& to) {
+      double worst = 0;
+      for (size_t i = 0; i + 1 < from.size(); ++i) {
+        const int n = std::max(1, int(std::ceil((from[i + 1] - from[i]).norm() / step)));
+        for (int k = 0; k <= n; ++k) {
+          const Vec3 p = from[i] + (from[i + 1] - from[i]) * (double(k) / n);
+          double best = HUGE_VAL;
+          for (size_t j = 0; j + 1 < to.size(); ++j) best = std::min(best, point_segment_distance(p, to[j], to[j + 1]));
+          worst = std::max(worst, best);
+        }
+      }
+      return worst;
+    };
+    return std::max(one_way(a, b), one_way(b, a));
+  };
+  for (int trial = 0; trial < 200; ++trial) {
+    const double r = 0.5 + 20 * unit(rng), sweep = (0.2 + 2.8 * unit(rng)) * (unit(rng) < 0.5 ? -1 : 1);
+    const Vec2 centre(10 * unit(rng), 10 * unit(rng));
+    const double a0 = 6.28 * unit(rng), noise = 0.02 * unit(rng);
+    // Input: vertices on the circle, jittered radially, in order; the ends on the circle.
+    const int m = 3 + int(30 * unit(rng));
+    std::vector<Vec3> pts;
+    for (int i = 0; i <= m; ++i) {
+      const double a = a0 + sweep * i / m, rr = r + (i == 0 || i == m ? 0 : noise * (2 * unit(rng) - 1));
+      pts.push_back({centre.x() + rr * std::cos(a), centre.y() + rr * std::sin(a), 1.0});
+    }
+    const ArcGeom g = ArcGeom::through(pts.front(), pts.back(), centre, sweep > 0);
+    const uint32_t n = 1 + uint32_t(40 * unit(rng));
+    std::vector<Vec3> chords;
+    for (uint32_t k = 0; k < n; ++k) chords.push_back(g.point_at(double(k) / n));
+    chords.push_back(pts.back());
+    const auto bound = chords_deviation_bound(pts, g, n);
+    REQUIRE(bound);
+    const double step = 0.0005;
+    const double measured = sampled(pts, chords, step);
+    INFO("trial " << trial << " r " << r << " sweep " << sweep << " chords " << n);
+    CHECK(*bound >= measured - 1e-9);
+    CHECK(*bound <= measured + 0.25 * (measured + step));
+  }
+  // A helix or a whole turn is not measured this way.
+  const ArcGeom full = ArcGeom::through({1, 0, 0}, {1, 0, 0}, {0, 0}, true);
+  CHECK_FALSE(chords_deviation_bound(std::vector<Vec3>{{1, 0, 0}, {-1, 0, 0}, {1, 0, 0}}, full, 8));
 }

@@ -109,9 +109,11 @@ void verify_piece_output(const Program& input, const Interpretation& in, const C
   // With the band on the executed path, the whole-path measure compares the chords the
   // firmware moves along, of the input's arcs and of the output's; the move-by-move one
   // above keeps measuring the programmed path (and its joints).
-  if (const ArcSegmentation rule = opt.executed_rule(); rule.moves_on_chords())
+  // (The move-by-move maximum is the programmed path's, no hint for the chords'.)
+  if (const ArcSegmentation rule = opt.executed_rule(); rule.moves_on_chords()) {
+    dopt.least_mm = kExactShare * opt.fit.tolerance_mm;
     r.check = diff_programs(input, executed_path(in, rule), out_prog, executed_path(out_in, rule), dopt);
-  else
+  } else
     r.check = diff_programs(input, in, out_prog, out_in, dopt);
   if (out_sink.error_count() > 0)
     r.check.findings.insert(r.check.findings.begin(), "the output does not read back: " + out_sink.format_all());

@@ -421,4 +421,68 @@ Deviation arc_deviation_by_angles(std::span<const Vec3> pts, const ArcGeom& arc,
   return dev;
 }
 
+std::optional<double> chords_deviation_bound(std::span<const Vec3> pts, const ArcGeom& arc, uint32_t segments,
+                                             double stop_above_mm) {
+  const double turn = std::abs(arc.sweep);
+  if (pts.size() < 2 || segments == 0 || turn >= 2 * kPi - 1e-9 || turn <= 0 || arc.h0 != arc.h1) return std::nullopt;
+  for (const Vec3& p : pts)
+    if (std::abs(p.z() - arc.h0) > kLengthEpsMm) return std::nullopt;
+  const Vec2 c = arc.center;
+  const double sign = arc.sweep >= 0 ? 1 : -1;
+  auto ray = [&](double t) {
+    const double a = arc.start_angle + arc.sweep * t;
+    return Vec2(std::cos(a), std::sin(a));
+  };
+  // Each vertex's share of the turn, in order along it.
+  const size_t m = pts.size() - 1;
+  std::vector<double> t(m + 1);
+  t[0] = 0;
+  t[m] = 1;
+  for (size_t j = 1; j < m; ++j) {
+    const Vec2 d(pts[j].x() - c.x(), pts[j].y() - c.y());
+    double a = sign * (std::atan2(d.y(), d.x()) - arc.start_angle);
+    a = std::fmod(a, 2 * kPi);
+    if (a < 0) a += 2 * kPi;
+    t[j] = a / turn;
+    if (t[j] < t[j - 1] - 1e-12 || t[j] > 1 + 1e-12) return std::nullopt;
+    t[j] = std::clamp(t[j], t[j - 1], 1.0);
+  }
+  const double radius = arc.radius_mm;
+  auto chord_end = [&](uint32_t k) {
+    if (k >= segments) return pts.back();
+    const Vec2 u = ray(double(k) / segments);
+    return Vec3(c.x() + radius * u.x(), c.y() + radius * u.y(), arc.h0);
+  };
+  // Where the ray at share `tau` meets the segment a-b (its nearer end where it misses).
+  auto on_ray = [&](const Vec3& a, const Vec3& b, double tau) {
+    const Vec2 u = ray(tau), d(b.x() - a.x(), b.y() - a.y()), ca(c.x() - a.x(), c.y() - a.y());
+    const double den = d.x() * u.y() - d.y() * u.x();
+    if (std::abs(den) <= 1e-300) return a;
+    const double mu = std::clamp((ca.x() * u.y() - ca.y() * u.x()) / den, 0.0, 1.0);
+    return Vec3(a + mu * (b - a));
+  };
+  // The turn cut at every vertex's share and every chord's end; in each piece, one segment
+  // of the polyline and one chord.
+  std::vector<double> cuts(t.begin(), t.end());
+  for (uint32_t k = 1; k < segments; ++k) cuts.push_back(double(k) / segments);
+  std::sort(cuts.begin(), cuts.end());
+  double bound = 0;
+  size_t j = 0;
+  uint32_t k = 0;
+  for (size_t i = 0; i + 1 < cuts.size(); ++i) {
+    const double lo = cuts[i], hi = cuts[i + 1];
+    if (hi <= lo) continue;
+    const double mid = 0.5 * (lo + hi);
+    while (j + 1 < m && t[j + 1] <= mid) ++j;
+    while (k + 1 < segments && double(k + 1) / segments <= mid) ++k;
+    const Vec3 &a = pts[j], &b = pts[j + 1];
+    const Vec3 c0 = chord_end(k), c1 = chord_end(k + 1);
+    for (double share : {lo, hi})
+      bound = std::max({bound, point_segment_distance(on_ray(a, b, share), c0, c1),
+                        point_segment_distance(on_ray(c0, c1, share), a, b)});
+    if (bound > stop_above_mm) return bound;
+  }
+  return bound;
+}
+
 }  // namespace arcpress

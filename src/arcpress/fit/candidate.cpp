@@ -59,13 +59,26 @@ std::optional<Chosen> RunFitter::make_arc(uint32_t a, uint32_t e, const Vec2& ce
   const double sweep_deg = std::abs(g.sweep) * 180 / kPi;
   if (sweep_deg > o_.max_sweep_deg + 1e-9 || sweep_deg < o_.min_sweep_deg) return std::nullopt;
   if (g.radius_mm * std::abs(g.sweep) < o_.min_arc_length_mm) return std::nullopt;
+  const double band = flat ? eps_ : eps_ * kPlaneShare;
   // Where the firmware moves along chords, every point of them lies within their sagitta
-  // of the circle, and every point of the circle as near them: the circle keeps the band
-  // with that taken off it, and the chords keep the band.
-  const double band = (flat ? eps_ : eps_ * kPlaneShare) - executed_sagitta_mm(o_.executed, g.radius_mm, g.sweep, g.h1 - g.h0);
-  if (band <= 0) return std::nullopt;
-  Deviation d = arc_deviation(pts, g, band);
-  if (!d.ordered || d.max_mm > band) return std::nullopt;
+  // of the circle, and every point of the circle as near them: a circle inside the band
+  // with that taken off keeps the chords in the band. Else the chords are measured
+  // themselves (a flat arc); the circle must keep the band too.
+  const uint32_t chords = executed_segments(o_.executed, g.radius_mm, g.sweep, g.h1 - g.h0);
+  const double sagitta = executed_sagitta_mm(o_.executed, g.radius_mm, g.sweep, g.h1 - g.h0);
+  if (sagitta > 0) {
+    Deviation near = arc_deviation(pts, g, band - sagitta);
+    if (!near.ordered) return std::nullopt;
+    if (near.max_mm > band - sagitta) {
+      Deviation d = arc_deviation(pts, g, band);
+      if (d.max_mm > band) return std::nullopt;
+      const std::optional<double> on_chords = chords_deviation_bound(pts, g, chords, band);
+      if (!on_chords || *on_chords > band) return std::nullopt;
+    }
+  } else {
+    Deviation d = arc_deviation(pts, g, band);
+    if (!d.ordered || d.max_mm > band) return std::nullopt;
+  }
   if (!flat) {
     // Height must follow the helix closely enough for the 3D distance to stay in the band.
     double len_sum = 0;
