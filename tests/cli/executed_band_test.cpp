@@ -72,3 +72,24 @@ TEST_CASE("the executed band (--band executed, diff --executed) is refused for a
   auto d = run_arcpress(fmt::format("diff {} {} --dialect fanuc --executed", in.string(), in.string()));
   CHECK(d.exit_code == 2);
 }
+
+TEST_CASE("printer programs compressed for Klipper, Marlin and RepRapFirmware read back the same with diff, on the "
+          "programmed path and on the firmware's chords",
+          "[cli][executed][printer]") {
+  auto dir = temp_dir("printer_diff");
+  for (const auto& f : corpus_files()) {
+    if (f.parent_path().filename() != "printer" || std::filesystem::file_size(f) > 200000) continue;
+    for (const char* dialect : {"klipper", "marlin", "reprapfirmware"}) {
+      INFO(f.filename().string() << " as " << dialect);
+      const auto out = dir / "out.gcode";
+      REQUIRE(run_arcpress(fmt::format("'{}' -o {} --dialect {} -q", f.string(), out.string(), dialect)).exit_code == 0);
+      const std::string diff = fmt::format("diff '{}' {} --dialect {}", f.string(), out.string(), dialect);
+      auto program = run_arcpress(diff);
+      CHECK(program.exit_code == 0);
+      CHECK(program.out.find("SAME") != std::string::npos);
+      CHECK(run_arcpress(diff + " --executed").exit_code == 0);
+      const std::string written = read_file(out);
+      CHECK((written.find("\nG2 ") != std::string::npos || written.find("\nG3 ") != std::string::npos));
+    }
+  }
+}

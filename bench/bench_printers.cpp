@@ -1,0 +1,178 @@
+// Printer programs against ArcWelder: per printer corpus file and band (±0.025 and ±0.01 mm),
+// arcpress with the marlin dialect (the band held on the chords Marlin moves along, the
+// default) beside ArcWelder 2.0's figures measured on the same files (a fixed reference:
+// ArcWelder is no Debian package). Columns: motion blocks out (G0-G3 blocks, as one counter
+// counts both tools' files), bytes out, the measured maximum deviation on the programmed
+// path and on Marlin's executed chords, smooth joints over 0.5 degrees (forced by the band)
+// and the largest kink, MB/s, and two figures that say where the blocks go: the blocks with
+// --g1-angle 5 (tangency relaxed), and a lower bound on the blocks of any fit that keeps every
+// smooth joint tangent (the rest of the program as written, plus for every stretch between
+// corners the fewest tangent-continuous lines and arcs joined at the input's vertices that
+// keep its vertices in the band: count_bound.hpp). Where that bound exceeds ArcWelder's
+// count, no tangent-continuous output can match ArcWelder's.
+//   bench_printers [--markdown]
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <string_view>
+
+#include "arcpress/arcpress.hpp"
+#include "arcpress/core/deviation.hpp"
+#include "arcpress/extract/run.hpp"
+#include "arcpress/fit/count_bound.hpp"
+#include "arcpress/lex/lexer.hpp"
+#include "arcpress/model/interpreter.hpp"
+#include "corpus_files.hpp"
+#include "timed_compress.hpp"
+
+namespace fs = std::filesystem;
+using namespace arcpress;
+
+namespace {
+
+/// ArcWelder 2.0 (`-r 2T -y`), motion blocks out, measured on this machine class.
+struct Reference {
+  const char* file;
+  size_t at_025, at_010;
+};
+constexpr std::array<Reference, 6> kArcWelder{{{"prusaslicer-2.5_bunny_marlin.gcode", 252111, 256212},
+                                                {"ps271_benchy.gcode", 120620, 126247},
+                                                {"ps233_3dbenchy.gcode", 38279, 44718},
+                                                {"curaengine-4.13_M3x10_screw_ender3.gcode", 1280, 3821},
+                                                {"slic3r-1.3_PLA_recycling_symbol_marlin.gcode", 1931, 2360},
+                                                {"ps_benchy_snippet_m83.gcode", 410, 500}}};
+
+/// Motion blocks as one counter counts both tools' files (the reference figures were taken
+/// with it): lines whose code (before a ';' comment, after an N word) starts with G0..G3, or
+/// with an axis or centre word (a modal continuation).
+size_t motion_blocks(const std::string& text) {
+  size_t n = 0;
+  for (size_t at = 0; at < text.size();) {
+    size_t end = text.find('\n', at);
+    if (end == std::string::npos) end = text.size();
+    std::string_view line(text.data() + at, end - at);
+    line = line.substr(0, line.find(';'));
+    size_t i = line.find_first_not_of(" \t");
+    auto upper = [&](size_t k) { return k < line.size() ? char(std::toupper(static_cast<unsigned char>(line[k]))) : '\0'; };
+    if (upper(i) == 'N') {
+      ++i;
+      while (i < line.size() && std::isdigit(static_cast<unsigned char>(line[i]))) ++i;
+      i = line.find_first_not_of(" \t", i);
+    }
+    if (i != std::string_view::npos && i < line.size()) {
+      const char c = upper(i);
+      if (c == 'G') {
+        size_t k = i + 1;
+        while (upper(k) == '0') ++k;
+        const bool motion = upper(k) >= '0' && upper(k) <= '3' && !std::isdigit(static_cast<unsigned char>(upper(k + 1))) &&
+                            upper(k + 1) != '.';
+        const bool g0 = k > i + 1 && !(upper(k) >= '0' && upper(k) <= '9');  // "G0", "G00"
+        n += motion || g0;
+      } else if (std::string_view("XYZEIJ").find(c) != std::string_view::npos) {
+        const char d = upper(i + 1);
+        n += (d >= '0' && d <= '9') || d == '-' || d == '+' || d == '.';
+      }
+    }
+    at = end + 1;
+  }
+  return n;
+}
+
+/// The fewest blocks the runs of `text` can be written in by any fit that keeps every
+/// smooth joint tangent (see the file's head): the sum over the stretches between corners
+/// (is_corner(), and beside corners) of min_g1_primitive_count(), or of
+/// min_primitive_count() where no tangent chain exists.
+size_t tangent_bound(const std::string& text, const Dialect& d, double band_mm) {
+  DiagnosticSink sink;
+  Program p = lex("in", text, sink);
+  Interpretation in = interpret(p, sink, d);
+  size_t bound = 0;
+  for (const Run& r : extract_runs(in, 2)) {
+    std::vector<Vec3> v;
+    for (uint32_t k = 0; k <= r.move_count; ++k) v.push_back(r.point(in, k));
+    std::vector<uint8_t> corner(v.size(), 0);
+    for (size_t k = 1; k + 1 < v.size(); ++k) corner[k] = is_corner(v[k - 1], v[k], v[k + 1], band_mm, 30);
+    std::vector<uint8_t> split = corner;
+    for (size_t k = 1; k + 1 < v.size(); ++k)
+      if (!corner[k])
+        split[k] = is_corner_beside_corner(k >= 2 ? &v[k - 2] : nullptr, v[k - 1], v[k], v[k + 1],
+                                           k + 2 < v.size() ? &v[k + 2] : nullptr, corner[k - 1], corner[k + 1], band_mm);
+    std::vector<Vec2> piece;
+    auto flush = [&] {
+      if (piece.size() >= 2) {
+        const size_t g = min_g1_primitive_count(piece, band_mm, 0.5);
+        bound += g ? g : min_primitive_count(piece, band_mm);
+      }
+      piece.clear();
+    };
+    for (size_t k = 0; k < v.size(); ++k) {
+      piece.push_back(Vec2(v[k].x(), v[k].y()));
+      if (k > 0 && k + 1 < v.size() && split[k]) {
+        flush();
+        piece.push_back(Vec2(v[k].x(), v[k].y()));
+      }
+    }
+    flush();
+  }
+  return bound;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const bool markdown = argc > 1 && std::string(argv[1]) == "--markdown";
+  const Dialect marlin = dialect_named("marlin");
+  std::map<std::string, Reference> reference;
+  for (const Reference& r : kArcWelder) reference[r.file] = r;
+  const std::string head =
+      "| file | band mm | ArcWelder blocks | arcpress blocks | ≤ ArcWelder | bytes out | max dev. program mm | max dev. "
+      "executed mm | joints over 0.5° | max kink ° | MB/s | blocks, --g1-angle 5 | tangent lower bound |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  fmt::print("{}", head);
+  size_t wins = 0, rows = 0, violations = 0;
+  for (const fs::path& f : corpus_files()) {
+    if (f.parent_path().filename() != "printer") continue;
+    const std::string text = file_text(f);
+    for (double band : {0.025, 0.01}) {
+      CompressOptions opt;
+      opt.dialect = marlin;
+      opt.fit.tolerance_mm = band;
+      const auto [seconds, r] = timed_compress(f, text, opt, 2);
+      const size_t blocks = motion_blocks(r.output);
+      CompressOptions relaxed = opt;
+      relaxed.fit.g1_angle_deg = 5;
+      const auto [s5, r5] = timed_compress(f, text, relaxed, 1);
+      // Blocks outside the runs are written as they are: only the runs' share can shrink.
+      const size_t outside = blocks - (r.stats.lines_out + r.stats.arcs_out);
+      const size_t bound = outside + tangent_bound(text, marlin, band);
+      const auto ref = reference.find(f.filename().string());
+      const size_t aw = ref == reference.end() ? 0 : band == 0.025 ? ref->second.at_025 : ref->second.at_010;
+      const double program = r.comparison.max_deviation_mm, executed = r.check.max_deviation_mm;
+      // A smooth joint over the G1 angle that the fit did not report as forced breaks the promise.
+      const size_t unforced =
+          r.comparison.smooth_joints_over_g1 > r.forced_kinks ? r.comparison.smooth_joints_over_g1 - r.forced_kinks : 0;
+      violations += (program > band) + (executed > band) + unforced;
+      wins += aw && blocks <= aw;
+      ++rows;
+      fmt::print("| {} | {} | {} | {} | {} | {} | {:.6f} | {:.6f} | {} | {:.3f} | {:.1f} | {} | {}{} |\n",
+                 f.filename().string(), band, aw ? std::to_string(aw) : "-", blocks,
+                 aw ? (blocks <= aw ? "yes" : "no") : "-", r.bytes_out, program, executed,
+                 r.comparison.smooth_joints_over_g1, r.comparison.max_smooth_kink_deg,
+                 double(text.size()) / 1e6 / seconds, motion_blocks(r5.output), bound,
+                 aw && bound > aw ? " (> ArcWelder)" : "");
+    }
+  }
+  if (!markdown) {
+    fmt::print("\n{} of {} rows at or under ArcWelder's blocks; {} band or unforced tangency violations\n", wins, rows,
+               violations);
+    fmt::print("ArcWelder's FreeCAD (CNC) figures: 27932 at 0.025, 31056 at 0.01 (not a printer file)\n");
+  }
+  return violations == 0 ? 0 : 1;
+}
