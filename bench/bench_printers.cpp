@@ -10,7 +10,14 @@
 // corners the fewest tangent-continuous lines and arcs joined at the input's vertices that
 // keep its vertices in the band: count_bound.hpp). Where that bound exceeds ArcWelder's
 // count, no tangent-continuous output can match ArcWelder's.
-//   bench_printers [--markdown]
+// With --causes, a second table instead: where the blocks go, as blocks out per file and band
+// with one rule changed at a time: the default; `min_moves = 3` (the marlin dialect's former
+// minimum of moves per arc); --extrusion-variance 1 (no primitive ends where E per mm
+// changes); --g1-angle 5 and 60 (tangency relaxed); --band program (the band on the circles,
+// not Marlin's chords); and the rapids that follow another rapid (what a tool that turns
+// travel into arcs, as ArcWelder's -y does with G0, could fold; arcpress never turns G0 into
+// a feed move).
+//   bench_printers [--markdown] [--causes]
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -126,9 +133,55 @@ size_t tangent_bound(const std::string& text, const Dialect& d, double band_mm) 
 
 }  // namespace
 
+/// Rapids (G0 blocks) that follow another rapid, comments and other non-moving blocks between
+/// them aside.
+size_t rapids_after_rapids(const std::string& text, const Dialect& d) {
+  DiagnosticSink sink;
+  Program p = lex("in", text, sink);
+  Interpretation in = interpret(p, sink, d);
+  size_t n = 0;
+  for (size_t i = 1; i < in.moves.size(); ++i)
+    n += in.moves[i].kind == MoveKind::Rapid && in.moves[i - 1].kind == MoveKind::Rapid;
+  return n;
+}
+
+int causes(const Dialect& marlin) {
+  Dialect three = marlin;
+  three.min_arc_moves = 3;
+  fmt::print("| file | band mm | default | min_moves = 3 | --extrusion-variance 1 | --g1-angle 5 | --g1-angle 60 | "
+             "--band program | rapids after rapids |\n|---|---|---|---|---|---|---|---|---|\n");
+  for (const fs::path& f : corpus_files()) {
+    if (f.parent_path().filename() != "printer") continue;
+    const std::string text = file_text(f);
+    for (double band : {0.025, 0.01}) {
+      CompressOptions base;
+      base.dialect = marlin;
+      base.fit.tolerance_mm = band;
+      auto blocks = [&](auto change) {
+        CompressOptions o = base;
+        change(o);
+        return motion_blocks(timed_compress(f, text, o, 1).second.output);
+      };
+      fmt::print("| {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", f.filename().string(), band,
+                 blocks([](CompressOptions&) {}), blocks([&](CompressOptions& o) { o.dialect = three; }),
+                 blocks([](CompressOptions& o) { o.fit.extrusion_variance = 1; }),
+                 blocks([](CompressOptions& o) { o.fit.g1_angle_deg = 5; }),
+                 blocks([](CompressOptions& o) { o.fit.g1_angle_deg = 60; }),
+                 blocks([](CompressOptions& o) { o.band = CompressOptions::Band::Program; }),
+                 rapids_after_rapids(text, marlin));
+    }
+  }
+  return 0;
+}
+
 int main(int argc, char** argv) {
-  const bool markdown = argc > 1 && std::string(argv[1]) == "--markdown";
+  bool markdown = false, want_causes = false;
+  for (int i = 1; i < argc; ++i) {
+    markdown = markdown || std::string(argv[i]) == "--markdown";
+    want_causes = want_causes || std::string(argv[i]) == "--causes";
+  }
   const Dialect marlin = dialect_named("marlin");
+  if (want_causes) return causes(marlin);
   std::map<std::string, Reference> reference;
   for (const Reference& r : kArcWelder) reference[r.file] = r;
   const std::string head =

@@ -6,7 +6,8 @@
 # Tables: corpus (README: scripts/corpus_table.sh 0.01), throughput (docs/streaming.md:
 # bench_throughput), memory (docs/streaming.md: bench_memory, about a minute), and the
 # benches' own output in docs/benchmarks.md: curves (bench_curves 1, about a minute), diff
-# (bench_diff), pathological (bench_pathological).
+# (bench_diff), pathological (bench_pathological); printers and printer-causes in
+# docs/printers.md (bench_printers, about a minute).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 [ -x build/bench/bench_throughput ] || { echo "docs_figures: build with 'bash scripts/build.sh --test' first" >&2; exit 2; }
@@ -29,7 +30,7 @@ PY
 )
 
 wanted=("$@")
-[ ${#wanted[@]} -eq 0 ] && wanted=(corpus throughput memory curves diff pathological)
+[ ${#wanted[@]} -eq 0 ] && wanted=(corpus throughput memory curves diff pathological printers printer-causes)
 # A bench's own output, as a block of text.
 as_text() { printf '```text\n%s\n```\n' "$(cat)"; }
 for name in "${wanted[@]}"; do
@@ -42,6 +43,8 @@ for name in "${wanted[@]}"; do
     curves) ./build/bench/bench_curves 1 | as_text | replace docs/benchmarks.md curves ;;
     diff) ./build/bench/bench_diff | as_text | replace docs/benchmarks.md diff ;;
     pathological) ./build/bench/bench_pathological | as_text | replace docs/benchmarks.md pathological ;;
-    *) echo "docs_figures: no table '$name' (corpus, throughput, memory, curves, diff, pathological)" >&2; exit 2 ;;
+    printers) ./build/bench/bench_printers --markdown | replace docs/printers.md printers ;;
+    printer-causes) ./build/bench/bench_printers --causes | replace docs/printers.md printer-causes ;;
+    *) echo "docs_figures: no table '$name' (corpus, throughput, memory, curves, diff, pathological, printers, printer-causes)" >&2; exit 2 ;;
   esac
 done
