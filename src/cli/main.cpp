@@ -410,6 +410,10 @@ int main(int argc, char** argv) {
                  "dialect's firmware cuts each arc into (its [arcs.executed] rule); absent: executed where the "
                  "dialect names a rule")
       ->check(CLI::IsMember({"program", "executed"}));
+  bool no_header = false;
+  app.add_flag("--no-header", no_header,
+               "Write no comment naming arcpress, its version and options after the program's first line (written "
+               "where that line is a comment, as a slicer's is)");
   bool no_helical = false;
   app.add_flag("--no-helical", no_helical, "Never move the plane's normal axis inside an arc");
   app.add_flag("--passthrough", a.opt.passthrough, "Read and write the program back unchanged");
@@ -478,6 +482,7 @@ int main(int argc, char** argv) {
     return kExitInput;
   }
   a.opt.fit.helical = !no_helical;
+  a.opt.header = !no_header;
   a.dialect_given = dialect_option->count() > 0;
   diff.dialect_given = diff_dialect_option->count() > 0;
   a.opt.verify = !no_verify;

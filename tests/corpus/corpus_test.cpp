@@ -3,6 +3,7 @@
 
 #include "arcpress/api/arcpress.hpp"
 #include "arcpress/dialect/dialect_loader.hpp"
+#include "arcpress/lex/lexer.hpp"
 #include "support.hpp"
 
 using namespace arcpress;
@@ -32,12 +33,49 @@ TEST_CASE("with the keep method every corpus file comes out unchanged through th
     DiagnosticSink sink(f.string());
     CompressOptions opt;
     opt.fit.method = FitOptions::Method::Keep;
+    opt.header = false;  // (the one line arcpress adds: below)
     auto r = compress(f.string(), text, opt, sink);
     REQUIRE(r.ok);
     CHECK(r.output == text);
     runs += r.stats.runs;
   }
   CHECK(runs > 1000);  // the pipeline found runs to work on
+}
+
+TEST_CASE("the header comment naming arcpress goes after a first line that is a comment (a slicer's), once, and "
+          "nowhere else",
+          "[corpus][pipeline]") {
+  ARCPRESS_CORPUS_FILES_OR_SKIP(files)
+  size_t headed = 0;
+  for (const auto& f : files) {
+    INFO(f.string());
+    const std::string text = test::read_file(f);
+    DiagnosticSink sink(f.string());
+    CompressOptions opt;
+    opt.fit.method = FitOptions::Method::Keep;
+    auto r = compress(f.string(), text, opt, sink);
+    REQUIRE(r.ok);
+    const size_t eol = text.find('\n');
+    const char lead = text[text.find_first_not_of(" \t")];
+    const bool slicer = text.find_first_not_of(" \t") < eol && (lead == ';' || lead == '(');
+    if (!slicer) {
+      CHECK(r.output == text);
+      continue;
+    }
+    ++headed;
+    // The input with one line more, after its first: the header, in the first line's comment
+    // form, naming arcpress's version and options.
+    const size_t header_end = r.output.find('\n', eol + 1);
+    const std::string header = r.output.substr(eol + 1, header_end - eol - 1);
+    CHECK(is_arcpress_header(header));
+    CHECK(header[0] == lead);
+    CHECK(header.find(std::string("arcpress ") + kVersion + " --tolerance 0.01 --dialect ") != std::string::npos);
+    CHECK(r.output.substr(0, eol + 1) + r.output.substr(header_end + 1) == text);
+    // Run again, it is not repeated.
+    auto again = compress(f.string(), r.output, opt, sink);
+    CHECK(again.output == r.output);
+  }
+  CHECK(headed >= 5);  // the slicers' files, and CAM files that open with a comment
 }
 
 TEST_CASE("strict mode reads every corpus file but for unexpanded slicer templates",

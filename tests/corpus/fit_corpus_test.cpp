@@ -17,7 +17,8 @@ namespace {
 
 /// The raw text of every block that does not move an axis, in order.
 /// The lines of a program that do not move, without the bare G17/G18/G19 blocks (counted in
-/// `plane_lines`), which arcpress writes around runs it fits in another plane.
+/// `plane_lines`), which arcpress writes around runs it fits in another plane, and without
+/// its header comment (after a slicer's first line).
 std::vector<std::string> non_motion_lines(const std::string& text, size_t& plane_lines) {
   DiagnosticSink sink;
   Program p = lex("x", text, sink);
@@ -28,6 +29,7 @@ std::vector<std::string> non_motion_lines(const std::string& text, size_t& plane
     for (auto* w = p.words_begin(b); w != p.words_end(b); ++w)
       moves |= std::string_view("XYZABCUVWEIJKR").find(w->letter) != std::string_view::npos && !w->flag;
     std::string_view raw = p.raw(b);
+    if (is_arcpress_header(raw)) continue;
     if (raw == "G17" || raw == "G18" || raw == "G19") {
       ++plane_lines;
       continue;

@@ -36,6 +36,11 @@ struct CompressOptions {
   /// Which path the band is held on: the programmed one (the circles as written), or the
   /// one the firmware moves along (each arc cut into the chords of the dialect's rule,
   /// Dialect::executed); Dialect: the latter where the dialect names a rule.
+  /// A comment naming arcpress, its version and these options, written after the program's
+  /// first line where that line is a comment (a slicer's own first line, which its viewer
+  /// looks for) and not already followed by one; never with `passthrough`. `arcpress diff`
+  /// passes over it.
+  bool header = true;
   enum class Band : uint8_t { Dialect, Program, Executed };
   Band band = Band::Dialect;
   /// The arc segmentation the band is held on: the dialect's where `band` asks for the

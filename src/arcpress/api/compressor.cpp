@@ -26,6 +26,17 @@ namespace {
 /// rewrite and no input arc a chain keeps tangent to (chain_runs() closes its chain there).
 bool ends_chains(const Move& m) { return !m.fittable() && !(is_arc(m.kind) && m.known); }
 
+/// The header comment (CompressOptions::header) without its end of line, in the form of the
+/// comment `like` (';' or '('): "; arcpress 0.1.0 --tolerance 0.01 --dialect marlin ...".
+std::string header_comment(const CompressOptions& o, char like) {
+  static constexpr const char* kMethods[] = {"keep", "arcs", "global", "greedy", "stream", "lowe"};
+  const std::string text = fmt::format(
+      "arcpress {} --tolerance {} --dialect {} --band {} --g1-angle {} --corner-angle {} --method {}", kVersion,
+      o.fit.tolerance_mm, o.dialect.name, o.executed_rule().moves_on_chords() ? "executed" : "program",
+      o.fit.g1_angle_deg, o.fit.corner_angle_deg, kMethods[static_cast<int>(o.fit.method)]);
+  return like == ';' ? "; " + text : "(" + text + ")";
+}
+
 }  // namespace
 
 struct Compressor::Impl {
@@ -241,6 +252,25 @@ struct Compressor::Impl {
 
   /// Moves the finished pieces at the front, in order, into `ready` and the result; with
   /// `all`, waits for every piece.
+  /// Puts the header comment (CompressOptions::header) into the first piece's `text` after
+  /// its first line, where that is a comment the dialect reads and not followed by one
+  /// already, in the same form; the lines added.
+  size_t insert_header(std::string& text) const {
+    if (!opt.header || opt.passthrough) return 0;
+    const size_t eol = text.find('\n');
+    if (eol == std::string::npos) return 0;
+    const std::string_view first(text.data(), eol);
+    const size_t c = first.find_first_not_of(" \t");
+    const bool comment = c != std::string_view::npos &&
+                         ((first[c] == ';' && opt.dialect.semicolon_comments) || (first[c] == '(' && opt.dialect.paren_comments));
+    const size_t next_eol = text.find('\n', eol + 1);
+    const std::string_view second(text.data() + eol + 1, (next_eol == std::string::npos ? text.size() : next_eol) - eol - 1);
+    if (!comment || is_arcpress_header(first) || is_arcpress_header(second)) return 0;
+    const bool crlf = eol > 0 && text[eol - 1] == '\r';
+    text.insert(eol + 1, header_comment(opt, first[c]) + (crlf ? "\r\n" : "\n"));
+    return 1;
+  }
+
   void release(bool all) {
     while (true) {
       Slot slot;
@@ -252,7 +282,10 @@ struct Compressor::Impl {
         flight.pop_front();
       }
       if (failed) continue;
-      add_piece(total, *slot.piece, lines_out);
+      // The header goes after the first line of the first piece, so its other lines move down one.
+      const size_t header_lines = slot.piece->index == 0 ? insert_header(slot.piece->result.output) : 0;
+      add_piece(total, *slot.piece, lines_out + header_lines);
+      lines_out += header_lines;
       // The joint across the cut, which neither piece's check saw whole.
       if (slot.piece->index > 0 && total.verified) {
         if (const auto turn = joint_turn_deg(prev_tail, slot.piece->head, opt.fit.tolerance_mm, opt.fit.corner_angle_deg)) {

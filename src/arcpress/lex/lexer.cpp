@@ -296,4 +296,13 @@ Program lex(std::string name, std::string text, DiagnosticSink& sink) {
   return p;
 }
 
+bool is_arcpress_header(std::string_view line) {
+  size_t i = line.find_first_not_of(" \t");
+  if (i == std::string_view::npos || (line[i] != ';' && line[i] != '(')) return false;
+  i = line.find_first_not_of(" \t", i + 1);
+  constexpr std::string_view kMark = "arcpress ";
+  return i != std::string_view::npos && line.substr(i, kMark.size()) == kMark && i + kMark.size() < line.size() &&
+         line[i + kMark.size()] >= '0' && line[i + kMark.size()] <= '9';
+}
+
 }  // namespace arcpress

@@ -1,6 +1,8 @@
 #pragma once
 // Lexer stage: bytes -> blocks. Never drops a byte: every line becomes a Block whose raw
 // text is kept; what is not understood is marked Opaque and reported once per code.
+#include <string_view>
+
 #include "arcpress/core/diagnostic.hpp"
 #include "arcpress/lex/block.hpp"
 
@@ -14,5 +16,10 @@ Program lex(std::string name, std::string text, DiagnosticSink& sink);
 /// the program's last line and has none) into a new block numbered `line`, for a program
 /// that is read as it arrives.
 void lex_line(Program& program, size_t begin, size_t end, uint32_t line, DiagnosticSink& sink);
+
+/// Whether `line` is the comment arcpress writes after a slicer's first line to name itself,
+/// its version and options ("; arcpress 0.1.0 --tolerance ..." or "(arcpress 0.1.0 ...)"):
+/// no part of the program, which `arcpress diff` passes over and a second run does not repeat.
+bool is_arcpress_header(std::string_view line);
 
 }  // namespace arcpress

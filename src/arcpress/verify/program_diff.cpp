@@ -13,6 +13,7 @@
 #include "arcpress/core/deviation.hpp"
 #include "arcpress/core/error.hpp"
 #include "arcpress/core/workers.hpp"
+#include "arcpress/lex/lexer.hpp"
 #include "arcpress/verify/segment_index.hpp"
 
 namespace arcpress {
@@ -220,6 +221,8 @@ NonMotion non_motion_of(const Program& p, const Interpretation& in) {
     const Block& b = p.blocks[bi];
     if (b.kind == BlockKind::Empty && !b.has_comment) continue;
     if (bi < in.move_of_block.size() && in.move_of_block[bi] >= 0 && !b.has_comment) continue;
+    // (arcpress's own header comment is no part of the program.)
+    if (b.kind == BlockKind::Empty && is_arcpress_header(p.raw(b))) continue;
     std::string key = non_motion_key(p, b);
     if (key.empty()) continue;
     n.keys.push_back(std::move(key));
