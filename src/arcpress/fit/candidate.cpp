@@ -72,7 +72,19 @@ std::optional<Chosen> RunFitter::make_arc(uint32_t a, uint32_t e, const Vec2& ce
     if (near.max_mm > band - sagitta) {
       Deviation d = arc_deviation(pts, g, band);
       if (d.max_mm > band) return std::nullopt;
-      const std::optional<double> on_chords = chords_deviation_bound(pts, g, chords, band);
+      // (A helix's chords climb as it does, evenly by turn: they are measured in the plane,
+      // against the in-plane share of the band, and its height is checked below.)
+      std::optional<double> on_chords;
+      if (flat) {
+        on_chords = chords_deviation_bound(pts, g, chords, band);
+      } else {
+        std::vector<Vec3>& flat_pts = s_.flat_pts;
+        flat_pts.assign(pts.begin(), pts.end());
+        for (Vec3& p : flat_pts) p.z() = g.h0;
+        ArcGeom plane = g;
+        plane.h1 = g.h0;
+        on_chords = chords_deviation_bound(flat_pts, plane, chords, band);
+      }
       if (!on_chords || *on_chords > band) return std::nullopt;
     }
   } else {
