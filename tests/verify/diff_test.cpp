@@ -12,6 +12,7 @@
 #include "arcpress/lex/lexer.hpp"
 #include "arcpress/model/interpreter.hpp"
 #include "arcpress/verify/diff_plot.hpp"
+#include "arcpress/verify/executed_path.hpp"
 #include "arcpress/verify/program_diff.hpp"
 #include "support.hpp"
 
@@ -550,4 +551,28 @@ TEST_CASE("the laser power (S) along the path is compared", "[diff][laser]") {
   REQUIRE(d.findings.size() == 1);
   CHECK(d.findings[0].find("S (spindle speed or laser power) differs") != std::string::npos);
   CHECK(d.verdict(0.01) == ProgramDiff::Verdict::Different);
+}
+
+TEST_CASE("golden: Klipper moves a half circle of radius 3 as 9 chords of 20 degrees, the last ending at the arc's end",
+          "[verify][executed]") {
+  DiagnosticSink sink;
+  Program p = lex("k.gcode", "G21 G90 G17\nG0 X3 Y0\nG3 X-3 Y0 I-3 J0 E2 F600\n", sink);
+  Interpretation in = interpret(p, sink);
+  ArcSegmentation klipper;
+  klipper.rule = ArcSegmentation::Rule::Klipper;
+  klipper.max_segment_mm = 1.0;
+  const Interpretation ex = executed_path(in, klipper);
+  REQUIRE(ex.moves.size() == 1 + 9);
+  for (size_t k = 1; k <= 9; ++k) {
+    INFO("chord " << k);
+    const Move& m = ex.moves[k];
+    CHECK(m.kind == MoveKind::Line);
+    CHECK(m.block == in.moves[1].block);
+    CHECK(m.to[kX] == Approx(3 * std::cos(k * M_PI / 9)).margin(1e-12));
+    CHECK(m.to[kY] == Approx(3 * std::sin(k * M_PI / 9)).margin(1e-12));
+    CHECK(m.to[kE] == Approx(2.0 * k / 9).margin(1e-12));  // E carried evenly
+  }
+  CHECK(ex.move_of_block[2] == 9);
+  // A controller that moves on the circle keeps the arc.
+  CHECK(executed_path(in, ArcSegmentation{}).moves.size() == 2);
 }
