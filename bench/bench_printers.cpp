@@ -133,6 +133,22 @@ size_t tangent_bound(const std::string& text, const Dialect& d, double band_mm) 
 
 }  // namespace
 
+/// Calls fn(file, text, options) for every printer corpus file at ±0.025 and ±0.01 mm, with
+/// the `marlin` dialect and the band as the options.
+template <class Fn>
+void for_each_printer_case(const Dialect& marlin, Fn fn) {
+  for (const fs::path& f : corpus_files()) {
+    if (f.parent_path().filename() != "printer") continue;
+    const std::string text = file_text(f);
+    for (double band : {0.025, 0.01}) {
+      CompressOptions opt;
+      opt.dialect = marlin;
+      opt.fit.tolerance_mm = band;
+      fn(f, text, opt);
+    }
+  }
+}
+
 /// Rapids (G0 blocks) that follow another rapid, comments and other non-moving blocks between
 /// them aside.
 size_t rapids_after_rapids(const std::string& text, const Dialect& d) {
@@ -150,27 +166,20 @@ int causes(const Dialect& marlin) {
   three.min_arc_moves = 3;
   fmt::print("| file | band mm | default | min_moves = 3 | --extrusion-variance 1 | --g1-angle 5 | --g1-angle 60 | "
              "--band program | rapids after rapids |\n|---|---|---|---|---|---|---|---|---|\n");
-  for (const fs::path& f : corpus_files()) {
-    if (f.parent_path().filename() != "printer") continue;
-    const std::string text = file_text(f);
-    for (double band : {0.025, 0.01}) {
-      CompressOptions base;
-      base.dialect = marlin;
-      base.fit.tolerance_mm = band;
-      auto blocks = [&](auto change) {
-        CompressOptions o = base;
-        change(o);
-        return motion_blocks(timed_compress(f, text, o, 1).second.output);
-      };
-      fmt::print("| {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", f.filename().string(), band,
-                 blocks([](CompressOptions&) {}), blocks([&](CompressOptions& o) { o.dialect = three; }),
-                 blocks([](CompressOptions& o) { o.fit.extrusion_variance = 1; }),
-                 blocks([](CompressOptions& o) { o.fit.g1_angle_deg = 5; }),
-                 blocks([](CompressOptions& o) { o.fit.g1_angle_deg = 60; }),
-                 blocks([](CompressOptions& o) { o.band = CompressOptions::Band::Program; }),
-                 rapids_after_rapids(text, marlin));
-    }
-  }
+  for_each_printer_case(marlin, [&](const fs::path& f, const std::string& text, const CompressOptions& base) {
+    auto blocks = [&](auto change) {
+      CompressOptions o = base;
+      change(o);
+      return motion_blocks(timed_compress(f, text, o, 1).second.output);
+    };
+    fmt::print("| {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", f.filename().string(), base.fit.tolerance_mm,
+               blocks([](CompressOptions&) {}), blocks([&](CompressOptions& o) { o.dialect = three; }),
+               blocks([](CompressOptions& o) { o.fit.extrusion_variance = 1; }),
+               blocks([](CompressOptions& o) { o.fit.g1_angle_deg = 5; }),
+               blocks([](CompressOptions& o) { o.fit.g1_angle_deg = 60; }),
+               blocks([](CompressOptions& o) { o.band = CompressOptions::Band::Program; }),
+               rapids_after_rapids(text, marlin));
+  });
   return 0;
 }
 
@@ -190,38 +199,32 @@ int main(int argc, char** argv) {
       "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   fmt::print("{}", head);
   size_t wins = 0, rows = 0, violations = 0;
-  for (const fs::path& f : corpus_files()) {
-    if (f.parent_path().filename() != "printer") continue;
-    const std::string text = file_text(f);
-    for (double band : {0.025, 0.01}) {
-      CompressOptions opt;
-      opt.dialect = marlin;
-      opt.fit.tolerance_mm = band;
-      const auto [seconds, r] = timed_compress(f, text, opt, 2);
-      const size_t blocks = motion_blocks(r.output);
-      CompressOptions relaxed = opt;
-      relaxed.fit.g1_angle_deg = 5;
-      const auto [s5, r5] = timed_compress(f, text, relaxed, 1);
-      // Blocks outside the runs are written as they are: only the runs' share can shrink.
-      const size_t outside = blocks - (r.stats.lines_out + r.stats.arcs_out);
-      const size_t bound = outside + tangent_bound(text, marlin, band);
-      const auto ref = reference.find(f.filename().string());
-      const size_t aw = ref == reference.end() ? 0 : band == 0.025 ? ref->second.at_025 : ref->second.at_010;
-      const double program = r.comparison.max_deviation_mm, executed = r.check.max_deviation_mm;
-      // A smooth joint over the G1 angle that the fit did not report as forced breaks the promise.
-      const size_t unforced =
-          r.comparison.smooth_joints_over_g1 > r.forced_kinks ? r.comparison.smooth_joints_over_g1 - r.forced_kinks : 0;
-      violations += (program > band) + (executed > band) + unforced;
-      wins += aw && blocks <= aw;
-      ++rows;
-      fmt::print("| {} | {} | {} | {} | {} | {} | {:.6f} | {:.6f} | {} | {:.3f} | {:.1f} | {} | {}{} |\n",
-                 f.filename().string(), band, aw ? std::to_string(aw) : "-", blocks,
-                 aw ? (blocks <= aw ? "yes" : "no") : "-", r.bytes_out, program, executed,
-                 r.comparison.smooth_joints_over_g1, r.comparison.max_smooth_kink_deg,
-                 double(text.size()) / 1e6 / seconds, motion_blocks(r5.output), bound,
-                 aw && bound > aw ? " (> ArcWelder)" : "");
-    }
-  }
+  for_each_printer_case(marlin, [&](const fs::path& f, const std::string& text, const CompressOptions& opt) {
+    const double band = opt.fit.tolerance_mm;
+    const auto [seconds, r] = timed_compress(f, text, opt, 2);
+    const size_t blocks = motion_blocks(r.output);
+    CompressOptions relaxed = opt;
+    relaxed.fit.g1_angle_deg = 5;
+    const auto [s5, r5] = timed_compress(f, text, relaxed, 1);
+    // Blocks outside the runs are written as they are: only the runs' share can shrink.
+    const size_t outside = blocks - (r.stats.lines_out + r.stats.arcs_out);
+    const size_t bound = outside + tangent_bound(text, marlin, band);
+    const auto ref = reference.find(f.filename().string());
+    const size_t aw = ref == reference.end() ? 0 : band == 0.025 ? ref->second.at_025 : ref->second.at_010;
+    const double program = r.comparison.max_deviation_mm, executed = r.check.max_deviation_mm;
+    // A smooth joint over the G1 angle that the fit did not report as forced breaks the promise.
+    const size_t unforced =
+        r.comparison.smooth_joints_over_g1 > r.forced_kinks ? r.comparison.smooth_joints_over_g1 - r.forced_kinks : 0;
+    violations += (program > band) + (executed > band) + unforced;
+    wins += aw && blocks <= aw;
+    ++rows;
+    fmt::print("| {} | {} | {} | {} | {} | {} | {:.6f} | {:.6f} | {} | {:.3f} | {:.1f} | {} | {}{} |\n",
+               f.filename().string(), band, aw ? std::to_string(aw) : "-", blocks,
+               aw ? (blocks <= aw ? "yes" : "no") : "-", r.bytes_out, program, executed,
+               r.comparison.smooth_joints_over_g1, r.comparison.max_smooth_kink_deg,
+               double(text.size()) / 1e6 / seconds, motion_blocks(r5.output), bound,
+               aw && bound > aw ? " (> ArcWelder)" : "");
+  });
   if (!markdown) {
     fmt::print("\n{} of {} rows at or under ArcWelder's blocks; {} band or unforced tangency violations\n", wins, rows,
                violations);
