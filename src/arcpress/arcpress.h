@@ -61,6 +61,15 @@ arcpress_status arcpress_options_set_dialect_file(arcpress_options* options, con
 arcpress_status arcpress_options_set_threads(arcpress_options* options, unsigned threads);
 arcpress_status arcpress_options_set_verify(arcpress_options* options, int verify);
 arcpress_status arcpress_options_set_strict(arcpress_options* options, int strict);
+/* Where the band is held: "executed" (on the chords the dialect's firmware cuts each arc
+ * into), "program" (on the arcs as written) or "dialect" (the default: executed where the
+ * dialect names a firmware rule). */
+arcpress_status arcpress_options_set_band(arcpress_options* options, const char* band);
+/* Share (0 .. 1) by which E per mm may vary between neighbouring moves inside one arc or line. */
+arcpress_status arcpress_options_set_extrusion_variance(arcpress_options* options, double share);
+/* 0: no comment naming arcpress after the program's first line (1, the default: where that
+ * line is a comment, as a slicer's is). */
+arcpress_status arcpress_options_set_header(arcpress_options* options, int header);
 
 /* `name` names the program in diagnostics. On failure *out is NULL and the message is
  * arcpress_options_last_error(options). */

@@ -96,3 +96,46 @@ TEST_CASE("postproc/README.md shows the examples the package tests build, as the
     CHECK(readme.find(arcpress::test::read_file(std::string(ARCPRESS_SOURCE_DIR) + example)) != std::string::npos);
   }
 }
+
+TEST_CASE("the C library sets the band, the extrusion variance and the header as the command line does", "[capi]") {
+  const std::string program = "; a slicer's first line\n" + kProgram;
+  auto compressed = [&](const char* band, double variance, int header) {
+    arcpress_options* o = arcpress_options_new();
+    REQUIRE(o);
+    REQUIRE(arcpress_options_set_dialect(o, "klipper") == ARCPRESS_OK);
+    REQUIRE(arcpress_options_set_band(o, band) == ARCPRESS_OK);
+    REQUIRE(arcpress_options_set_extrusion_variance(o, variance) == ARCPRESS_OK);
+    REQUIRE(arcpress_options_set_header(o, header) == ARCPRESS_OK);
+    arcpress_compressor* c = nullptr;
+    REQUIRE(arcpress_compressor_new(o, "c", &c) == ARCPRESS_OK);
+    REQUIRE(arcpress_push(c, program.data(), program.size()) == ARCPRESS_OK);
+    REQUIRE(arcpress_finish(c) == ARCPRESS_OK);
+    const char* text = nullptr;
+    size_t n = 0;
+    REQUIRE(arcpress_take(c, &text, &n) == ARCPRESS_OK);
+    std::string out(text, n);
+    arcpress_compressor_free(c);
+    arcpress_options_free(o);
+    return out;
+  };
+  // The engine's text for the same options.
+  auto engine = [&](arcpress::CompressOptions::Band band, bool header) {
+    arcpress::CompressOptions opt;
+    opt.dialect = arcpress::dialect_named("klipper");
+    opt.band = band;
+    opt.header = header;
+    arcpress::DiagnosticSink sink;
+    return arcpress::compress("c", program, opt, sink).output;
+  };
+  using B = arcpress::CompressOptions::Band;
+  CHECK(compressed("program", 0.05, 1) == engine(B::Program, true));
+  CHECK(compressed("executed", 0.05, 0) == engine(B::Executed, false));
+  CHECK(compressed("dialect", 0.05, 1) == engine(B::Executed, true));
+  CHECK(compressed("program", 0.05, 1).find("; arcpress ") != std::string::npos);
+  CHECK(compressed("program", 0.05, 0).find("; arcpress ") == std::string::npos);
+  arcpress_options* o = arcpress_options_new();
+  CHECK(arcpress_options_set_band(o, "chords") == ARCPRESS_BAD_INPUT);
+  CHECK(std::string(arcpress_options_last_error(o)).find("unknown band") != std::string::npos);
+  CHECK(arcpress_options_set_extrusion_variance(o, 2) == ARCPRESS_BAD_INPUT);
+  arcpress_options_free(o);
+}

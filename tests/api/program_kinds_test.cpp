@@ -170,7 +170,7 @@ TEST_CASE("a program with G1 moves of which none could be fitted gets one warnin
   CHECK(quiet.warning_count("W-FIT-NONE") == 0);
 }
 
-TEST_CASE("a run whose fit the check refuses is written as the input's moves; the rest is still compressed",
+TEST_CASE("a run whose fit the check refuses is written as the input's moves, and the rest is still compressed",
           "[api][fallback]") {
   // Two circles of radius 5 mm: one at the origin, one at X -1e15, where a double holds a
   // coordinate to 0.125 mm and no fitted arc reads back inside a 0.01 mm band.

@@ -177,7 +177,7 @@ TEST_CASE("diff passes a compressed program within the band and fails it outside
   CHECK(moved.out.find("moved.nc") != std::string::npos);
 }
 
-TEST_CASE("diff of a 2-D arc against its chord fails with the sagitta; what it could not place is never a pass",
+TEST_CASE("diff of a 2-D arc against its chord fails with the sagitta, and what it could not place is never a pass",
           "[cli][diff][2d]") {
   auto d = arcpress::test::temp_dir("diff-2d");
   arcpress::test::write_file(d / "arc.nc", "G21 G90\nG0 X10 Y0\nG2 X0 Y-10 I-10 J0 F100\nM2\n");

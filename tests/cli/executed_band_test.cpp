@@ -22,7 +22,7 @@ std::string half_circle(double r_mm) {
 
 }  // namespace
 
-TEST_CASE("with --band executed the chords the firmware cuts each arc into stay in the band; with --band program they "
+TEST_CASE("with --band executed the chords the firmware cuts each arc into stay in the band, with --band program they "
           "may not, and diff --executed says so",
           "[cli][executed]") {
   auto dir = temp_dir("executed");

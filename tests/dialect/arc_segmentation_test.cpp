@@ -86,7 +86,7 @@ TEST_CASE("a controller that moves on the circle has no chords and no sagitta", 
   CHECK(executed_sagitta_mm(none, 10, deg(90)) == 0);
 }
 
-TEST_CASE("the shipped printer and Grbl dialects name their firmware's rule; a wrong rule is refused with its place",
+TEST_CASE("the shipped printer and Grbl dialects name their firmware's rule, and a wrong rule is refused with its place",
           "[segmentation][dialect]") {
   const auto path = dialect_search_path("");
   CHECK(find_dialect("marlin", path).executed.rule == Rule::Marlin);

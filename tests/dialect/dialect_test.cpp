@@ -213,7 +213,7 @@ TEST_CASE("golden: Klipper's G18 arcs turn the other way, so the same arc is G2 
   CHECK(kl.within_band());
 }
 
-TEST_CASE("golden: Mach3 states G91.1 once before the first arc; a program that sets it itself is left alone",
+TEST_CASE("golden: Mach3 states G91.1 once before the first arc, and a program that sets it itself is left alone",
           "[dialect]") {
   CompressResult r = compress_as(shipped("mach3"), test::arc_snippets()[0].text);
   CHECK(r.output == "G21 G90 G17\nG0 X10. Y0. Z0.\nG91.1\nG3 X0. Y10. Z0. I-10.0029 J-0.0029 F300.\nM30\n");

@@ -41,7 +41,15 @@ test -s "$work/before.gcode"
 arcs=$(grep -c '^G[23] ' "$work/out.gcode" || true)
 echo "arcs in the sliced file: $arcs"
 test "$arcs" -gt 0
-"$arcpress" "$work/before.gcode" -o /dev/null --stats 2>&1 | grep -E "^  (dialect|written|deviation) "
-"$arcpress" "$work/before.gcode" -o /dev/null --stats 2>&1 | grep -q "dialect        marlin .*gcode_flavor = marlin2"
-"$arcpress" diff "$work/before.gcode" "$work/out.gcode" | tail -1
-"$arcpress" diff "$work/before.gcode" "$work/out.gcode" | tail -1 | grep -q '^SAME'
+# (Read whole before grep -q: it stops at its first match, and the writer then meets a closed pipe.)
+"$arcpress" "$work/before.gcode" -o /dev/null --stats 2>"$work/stats.txt"
+grep -E "^  (dialect|written|deviation) " "$work/stats.txt"
+grep -q "dialect        marlin .*gcode_flavor = marlin2" "$work/stats.txt"
+status=0
+"$arcpress" diff "$work/before.gcode" "$work/out.gcode" >"$work/diff.txt" 2>&1 || status=$?
+tail -1 "$work/diff.txt"
+if [ "$status" -ne 0 ] || ! tail -1 "$work/diff.txt" | grep -q '^SAME'; then
+  echo "arcpress diff exited $status:"
+  cat "$work/diff.txt"
+  exit 1
+fi

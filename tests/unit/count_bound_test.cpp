@@ -44,7 +44,7 @@ std::vector<Vec2> sampled(int moves, double t0, double t1, const std::function<V
 
 }  // namespace
 
-TEST_CASE("a polyline on one circle or one line needs one primitive; nothing needs none", "[fit][bound]") {
+TEST_CASE("a polyline on one circle or one line needs one primitive, and nothing needs none", "[fit][bound]") {
   CHECK(min_primitive_count(printed(arc({0, 0}, 5, 0, 170, 80)), 0.01) == 1);
   CHECK(min_primitive_count(printed(arc({3, -2}, 0.5, 90, -200, 60)), 0.01) == 1);  // more than half a turn
   CHECK(min_primitive_count(sampled(50, 0, 1, [](double t) { return Vec2(10 * t, 3 * t); }), 0.001) == 1);
@@ -60,7 +60,7 @@ TEST_CASE("a zigzag wider than the band: any three vertices lie on a circle, fou
   CHECK(min_primitive_count(zigzag, 0.01) == 6);
 }
 
-TEST_CASE("two arcs of different radii need two primitives; a band wide enough for one circle needs one",
+TEST_CASE("two arcs of different radii need two primitives, and a band wide enough for one circle needs one",
           "[fit][bound]") {
   auto first = arc({0, 0}, 10, -90, 0, 40);   // radius 10, ends at (10, 0) heading +y
   auto second = arc({8, 0}, 2, 0, 90, 40);    // radius 2, tangent there
@@ -71,7 +71,7 @@ TEST_CASE("two arcs of different radii need two primitives; a band wide enough f
 }
 
 TEST_CASE("tangent joints: one circle needs one arc, two tangent arcs of different radii two, and an S of two "
-          "arcs at least two; the tangent bound is never below the other", "[fit][bound]") {
+          "arcs at least two, and the tangent bound is never below the other", "[fit][bound]") {
   CHECK(min_g1_primitive_count(printed(arc({0, 0}, 5, 0, 170, 80)), 0.01, 0.5) == 1);
   auto two = arc({0, 0}, 10, -90, 0, 40);
   const auto small = arc({8, 0}, 2, 0, 90, 40);
@@ -92,7 +92,7 @@ TEST_CASE("tangent joints: one circle needs one arc, two tangent arcs of differe
   }
 }
 
-TEST_CASE("a right-angle corner: no tangent chain gets round it inside the band; repeated vertices are no obstacle",
+TEST_CASE("a right-angle corner: no tangent chain gets round it inside the band, and repeated vertices are no obstacle",
           "[fit][bound]") {
   std::vector<Vec2> corner;
   for (int i = 0; i <= 10; ++i) corner.emplace_back(i, 0);

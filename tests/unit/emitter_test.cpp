@@ -110,7 +110,7 @@ TEST_CASE("an arc that leaves the band once printed is written as the input's ow
   CHECK(emit_with(text, {arc, {3}}) == text);
 }
 
-TEST_CASE("relative programs get relative end points; M83 E is summed", "[emit]") {
+TEST_CASE("relative programs get relative end points, and M83 E is summed", "[emit]") {
   std::string text = "G0 X0 Y0 Z0\nG91\nM83\nG1 X1 E0.1 F100\nX1 E0.1\nX1 E0.1\nM2\n";
   CHECK(emit_with(text, {{3}}) == "G0 X0 Y0 Z0\nG91\nM83\nG1 X3 E0.3 F100\nM2\n");
 }

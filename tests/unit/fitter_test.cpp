@@ -241,7 +241,7 @@ TEST_CASE("rounding the printed centres keeps smooth joints within the G1 angle"
   CHECK(o.r.comparison.smooth_joints_over_g1 == 0);
 }
 
-TEST_CASE("no arc sweeps more than the maximum; a full circle needs at least two", "[fit]") {
+TEST_CASE("no arc sweeps more than the maximum, and a full circle needs at least two", "[fit]") {
   auto o = compress_text(program(arc_points(5, 5, 8, 0, 360, 2)));
   CHECK(o.arcs >= 2);
   CHECK(o.r.comparison.max_deviation_mm <= 0.01);
@@ -841,7 +841,7 @@ TEST_CASE("merging after the search: two primitives become one, three become two
   CHECK(fewer_primitives({plum_points()}, {0.01, 0.005}, searched, merged) >= 1);
 }
 
-TEST_CASE("with --spikes, a lone jag inside the band is noise, not a corner; without, it is a corner", "[fit][spikes]") {
+TEST_CASE("with --spikes, a lone jag inside the band is noise, not a corner, and without, it is a corner", "[fit][spikes]") {
   // A digitised arc, r = 5 mm, a point every 0.01 mm, every 100th point pushed out 0.004 mm:
   // each push turns the path by about 40°, sharper than the corner angle.
   std::vector<Pt> pts = arc_points(0, 0, 5, 0, 90, rad_to_deg(0.01 / 5));

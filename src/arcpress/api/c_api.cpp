@@ -125,6 +125,28 @@ arcpress_status arcpress_options_set_strict(arcpress_options* o, int strict) {
   return ARCPRESS_OK;
 }
 
+arcpress_status arcpress_options_set_band(arcpress_options* o, const char* band) {
+  if (!o || !band) return ARCPRESS_BAD_INPUT;
+  using B = arcpress::CompressOptions::Band;
+  const std::string b = band;
+  if (b != "executed" && b != "program" && b != "dialect") {
+    o->error = "unknown band '" + b + "' (executed, program or dialect)";
+    return ARCPRESS_BAD_INPUT;
+  }
+  o->options.band = b == "executed" ? B::Executed : b == "program" ? B::Program : B::Dialect;
+  o->error.clear();
+  return ARCPRESS_OK;
+}
+arcpress_status arcpress_options_set_extrusion_variance(arcpress_options* o, double share) {
+  return set_number(o, o ? o->options.fit.extrusion_variance : share, share, "the extrusion variance",
+                    arcpress::kExtrusionVarianceRange);
+}
+arcpress_status arcpress_options_set_header(arcpress_options* o, int header) {
+  if (!o) return ARCPRESS_BAD_INPUT;
+  o->options.header = header != 0;
+  return ARCPRESS_OK;
+}
+
 arcpress_status arcpress_compressor_new(arcpress_options* o, const char* name, arcpress_compressor** out) {
   if (!out) return ARCPRESS_BAD_INPUT;
   *out = nullptr;
