@@ -325,8 +325,8 @@ int run_diff(const DiffArgs& d) {
       throw Error(kExitInput, fmt::format("--executed: dialect {} names no arc segmentation ([arcs.executed] rule); "
                                           "its controller moves on the programmed circles",
                                           dialect.name));
-    ia = executed_path(ia, dialect.executed);
-    ib = executed_path(ib, dialect.executed);
+    if (has_executed_chords(ia, dialect.executed)) ia = executed_path(ia, dialect.executed);
+    if (has_executed_chords(ib, dialect.executed)) ib = executed_path(ib, dialect.executed);
   }
   ProgramDiff r = diff_programs(pa, ia, pb, ib, opt);
   DiffNames names{d.a, d.b};

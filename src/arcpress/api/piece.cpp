@@ -112,7 +112,9 @@ void verify_piece_output(const Program& input, const Interpretation& in, const C
   // (The move-by-move maximum is the programmed path's, no hint for the chords'.)
   if (const ArcSegmentation rule = opt.executed_rule(); rule.moves_on_chords()) {
     dopt.least_mm = kExactShare * opt.fit.tolerance_mm;
-    r.check = diff_programs(input, executed_path(in, rule), out_prog, executed_path(out_in, rule), dopt);
+    Interpretation in_chords, out_chords;
+    r.check = diff_programs(input, executed_path(in, rule, in_chords), out_prog, executed_path(out_in, rule, out_chords),
+                            dopt);
   } else
     r.check = diff_programs(input, in, out_prog, out_in, dopt);
   if (out_sink.error_count() > 0)

@@ -6,9 +6,24 @@
 
 namespace arcpress {
 
+namespace {
+
+bool placed_arc(const Move& m) { return is_arc(m.kind) && m.known; }
+
+}  // namespace
+
+bool has_executed_chords(const Interpretation& in, const ArcSegmentation& rule) {
+  return rule.moves_on_chords() && std::any_of(in.moves.begin(), in.moves.end(), placed_arc);
+}
+
+const Interpretation& executed_path(const Interpretation& in, const ArcSegmentation& rule, Interpretation& storage) {
+  if (!has_executed_chords(in, rule)) return in;
+  storage = executed_path(in, rule);
+  return storage;
+}
+
 Interpretation executed_path(const Interpretation& in, const ArcSegmentation& rule) {
-  auto placed_arc = [](const Move& m) { return is_arc(m.kind) && m.known; };
-  if (!rule.moves_on_chords() || std::none_of(in.moves.begin(), in.moves.end(), placed_arc)) return in;
+  if (!has_executed_chords(in, rule)) return in;
   Interpretation out = in;
   out.moves.clear();
   std::vector<uint32_t> index_of(in.moves.size());  // input move -> its last move in `out`
