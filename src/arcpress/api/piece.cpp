@@ -191,6 +191,31 @@ std::vector<uint32_t> refused_output_lines(const CompressResult& r) {
   return lines;
 }
 
+/// `o` (a run's options) with each limit that the user loosened from its default tightened
+/// back to it: the G1 angle, the extrusion variance, the arcs' radius, sweep, length and
+/// moves, and the band on the firmware's chords where the dialect names them. (The
+/// tolerance, the corner angle and the method are the problem asked, not limits on its
+/// answer.)
+FitOptions tightened(FitOptions o, const CompressOptions& opt, const Interpretation& in, const Run& r) {
+  FitOptions user = FitOptions{};
+  user.tolerance_mm = opt.fit.tolerance_mm;
+  user.corner_angle_deg = opt.fit.corner_angle_deg;
+  user.method = opt.fit.method;
+  user.spikes = opt.fit.spikes;
+  FitOptions d = fit_options_for(user, opt.dialect, in.frames[r.frame], r.plane);
+  d.executed = opt.dialect.executed;
+  o.g1_angle_deg = std::min(o.g1_angle_deg, d.g1_angle_deg);
+  o.extrusion_variance = std::min(o.extrusion_variance, d.extrusion_variance);
+  o.min_radius_mm = std::max(o.min_radius_mm, d.min_radius_mm);
+  o.max_radius_mm = std::min(o.max_radius_mm, d.max_radius_mm);
+  o.max_sweep_deg = std::min(o.max_sweep_deg, d.max_sweep_deg);
+  o.min_sweep_deg = std::max(o.min_sweep_deg, d.min_sweep_deg);
+  o.min_arc_length_mm = std::max(o.min_arc_length_mm, d.min_arc_length_mm);
+  o.min_arc_moves = std::max(o.min_arc_moves, d.min_arc_moves);
+  if (!o.executed.moves_on_chords()) o.executed = d.executed;
+  return o;
+}
+
 /// Fits every run of the piece, chain by chain (see chain_runs()), with `threads` threads.
 std::vector<FitResult> fit_runs(const Interpretation& in, const std::vector<Run>& runs, const CompressOptions& opt,
                                 unsigned threads) {
@@ -198,11 +223,12 @@ std::vector<FitResult> fit_runs(const Interpretation& in, const std::vector<Run>
   std::vector<FitResult> fits(runs.size());
   auto fit_one = [&](size_t i) {
     const RunChain& c = chains[i];
-    auto got = fit_chain(in, c, runs, [&](const Run& r) {
+    auto options_for = [&](const Run& r) {
       FitOptions o = fit_options_for(opt.fit, opt.dialect, in.frames[r.frame], r.plane);
       o.executed = opt.executed_rule();
       return o;
-    });
+    };
+    auto got = fit_chain(in, c, runs, options_for, [&](const Run& r) { return tightened(options_for(r), opt, in, r); });
     std::move(got.begin(), got.end(), fits.begin() + c.first_run);
   };
   // Each worker takes the next chain not yet taken, longest first, so a few long ones do not

@@ -31,6 +31,7 @@ struct ArcSegmentation {
   double max_deviation_mm = 0.002;
 
   bool moves_on_chords() const { return rule != Rule::None; }
+  bool operator==(const ArcSegmentation&) const = default;
 };
 
 /// The rule's name as dialect files write it ("marlin", "klipper", "reprapfirmware", "grbl",

@@ -162,20 +162,18 @@ size_t primitive_count(const std::vector<FitResult>& fits) {
 }  // namespace
 
 std::vector<FitResult> fit_chain(const Interpretation& in, const RunChain& chain, std::span<const Run> runs,
-                                 const std::function<FitOptions(const Run&)>& options_for) {
+                                 const std::function<FitOptions(const Run&)>& options_for,
+                                 const std::function<FitOptions(const Run&)>& baseline_for) {
   std::vector<FitResult> out = fit_chain_once(in, chain, runs, options_for);
-  // A wider G1 angle allows every chain the default allows, but the searches turn by other
-  // angles and may miss one of them: the default's chain is searched too and kept when it
-  // is shorter, so relaxing the angle never costs blocks.
-  const double default_deg = FitOptions{}.g1_angle_deg;
-  if (chain.run_count == 0 || options_for(runs[chain.first_run]).g1_angle_deg <= default_deg) return out;
-  auto tighter = [&](const Run& r) {
-    FitOptions o = options_for(r);
-    o.g1_angle_deg = std::min(o.g1_angle_deg, default_deg);
-    return o;
-  };
-  std::vector<FitResult> narrow = fit_chain_once(in, chain, runs, tighter);
-  if (primitive_count(narrow) < primitive_count(out)) out = std::move(narrow);
+  // The searches turn by other angles and reach other chains under looser limits, and may
+  // miss one the tighter limits found.
+  if (!baseline_for || chain.run_count == 0) return out;
+  bool looser = false;
+  for (uint32_t r = chain.first_run; r < chain.first_run + chain.run_count && !looser; ++r)
+    looser = !(baseline_for(runs[r]) == options_for(runs[r]));
+  if (!looser) return out;
+  std::vector<FitResult> tight = fit_chain_once(in, chain, runs, baseline_for);
+  if (primitive_count(tight) < primitive_count(out)) out = std::move(tight);
   return out;
 }
 

@@ -62,6 +62,8 @@ struct FitOptions {
   /// (--band executed): an arc must keep the band with its chords' sagitta taken off it.
   /// Rule::None: the band is held on the programmed circle.
   ArcSegmentation executed;
+
+  bool operator==(const FitOptions&) const = default;
 };
 
 struct FitResult {
