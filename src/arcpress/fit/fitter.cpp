@@ -153,10 +153,15 @@ std::vector<FitResult> fit_chain_once(const Interpretation& in, const RunChain& 
   return out;
 }
 
-size_t primitive_count(const std::vector<FitResult>& fits) {
-  size_t n = 0;
-  for (const FitResult& f : fits) n += f.prims.size();
-  return n;
+/// A fit's forced kinks and primitives: fewer kinks first (a kink breaks the tangency the
+/// fit promises where it can), then fewer primitives.
+std::pair<size_t, size_t> cost(const std::vector<FitResult>& fits) {
+  size_t kinks = 0, prims = 0;
+  for (const FitResult& f : fits) {
+    kinks += f.forced_at.size();
+    prims += f.prims.size();
+  }
+  return {kinks, prims};
 }
 
 }  // namespace
@@ -173,7 +178,7 @@ std::vector<FitResult> fit_chain(const Interpretation& in, const RunChain& chain
     looser = !(baseline_for(runs[r]) == options_for(runs[r]));
   if (!looser) return out;
   std::vector<FitResult> tight = fit_chain_once(in, chain, runs, baseline_for);
-  if (primitive_count(tight) < primitive_count(out)) out = std::move(tight);
+  if (cost(tight) < cost(out)) out = std::move(tight);
   return out;
 }
 

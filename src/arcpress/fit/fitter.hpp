@@ -24,8 +24,8 @@ double normal_axis_spread_mm(const FitOptions& o);
 /// options for fitting in a run's frame and plane. Where `baseline_for` is given and gives
 /// other options, every limit of them as tight as `options_for`'s or tighter (the defaults,
 /// where the user loosened one), the chain is fitted under those too and that fit kept where
-/// it has fewer primitives: every chain they allow the looser options allow, so loosening a
-/// limit never costs blocks.
+/// it has fewer forced kinks, or as many and fewer primitives: every chain they allow the
+/// looser options allow, so loosening a limit never costs kinks or, with as many, blocks.
 std::vector<FitResult> fit_chain(const Interpretation& in, const RunChain& chain, std::span<const Run> runs,
                                  const std::function<FitOptions(const Run&)>& options_for,
                                  const std::function<FitOptions(const Run&)>& baseline_for = {});
