@@ -153,13 +153,47 @@ std::vector<FitResult> fit_chain_once(const Interpretation& in, const RunChain& 
   return out;
 }
 
-/// A fit's forced kinks and primitives: fewer kinks first (a kink breaks the tangency the
-/// fit promises where it can), then fewer primitives.
-std::pair<size_t, size_t> cost(const std::vector<FitResult>& fits) {
+/// The direction a primitive of a run leaves vertex `from` (start) or arrives at `to` (end),
+/// in the run's plane; zero where it goes nowhere there.
+Vec2 primitive_tangent(const Primitive& p, const Vec2& from, const Vec2& to, bool at_end) {
+  if (p.kind == Primitive::Kind::Arc) return arc_tangent((at_end ? to : from) - p.center, p.ccw);
+  const Vec2 d = to - from;
+  return d.norm() > kLengthEpsMm ? Vec2(d.normalized()) : Vec2(0, 0);
+}
+
+/// Takes out of `fits`' forced kinks those that turn by no more than the fitter's own joint
+/// turn under `options_for`'s G1 angle (a fit made under a narrower angle may have broken
+/// the tangent by less than a wider one allows; a kink at a run's end, beside what is no
+/// primitive of it, stays), and returns the kinks left and the primitives, the order fits
+/// are weighed in: fewer kinks first (a kink breaks the tangency the fit promises where it
+/// can), then fewer primitives.
+std::pair<size_t, size_t> keep_real_kinks(const Interpretation& in, const RunChain& chain, std::span<const Run> runs,
+                                          std::vector<FitResult>& fits,
+                                          const std::function<FitOptions(const Run&)>& options_for) {
   size_t kinks = 0, prims = 0;
-  for (const FitResult& f : fits) {
-    kinks += f.forced_at.size();
+  for (size_t k = 0; k < fits.size(); ++k) {
+    FitResult& f = fits[k];
+    const Run& run = runs[chain.first_run + k];
     prims += f.prims.size();
+    if (f.forced_at.empty()) continue;
+    const double g1_angle_deg = options_for(run).g1_angle_deg;
+    auto at = [&](uint32_t v) {
+      const Vec3 p = in_plane(run.vertex(in, v), run.plane);
+      return Vec2(p.x(), p.y());
+    };
+    auto allowed = [&](uint32_t v) {
+      size_t i = 0;  // the primitive ending at v
+      while (i < f.prims.size() && f.prims[i].end_vertex < v) ++i;
+      if (v == 0 || v >= run.move_count || i + 1 >= f.prims.size() || f.prims[i].end_vertex != v) return false;
+      const uint32_t start = i == 0 ? 0 : f.prims[i - 1].end_vertex;
+      const Vec2 arrive = primitive_tangent(f.prims[i], at(start), at(v), true);
+      const Vec2 leave = primitive_tangent(f.prims[i + 1], at(v), at(f.prims[i + 1].end_vertex), false);
+      const double turn_deg =
+          std::atan2(std::abs(arrive.x() * leave.y() - arrive.y() * leave.x()), arrive.dot(leave)) * 180 / kPi;
+      return turn_deg <= fit_detail::kJointShare * g1_angle_deg;  // (the turn the fitter itself makes at most)
+    };
+    f.forced_at.erase(std::remove_if(f.forced_at.begin(), f.forced_at.end(), allowed), f.forced_at.end());
+    kinks += f.forced_at.size();
   }
   return {kinks, prims};
 }
@@ -178,7 +212,13 @@ std::vector<FitResult> fit_chain(const Interpretation& in, const RunChain& chain
     looser = !(baseline_for(runs[r]) == options_for(runs[r]));
   if (!looser) return out;
   std::vector<FitResult> tight = fit_chain_once(in, chain, runs, baseline_for);
-  if (cost(tight) < cost(out)) out = std::move(tight);
+  // (The looser fit's own kinks are the fitter's, under the looser angle already.)
+  size_t out_kinks = 0, out_prims = 0;
+  for (const FitResult& f : out) {
+    out_kinks += f.forced_at.size();
+    out_prims += f.prims.size();
+  }
+  if (keep_real_kinks(in, chain, runs, tight, options_for) < std::pair(out_kinks, out_prims)) out = std::move(tight);
   return out;
 }
 
