@@ -141,12 +141,7 @@ int run_compress(const CompressArgs& a) {
     throw Error(kExitInput, fmt::format("--min-radius {} mm is larger than --max-radius {} mm", a.opt.fit.min_radius_mm,
                                         a.opt.fit.max_radius_mm));
   CompressOptions opt = a.opt;
-  opt.fit.method = a.method == "keep"     ? FitOptions::Method::Keep
-                   : a.method == "global" ? FitOptions::Method::Global
-                   : a.method == "greedy" ? FitOptions::Method::Greedy
-                   : a.method == "stream" ? FitOptions::Method::Stream
-                   : a.method == "lowe"   ? FitOptions::Method::Lowe
-                                          : FitOptions::Method::Arcs;
+  opt.fit.method = method_named(a.method).value_or(FitOptions::Method::Arcs);  // (CLI11 took only known names)
   if (a.band == "program") opt.band = CompressOptions::Band::Program;
   if (a.band == "executed") opt.band = CompressOptions::Band::Executed;
   if (a.arc_format == "ijk") opt.arc_format = ArcFormat::Centre;

@@ -80,15 +80,12 @@ arcpress_status arcpress_options_set_corner_angle(arcpress_options* o, double de
 
 arcpress_status arcpress_options_set_method(arcpress_options* o, const char* method) {
   if (!o || !method) return ARCPRESS_BAD_INPUT;
-  using M = arcpress::FitOptions::Method;
-  const std::string m = method;
-  const M picked = m == "arcs" ? M::Arcs : m == "global" ? M::Global : m == "greedy" ? M::Greedy
-                 : m == "stream" ? M::Stream : m == "lowe" ? M::Lowe : M::Keep;
-  if (picked == M::Keep && m != "keep") {
-    o->error = "unknown method '" + m + "' (arcs, global, greedy, stream, lowe or keep)";
+  const auto picked = arcpress::method_named(method);
+  if (!picked) {
+    o->error = std::string("unknown method '") + method + "' (arcs, global, greedy, stream, lowe or keep)";
     return ARCPRESS_BAD_INPUT;
   }
-  o->options.fit.method = picked;
+  o->options.fit.method = *picked;
   o->error.clear();
   return ARCPRESS_OK;
 }

@@ -29,11 +29,10 @@ bool ends_chains(const Move& m) { return !m.fittable() && !(is_arc(m.kind) && m.
 /// The header comment (CompressOptions::header) without its end of line, in the form of the
 /// comment `like` (';' or '('): "; arcpress 0.1.0 --tolerance 0.01 --dialect marlin ...".
 std::string header_comment(const CompressOptions& o, char like) {
-  static constexpr const char* kMethods[] = {"keep", "arcs", "global", "greedy", "stream", "lowe"};
   const std::string text = fmt::format(
       "arcpress {} --tolerance {} --dialect {} --band {} --g1-angle {} --corner-angle {} --method {}", kVersion,
       o.fit.tolerance_mm, o.dialect.name, o.executed_rule().moves_on_chords() ? "executed" : "program",
-      o.fit.g1_angle_deg, o.fit.corner_angle_deg, kMethods[static_cast<int>(o.fit.method)]);
+      o.fit.g1_angle_deg, o.fit.corner_angle_deg, method_name(o.fit.method));
   return like == ';' ? "; " + text : "(" + text + ")";
 }
 

@@ -1,7 +1,6 @@
 #include "arcpress/dialect/arc_segmentation.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -11,24 +10,11 @@ namespace {
 
 using Rule = ArcSegmentation::Rule;
 
-constexpr std::array<std::pair<Rule, std::string_view>, 6> kNames{{{Rule::None, "none"},
-                                                                   {Rule::Marlin, "marlin"},
-                                                                   {Rule::Klipper, "klipper"},
-                                                                   {Rule::RepRapFirmware, "reprapfirmware"},
-                                                                   {Rule::Grbl, "grbl"},
-                                                                   {Rule::Smoothieware, "smoothieware"}}};
-
 /// A count the firmware would compute in an unsigned integer: clamped to what one arc may
 /// sensibly take, so a huge radius never overflows it.
 uint32_t count_of(double x) { return static_cast<uint32_t>(std::clamp(x, 0.0, 1e7)); }
 
 }  // namespace
-
-std::string_view rule_name(Rule rule) {
-  for (const auto& [r, name] : kNames)
-    if (r == rule) return name;
-  return "none";
-}
 
 uint32_t executed_segments(const ArcSegmentation& s, double radius_mm, double sweep_rad, double normal_travel_mm) {
   const double sweep = std::abs(sweep_rad), r = std::abs(radius_mm);

@@ -4,7 +4,9 @@
 // part is made by those. A dialect names its firmware's rule and the settings it uses
 // (dialects/README.md cites each rule's source); the fitter holds the band on the chords
 // (--band executed) and the verifier measures them (executed_path()).
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <string_view>
 
 namespace arcpress {
@@ -34,9 +36,16 @@ struct ArcSegmentation {
   bool operator==(const ArcSegmentation&) const = default;
 };
 
-/// The rule's name as dialect files write it ("marlin", "klipper", "reprapfirmware", "grbl",
-/// "smoothieware", "none").
-std::string_view rule_name(ArcSegmentation::Rule rule);
+/// The rules' names as dialect files write them, in the order of ArcSegmentation::Rule.
+inline constexpr std::array<std::string_view, 6> kRuleNames{"none", "marlin", "klipper", "reprapfirmware", "grbl",
+                                                            "smoothieware"};
+inline std::string_view rule_name(ArcSegmentation::Rule rule) { return kRuleNames[static_cast<size_t>(rule)]; }
+/// The rule of that name, if any.
+inline std::optional<ArcSegmentation::Rule> rule_named(std::string_view name) {
+  for (size_t i = 0; i < kRuleNames.size(); ++i)
+    if (kRuleNames[i] == name) return static_cast<ArcSegmentation::Rule>(i);
+  return std::nullopt;
+}
 
 /// How many straight segments the firmware moves along for an arc of `radius_mm` turning
 /// by `sweep_rad` (either sign) while the plane's normal axis travels `normal_travel_mm`:

@@ -195,9 +195,13 @@ Dialect parse_dialect(const std::string& text, const std::string& path) {
     r.number("radius_check_relative", d.radius_rel, 0, 1);
     if (const toml::table* e = r.table("executed")) {
       TableReader x(*e, path, "arcs.executed.");
-      // (In the order of ArcSegmentation::Rule.)
-      if (int c = x.choice("rule", {"none", "marlin", "klipper", "reprapfirmware", "grbl", "smoothieware"}); c >= 0)
-        d.executed.rule = ArcSegmentation::Rule(c);
+      if (const toml::node* at = x.node("rule")) {
+        std::string rule;
+        x.text("rule", rule);
+        const auto named = rule_named(rule);
+        if (!named) x.fail(at->source(), "rule", fmt::format("expected one of \"{}\"", fmt::join(kRuleNames, "\", \"")));
+        d.executed.rule = *named;
+      }
       x.number("max_segment_mm", d.executed.max_segment_mm, 0, 1000);
       x.number("min_segment_mm", d.executed.min_segment_mm, 0, 1000);
       x.integer("min_circle_segments", d.executed.min_circle_segments, 0, 100000);

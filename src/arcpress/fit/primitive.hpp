@@ -1,7 +1,10 @@
 #pragma once
 // The fitter's vocabulary: a run is replaced by primitives (lines and arcs) whose end points
 // are vertices of the run, so positions, E and extra axes at every joint are the input's own.
+#include <array>
 #include <cstdint>
+#include <optional>
+#include <string_view>
 #include <vector>
 
 #include "arcpress/core/geometry.hpp"
@@ -65,6 +68,16 @@ struct FitOptions {
 
   bool operator==(const FitOptions&) const = default;
 };
+
+/// The methods' names as --method writes them, in the order of FitOptions::Method.
+inline constexpr std::array<std::string_view, 6> kMethodNames{"keep", "arcs", "global", "greedy", "stream", "lowe"};
+inline std::string_view method_name(FitOptions::Method m) { return kMethodNames[static_cast<size_t>(m)]; }
+/// The method of that name, if any.
+inline std::optional<FitOptions::Method> method_named(std::string_view name) {
+  for (size_t i = 0; i < kMethodNames.size(); ++i)
+    if (kMethodNames[i] == name) return static_cast<FitOptions::Method>(i);
+  return std::nullopt;
+}
 
 struct FitResult {
   std::vector<Primitive> prims;
