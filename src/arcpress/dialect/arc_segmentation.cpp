@@ -67,11 +67,14 @@ uint32_t executed_segments(const ArcSegmentation& s, double radius_mm, double sw
   return 0;
 }
 
-double executed_sagitta_mm(const ArcSegmentation& s, double radius_mm, double sweep_rad, double normal_travel_mm) {
-  const uint32_t n = executed_segments(s, radius_mm, sweep_rad, normal_travel_mm);
-  if (n == 0) return 0;
-  const double half = std::min(std::abs(sweep_rad) / (2.0 * n), std::numbers::pi);
+double chords_sagitta_mm(double radius_mm, double sweep_rad, uint32_t segments) {
+  if (segments == 0) return 0;
+  const double half = std::min(std::abs(sweep_rad) / (2.0 * segments), std::numbers::pi);
   return std::abs(radius_mm) * (1 - std::cos(half));
+}
+
+double executed_sagitta_mm(const ArcSegmentation& s, double radius_mm, double sweep_rad, double normal_travel_mm) {
+  return chords_sagitta_mm(radius_mm, sweep_rad, executed_segments(s, radius_mm, sweep_rad, normal_travel_mm));
 }
 
 }  // namespace arcpress

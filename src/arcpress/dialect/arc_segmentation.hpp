@@ -52,8 +52,11 @@ inline std::optional<ArcSegmentation::Rule> rule_named(std::string_view name) {
 /// 1 means one chord from start to end. Always at least 1; 0 for Rule::None (the circle).
 uint32_t executed_segments(const ArcSegmentation& s, double radius_mm, double sweep_rad, double normal_travel_mm = 0);
 
-/// How far (mm) the firmware's chords of that arc lie inside the circle at most: the
-/// sagitta of one segment's angle. 0 for Rule::None.
+/// How far (mm) `segments` equal chords of an arc of `radius_mm` turning by `sweep_rad` lie
+/// inside the circle at most: the sagitta of one segment's angle. 0 for no segments.
+double chords_sagitta_mm(double radius_mm, double sweep_rad, uint32_t segments);
+
+/// The same for the chords the firmware cuts that arc into (executed_segments()).
 double executed_sagitta_mm(const ArcSegmentation& s, double radius_mm, double sweep_rad, double normal_travel_mm = 0);
 
 }  // namespace arcpress

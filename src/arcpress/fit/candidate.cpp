@@ -65,7 +65,7 @@ std::optional<Chosen> RunFitter::make_arc(uint32_t a, uint32_t e, const Vec2& ce
   // with that taken off keeps the chords in the band. Else the chords are measured
   // themselves (a flat arc); the circle must keep the band too.
   const uint32_t chords = executed_segments(o_.executed, g.radius_mm, g.sweep, g.h1 - g.h0);
-  const double sagitta = executed_sagitta_mm(o_.executed, g.radius_mm, g.sweep, g.h1 - g.h0);
+  const double sagitta = chords_sagitta_mm(g.radius_mm, g.sweep, chords);
   if (sagitta > 0) {
     Deviation near = arc_deviation(pts, g, band - sagitta);
     if (!near.ordered) return std::nullopt;
