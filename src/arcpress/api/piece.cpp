@@ -197,12 +197,12 @@ std::vector<uint32_t> refused_output_lines(const CompressResult& r) {
 /// tolerance, the corner angle and the method are the problem asked, not limits on its
 /// answer.)
 FitOptions tightened(FitOptions o, const CompressOptions& opt, const Interpretation& in, const Run& r) {
-  FitOptions user = FitOptions{};
-  user.tolerance_mm = opt.fit.tolerance_mm;
-  user.corner_angle_deg = opt.fit.corner_angle_deg;
-  user.method = opt.fit.method;
-  user.spikes = opt.fit.spikes;
-  FitOptions d = fit_options_for(user, opt.dialect, in.frames[r.frame], r.plane);
+  FitOptions asked;  // the defaults, for the problem the user asked
+  asked.tolerance_mm = opt.fit.tolerance_mm;
+  asked.corner_angle_deg = opt.fit.corner_angle_deg;
+  asked.method = opt.fit.method;
+  asked.spikes = opt.fit.spikes;
+  FitOptions d = fit_options_for(asked, opt.dialect, in.frames[r.frame], r.plane);
   d.executed = opt.dialect.executed;
   o.g1_angle_deg = std::min(o.g1_angle_deg, d.g1_angle_deg);
   o.extrusion_variance = std::min(o.extrusion_variance, d.extrusion_variance);
