@@ -51,6 +51,44 @@ TEST_CASE("decimal values are correctly rounded doubles", "[lex]") {
   CHECK(w[2].value == 123456.123456);
 }
 
+TEST_CASE("a number may have blanks between its characters, and ends before blanks and the next word", "[lex]") {
+  DiagnosticSink sink;
+  auto p = lex_text("G1 X1 2.5 Y- 3 .25 Z1. E7\tF 1 0 0\n", sink);
+  const Block& b = p.blocks[0];
+  REQUIRE(letters(p, b) == "GXYZEF");
+  const Word* w = p.words_begin(b);
+  CHECK(w[1].value == 12.5);
+  CHECK(p.raw(b, w[1]) == "X1 2.5");
+  CHECK(w[1].decimals == 1);
+  CHECK(w[2].value == -3.25);
+  CHECK(p.raw(b, w[2]) == "Y- 3 .25");
+  CHECK(w[2].decimals == 2);
+  CHECK(w[3].value == 1.0);
+  CHECK(p.raw(b, w[3]) == "Z1.");
+  CHECK(w[4].value == 7.0);
+  CHECK(p.raw(b, w[4]) == "E7");
+  CHECK(w[5].value == 100.0);
+  CHECK(p.raw(b, w[5]) == "F 1 0 0");
+  CHECK(sink.all().empty());
+  // A second point starts no number: "X1." ends there, and ".5" is not a word.
+  p = lex_text("G1 X1. .5\n", sink);
+  CHECK(letters(p, p.blocks[0]) == "GX");
+  CHECK(p.raw(p.blocks[0], p.words_begin(p.blocks[0])[1]) == "X1.");
+  CHECK(p.blocks[0].kind == BlockKind::Opaque);
+  CHECK(sink.error_count() + sink.all().size() > 0);
+}
+
+TEST_CASE("numbers with more digits than an integer holds are read whole", "[lex]") {
+  DiagnosticSink sink;
+  auto p = lex_text("X12345678901234567890.5 Y0.1234567890123456789012345 Z123456789012345678 E12345678901234567 8\n", sink);
+  const Word* w = p.words_begin(p.blocks[0]);
+  CHECK(w[0].value == 12345678901234567890.5);
+  CHECK(w[1].value == 0.1234567890123456789012345);
+  CHECK(w[2].value == 123456789012345678.0);
+  CHECK(w[3].value == 123456789012345678.0);
+  CHECK(sink.all().empty());
+}
+
 TEST_CASE("comments of both kinds are skipped and remembered", "[lex]") {
   DiagnosticSink sink;
   auto p = lex_text("G0 X1 (move) Y2 ; rest\n(only a comment)\n; semicolon\n", sink);

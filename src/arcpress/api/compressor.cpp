@@ -20,6 +20,14 @@
 #include "arcpress/model/interpreter.hpp"
 
 namespace arcpress {
+
+void reserve_piece(Program& program, Interpretation& in) {
+  program.text.reserve(kPieceBytes + (size_t(1) << 12));
+  program.blocks.reserve(kPieceBytes / 20);
+  program.words.reserve(kPieceBytes / 6);
+  in.moves.reserve(kPieceBytes / 24);
+  in.move_of_block.reserve(kPieceBytes / 20);
+}
 namespace {
 
 /// Whether no chain of runs goes on across the end of move `m`: it is no move a fit may
@@ -196,14 +204,22 @@ struct Compressor::Impl {
 
   void open_piece() {
     cur = std::make_unique<Piece>();
+    if (spare) {
+      // A released piece's buffers, emptied: reading into memory already touched, not new.
+      auto take = [](auto& to, auto& from) {
+        to = std::move(from);
+        to.clear();
+      };
+      take(cur->program.text, spare->program.text);
+      take(cur->program.blocks, spare->program.blocks);
+      take(cur->program.words, spare->program.words);
+      take(cur->in.moves, spare->in.moves);
+      take(cur->in.move_of_block, spare->in.move_of_block);
+      spare.reset();
+    }
     cur->index = pieces++;
     cur->program.name = name;
-    // What a piece of kPieceBytes typically holds, so that it is not grown step by step.
-    cur->program.text.reserve(kPieceBytes + (size_t(1) << 12));
-    cur->program.blocks.reserve(kPieceBytes / 20);
-    cur->program.words.reserve(kPieceBytes / 6);
-    cur->in.moves.reserve(kPieceBytes / 24);
-    cur->in.move_of_block.reserve(kPieceBytes / 20);
+    reserve_piece(cur->program, cur->in);
     cur->start = reader.state();
     cur->emit = next_emit;
     reader.begin(cur->program, cur->in);
@@ -301,6 +317,7 @@ struct Compressor::Impl {
       prev_tail = slot.piece->tail;
       lines_out += slot.piece->output_lines;
       ready += slot.piece->result.output;
+      spare = std::move(slot.piece);
     }
     rethrow();
   }
@@ -341,6 +358,7 @@ struct Compressor::Impl {
   ModalInterpreter reader;
   std::string pending;          // bytes after the last whole line
   std::unique_ptr<Piece> cur;   // the piece being read
+  std::unique_ptr<Piece> spare; // the last piece released, whose buffers the next one reads into
   uint32_t line = 0;
   size_t pieces = 0, bytes_read = 0, forced = 0, lines_out = 0, limit = 1, pool_size = 0;
   bool centre_mode_set = false;

@@ -31,6 +31,10 @@ inline constexpr size_t kMaxPieceBytes = size_t(1) << 18;
 /// Pieces per worker thread that may be read, queued, worked on or waiting for their turn.
 inline constexpr size_t kPiecesInFlight = 2;
 
+/// Makes room in a piece's program and interpretation for what kPieceBytes typically hold,
+/// so that reading it does not grow them step by step.
+void reserve_piece(Program& program, Interpretation& in);
+
 class Compressor {
  public:
   /// Compresses the program called `name` with `opt` (checked by check_options(): throws

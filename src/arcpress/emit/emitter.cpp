@@ -22,7 +22,7 @@ constexpr int kMaxDecimals = 9;
 constexpr double kSameValue = 1e-9;
 
 bool is_motion_gcode(double v) {
-  int g = int(std::lround(v * 10));
+  int g = Word::code10_of(v);
   return g == 0 || g == 10 || g == 20 || g == 30 || (g >= 50 && g <= 53) || g == 330 || g == 331 ||
          (g >= 382 && g <= 385) || g == 730 || g == 760 || (g >= 800 && g <= 890 && g % 10 == 0);
 }
@@ -94,7 +94,7 @@ class Emitter {
       bool axes = false;
       const Word* n_word = nullptr;
       for (auto* w = p_.words_begin(b); w != p_.words_end(b); ++w) {
-        if (w->letter == 'G' && !w->is_expr && is_motion_gcode(w->value)) explicit_motion = int(std::lround(w->value * 10));
+        if (w->letter == 'G' && !w->is_expr && is_motion_gcode(w->value)) explicit_motion = w->code10();
         if (sets_centre_mode(*w)) header_done_ = true;  // the program sets the centre mode itself
         if (moves_axis(w->letter)) axes = true;
         if (w->letter == 'N' && w == p_.words_begin(b)) n_word = w;
@@ -541,7 +541,7 @@ class Emitter {
 }  // namespace
 
 bool sets_centre_mode(const Word& w) {
-  return w.letter == 'G' && !w.is_expr && (std::lround(w.value * 10) == 901 || std::lround(w.value * 10) == 911);
+  return w.letter == 'G' && !w.is_expr && (w.code10() == 901 || w.code10() == 911);
 }
 
 OutputHabits output_habits(const Program& p) {

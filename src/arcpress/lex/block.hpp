@@ -20,6 +20,15 @@ struct Word {
   uint8_t decimals = 0;  ///< digits written after the decimal point
   bool has_point = false;
   bool flag = false;     ///< a letter without a number (firmware flags: `M84 X Y E`); value 0
+
+  /// The value as a code number times ten, rounded half away from zero: G90.1 is 901, G1 is
+  /// 10, M83 is 830 (inline: std::lround is a library call, and every block asks).
+  int code10() const { return code10_of(value); }
+  static int code10_of(double v) {
+    const double t = v * 10.0;
+    constexpr double kLimit = 1e9;  // far past any code, inside int
+    return t >= kLimit ? int(kLimit) : t <= -kLimit ? -int(kLimit) : int(t < 0 ? t - 0.5 : t + 0.5);
+  }
 };
 
 /// What kind of line a block is. Everything but Code is passed through untouched and is a

@@ -141,9 +141,7 @@ class LineLexer {
 
   /// Lexes the word whose letter is at `i`; `j` is the first non-space after the letter.
   bool word(size_t i, size_t j) {
-    Word w;
-    w.letter = upper(s_[i]);
-    w.col = uint32_t(i + 1);
+    const char letter = upper(s_[i]);
     size_t k = j;
     bool negative = false;
     if (k < n_ && (s_[k] == '-' || s_[k] == '+')) {
@@ -151,7 +149,6 @@ class LineLexer {
       k = skip_space(k + 1);
     }
     if (k < n_ && (s_[k] == '[' || s_[k] == '#')) {
-      w.is_expr = true;
       b_.has_expr = true;
       if (s_[k] == '[') {
         int depth = 0;
@@ -160,7 +157,7 @@ class LineLexer {
           if (s_[k] == ']' && --depth == 0) break;
         }
         if (k >= n_) {
-          opaque(i, "E-LEX-EXPR", fmt::format("expression after '{}' has no closing ']'", w.letter));
+          opaque(i, "E-LEX-EXPR", fmt::format("expression after '{}' has no closing ']'", letter));
           return false;
         }
         ++k;
@@ -173,55 +170,95 @@ class LineLexer {
           while (k < n_ && (is_digit(s_[k]) || s_[k] == '.')) ++k;
         }
       }
-      return push(w, k);
+      return push(i, k, letter, 0, true, 0, false, false);
     }
+    const size_t start = k;
+    Number n = scan_plain_number(k);
+    if (n.blank_inside) {
+      k = start;
+      n = scan_number(k);
+    }
+    if (n.digits == 0 && k < n_ && s_[k] == '"') {
+      set_kind(BlockKind::HostCommand);  // firmware string argument: M862.3 P "MINI"
+      return false;
+    }
+    if (n.digits == 0 && (i + 1 >= n_ || is_space(s_[i + 1]) || s_[i + 1] == ';') && allows_flags())
+      return push(i, k, letter, 0, false, 0, false, true);  // Marlin-style axis flag: M84 X Y E, G28 X Y
+    if (n.digits == 0) {
+      std::string found = k < n_ ? fmt::format("'{}'", printable(s_[k])) : std::string("end of line");
+      opaque(i, "E-LEX-NUMBER", fmt::format("word '{}' has no number (found {})", letter, found));
+      return false;
+    }
+    double value;
+    if (!n.slow && n.decimals <= kExactPow10Max) {
+      value = double(n.mant) / kPow10[n.decimals];
+    } else {
+      std::string buf;
+      for (size_t q = start; q < k; ++q)
+        if (s_[q] != ' ' && s_[q] != '\t') buf += s_[q];
+      value = std::strtod(buf.c_str(), nullptr);
+    }
+    return push(i, k, letter, negative ? -value : value, false, n.decimals, n.point, false);
+  }
+
+  /// The digits of a number: its first 18 as an integer, how many follow the point.
+  struct Number {
     uint64_t mant = 0;
     int digits = 0, decimals = 0;
-    bool point = false, slow = false;
-    size_t start = k;
+    bool point = false;
+    bool slow = false;          ///< more digits than `mant` holds: read by strtod
+    bool blank_inside = false;  ///< blanks with more of the number after them: scan_number() reads it
+  };
+
+  /// A number written without blanks (what nearly every program writes), from `k`, which
+  /// is left after it.
+  Number scan_plain_number(size_t& k) const {
+    Number n;
+    auto digits = [&](bool after_point) {
+      for (; k < n_ && is_digit(s_[k]); ++k, ++n.digits) {
+        n.mant = n.mant * 10 + uint64_t(s_[k] - '0');
+        n.decimals += after_point;
+      }
+    };
+    digits(false);
+    if (k < n_ && s_[k] == '.') {
+      n.point = true;
+      ++k;
+      digits(true);
+    }
+    if (n.digits >= 18) n.blank_inside = true;  // (scan_number() counts them as it must)
+    if (k < n_ && (s_[k] == ' ' || s_[k] == '\t')) {
+      size_t q = k;
+      while (q < n_ && (s_[q] == ' ' || s_[q] == '\t')) ++q;
+      if (q < n_ && (is_digit(s_[q]) || (s_[q] == '.' && !n.point))) n.blank_inside = true;
+    }
+    return n;
+  }
+
+  /// A number as RS274 allows it, with blanks between its characters, from `k`, which is
+  /// left after its last character.
+  Number scan_number(size_t& k) const {
+    Number n;
+    const size_t start = k;
     while (k < n_) {
       char c = s_[k];
       if (is_digit(c)) {
-        if (digits < 18) {
-          mant = mant * 10 + uint64_t(c - '0');
-          if (point) ++decimals;
+        if (n.digits < 18) {
+          n.mant = n.mant * 10 + uint64_t(c - '0');
+          if (n.point) ++n.decimals;
         } else {
-          slow = true;
+          n.slow = true;
         }
-        ++digits;
-      } else if (c == '.' && !point) {
-        point = true;
+        ++n.digits;
+      } else if (c == '.' && !n.point) {
+        n.point = true;
       } else if (!(c == ' ' || c == '\t')) {
         break;
       }
       ++k;
     }
     while (k > start && (s_[k - 1] == ' ' || s_[k - 1] == '\t')) --k;  // trailing blanks are not the number's
-    if (digits == 0 && k < n_ && s_[k] == '"') {
-      set_kind(BlockKind::HostCommand);  // firmware string argument: M862.3 P "MINI"
-      return false;
-    }
-    if (digits == 0 && (i + 1 >= n_ || is_space(s_[i + 1]) || s_[i + 1] == ';') && allows_flags()) {
-      w.flag = true;  // Marlin-style axis flag: M84 X Y E, G28 X Y
-      return push(w, k);
-    }
-    if (digits == 0) {
-      std::string found = k < n_ ? fmt::format("'{}'", printable(s_[k])) : std::string("end of line");
-      opaque(i, "E-LEX-NUMBER", fmt::format("word '{}' has no number (found {})", w.letter, found));
-      return false;
-    }
-    if (!slow && decimals <= kExactPow10Max) {
-      w.value = double(mant) / kPow10[decimals];
-    } else {
-      std::string buf;
-      for (size_t q = start; q < k; ++q)
-        if (s_[q] != ' ' && s_[q] != '\t') buf += s_[q];
-      w.value = std::strtod(buf.c_str(), nullptr);
-    }
-    if (negative) w.value = -w.value;
-    w.has_point = point;
-    w.decimals = uint8_t(decimals > 255 ? 255 : decimals);
-    return push(w, k);
+    return n;
   }
 
   /// Letters without numbers are flags after an M-code or G28/G29 (firmware syntax).
@@ -233,18 +270,20 @@ class LineLexer {
     return false;
   }
 
-  /// Adds word `w`, whose text ends at `after`; false (and the block kept as it is) for a
-  /// word too long for Word::length, which a rewritten block could not copy whole.
-  bool push(const Word& w, size_t after) {
-    const size_t length = after - (w.col - 1);
+  /// Adds the word whose letter is at `i` and whose text ends at `after` to the block; false
+  /// (and the block kept as it is) for a word too long for Word::length, which a rewritten
+  /// block could not copy whole. The word is built where it is stored (built aside and
+  /// copied, its narrow fields' stores stall the copy's wide loads).
+  bool push(size_t i, size_t after, char letter, double value, bool is_expr, int decimals, bool point, bool flag) {
+    const size_t length = after - i;
     if (length > UINT16_MAX) {
-      opaque(w.col - 1, "E-LEX-WORD-LENGTH",
-             fmt::format("word '{}' is {} bytes long; at most {} are read", w.letter, length, UINT16_MAX));
+      opaque(i, "E-LEX-WORD-LENGTH",
+             fmt::format("word '{}' is {} bytes long; at most {} are read", letter, length, UINT16_MAX));
       return false;
     }
     if (b_.word_count == 0) b_.first_word = uint32_t(p_.words.size());
-    p_.words.push_back(w);
-    p_.words.back().length = uint16_t(length);
+    p_.words.emplace_back(value, uint32_t(i + 1), uint16_t(length), letter, is_expr,
+                          uint8_t(decimals > 255 ? 255 : decimals), point, flag);
     ++b_.word_count;
     after_ = after;
     return true;

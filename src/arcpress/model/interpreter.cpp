@@ -33,8 +33,6 @@ constexpr auto kOncePerBlock = [] {
   return once;
 }();
 
-/// G-code number times ten, so G90.1 is 901 and G1 is 10.
-int gcode10(double v) { return int(std::lround(v * 10.0)); }
 
 constexpr uint32_t kAllAxes = (1u << kAxisCount) - 1;
 constexpr uint32_t kXyzMask = (1u << kX) | (1u << kY) | (1u << kZ);
@@ -74,7 +72,7 @@ class Interpreter {
         // a file name) move nothing; M32 starts another program, and other host commands
         // (`$H` homing, `$J=` jogging, firmware macros) may move anything.
         if (b.word_count > 0 && p_->words_begin(b)->letter == 'M' && !p_->words_begin(b)->is_expr &&
-            std::lround(p_->words_begin(b)->value) != 32)
+            p_->words_begin(b)->code10() != 320)
           return;
         forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterControl, bi);
         return;
@@ -86,9 +84,8 @@ class Interpreter {
     bool other_words = false;   // words a fitted block could not carry along
     int motion = -1;            // G-code ×10 of a motion word in this block
     bool g92 = false, g92_reset = false, g53 = false, axis_consumer = false, homing = false;
-    bool words_seen[kAxisCount] = {};
-    bool expr_axis[kAxisCount] = {};
-    bool flag_axis[kAxisCount] = {};
+    // Bit per axis: written with a value, with an expression, as a flag.
+    uint32_t words_seen = 0, expr_axis = 0, flag_axis = 0;
     double value[kAxisCount] = {};
     double ijk[3] = {0, 0, 0};
     bool ijk_seen[3] = {};
@@ -119,11 +116,11 @@ class Interpreter {
       }
       if (int ax = axis_of_letter(L); ax >= 0) {
         if (w->flag) {
-          flag_axis[ax] = true;
+          flag_axis |= 1u << ax;
           continue;
         }
-        words_seen[ax] = true;
-        expr_axis[ax] = w->is_expr;
+        words_seen |= 1u << ax;
+        expr_axis = w->is_expr ? expr_axis | 1u << ax : expr_axis & ~(1u << ax);
         value[ax] = ax == kE ? w->value : number(*w);
         continue;
       }
@@ -135,7 +132,7 @@ class Interpreter {
       }
       switch (L) {
         case 'G': {
-          int g = gcode10(w->value);
+          int g = w->code10();
           if (g != 10) other_words = true;
           switch (g) {
             case 0: case 10: case 20: case 30: motion = g; break;
@@ -194,10 +191,10 @@ class Interpreter {
         }
         case 'M': {
           other_words = true;
-          int m = int(std::lround(w->value));
-          if (m == 82) F().e_relative = false;
-          if (m == 83) F().e_relative = true;
-          if (m == 98 || m == 99)  // subprogram call / return
+          const int m = w->code10();
+          if (m == 820) F().e_relative = false;
+          if (m == 830) F().e_relative = true;
+          if (m == 980 || m == 990)  // subprogram call / return
             forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterControl, bi);
           break;
         }
@@ -242,8 +239,8 @@ class Interpreter {
     if (g92) {
       Frame& f = F();
       for (int ax = 0; ax < kAxisCount; ++ax) {
-        if (!words_seen[ax]) continue;
-        if (expr_axis[ax]) {
+        if (!((words_seen >> ax) & 1u)) continue;
+        if ((expr_axis >> ax) & 1u) {
           forget(1u << ax, Unfit::UnknownAfterExpression, bi);
           continue;
         }
@@ -254,14 +251,12 @@ class Interpreter {
     if (fedit) set_frame(*fedit);
     if (motion >= 0) s_.motion = motion;
 
-    bool any_axis = false;
-    for (int ax = 0; ax < kAxisCount; ++ax) any_axis |= words_seen[ax];
+    const bool any_axis = words_seen != 0;
     if (homing) {
       // G28/G30: through an optional point to a stored position we do not know.
-      bool any_flag = false;
-      for (int ax = 0; ax < kAxisCount; ++ax) any_flag |= flag_axis[ax];
+      const bool any_flag = flag_axis != 0;
       for (int ax = 0; ax < kE; ++ax)
-        if (words_seen[ax] || flag_axis[ax] || (!any_axis && !any_flag)) {
+        if ((((words_seen | flag_axis) >> ax) & 1u) || (!any_axis && !any_flag)) {
           forget(1u << ax, Unfit::UnknownAfterHoming, bi);
           // One stand-in for the home position, whatever came before, so that two programs
           // that home alike hold the same stand-in for an axis they do not set again.
@@ -286,9 +281,9 @@ class Interpreter {
     for (int ax = 0; ax < kAxisCount; ++ax) after_why[ax] = s_.why[ax].reason;
     bool reasons_changed = false;  // this block makes an axis unknown for a reason of its own
     for (int ax = 0; ax < kAxisCount; ++ax) {
-      if (!words_seen[ax]) continue;
+      if (!((words_seen >> ax) & 1u)) continue;
       written |= 1u << ax;
-      if (expr_axis[ax]) {
+      if ((expr_axis >> ax) & 1u) {
         known_after &= ~(1u << ax);
         after_why[ax] = Unfit::UnknownAfterExpression, reasons_changed = true;
         continue;

@@ -190,7 +190,7 @@ std::string non_motion_key(const Program& p, const Block& b) {
   }
   bool dwell = false;
   for (auto* w = p.words_begin(b); w != p.words_end(b); ++w) {
-    if (w->letter == 'G' && !w->is_expr && std::lround(w->value * 10) == 40) dwell = true;
+    if (w->letter == 'G' && !w->is_expr && w->code10() == 40) dwell = true;
   }
   for (auto* w = p.words_begin(b); w != p.words_end(b); ++w) {
     if (w->letter == 'M' || w->letter == 'T' || w->letter == 'S' || (dwell && (w->letter == 'P' || w->letter == 'G'))) {
