@@ -8,8 +8,9 @@
 // --g1-angle 5 (tangency relaxed), and a lower bound on the blocks of any fit that keeps every
 // smooth joint tangent (the rest of the program as written, plus for every stretch between
 // corners the fewest tangent-continuous lines and arcs joined at the input's vertices that
-// keep its vertices in the band: count_bound.hpp). Where that bound exceeds ArcWelder's
-// count, no tangent-continuous output can match ArcWelder's.
+// keep its vertices in the band, leaving and arriving along the moves written as they are
+// that it joins: count_bound.hpp). Where that bound exceeds ArcWelder's count, no
+// tangent-continuous output can match ArcWelder's.
 // With --causes, a second table instead: where the blocks go, as blocks out per file and band
 // with one rule changed at a time: the default; `min_moves = 3` (the marlin dialect's former
 // minimum of moves per arc); --extrusion-variance 1 (no primitive ends where E per mm
@@ -36,6 +37,7 @@
 #include "arcpress/fit/count_bound.hpp"
 #include "arcpress/lex/lexer.hpp"
 #include "arcpress/model/interpreter.hpp"
+#include "arcpress/verify/path_compare.hpp"
 #include "corpus_files.hpp"
 #include "timed_compress.hpp"
 
@@ -93,17 +95,28 @@ size_t motion_blocks(const std::string& text) {
 }
 
 /// The fewest blocks the runs of `text` can be written in by any fit that keeps every
-/// smooth joint tangent (see the file's head): the sum over the stretches between corners
-/// (is_corner(), and beside corners) of min_g1_primitive_count(), or of
-/// min_primitive_count() where no tangent chain exists.
+/// smooth joint tangent (see the file's head): per chain of runs (chain_runs(), as the
+/// fitter fits them), the sum over the stretches of runs between corners (is_corner(), and
+/// beside corners) and the moves kept as they are of min_g1_primitive_count(), or of
+/// min_primitive_count() where no tangent chain exists. A stretch that joins a kept move (an
+/// input arc, a lone line) at a vertex that is no corner leaves or arrives along that move,
+/// as the fitter's must.
 size_t tangent_bound(const std::string& text, const Dialect& d, double band_mm) {
   DiagnosticSink sink;
   Program p = lex("in", text, sink);
   Interpretation in = interpret(p, sink, d);
+  const std::vector<Run> runs = extract_runs(in, 2);
   size_t bound = 0;
-  for (const Run& r : extract_runs(in, 2)) {
+  for (const RunChain& chain : chain_runs(in, runs, band_mm, 30)) {
+    const uint32_t n = chain.move_count;
     std::vector<Vec3> v;
-    for (uint32_t k = 0; k <= r.move_count; ++k) v.push_back(r.point(in, k));
+    for (uint32_t k = 0; k <= n; ++k) {
+      const AxisValues& a = in.from(chain.first_move + k);
+      v.emplace_back(a[kX], a[kY], a[kZ]);
+    }
+    std::vector<uint8_t> kept(n, 1);  // per move of the chain: not in a run
+    for (uint32_t r = chain.first_run; r < chain.first_run + chain.run_count; ++r)
+      std::fill_n(kept.begin() + (runs[r].first_move - chain.first_move), runs[r].move_count, uint8_t(0));
     std::vector<uint8_t> corner(v.size(), 0);
     for (size_t k = 1; k + 1 < v.size(); ++k) corner[k] = is_corner(v[k - 1], v[k], v[k + 1], band_mm, 30);
     std::vector<uint8_t> split = corner;
@@ -111,22 +124,45 @@ size_t tangent_bound(const std::string& text, const Dialect& d, double band_mm) 
       if (!corner[k])
         split[k] = is_corner_beside_corner(k >= 2 ? &v[k - 2] : nullptr, v[k - 1], v[k], v[k + 1],
                                            k + 2 < v.size() ? &v[k + 2] : nullptr, corner[k - 1], corner[k + 1], band_mm);
+    // A kept move's direction at its start or end in XY, past kept moves that go nowhere.
+    auto kept_tangent = [&](long m, int step) -> std::optional<Vec2> {
+      for (; m >= 0 && m < long(n) && kept[size_t(m)]; m += step) {
+        const size_t i = chain.first_move + size_t(m);
+        if (in.goes_nowhere(i)) continue;
+        const Move& mv = in.moves[i];
+        if (mv.plane != Plane::XY && is_arc(mv.kind)) return std::nullopt;
+        const Vec2 t = step < 0 ? move_end_tangent(in, i) : move_start_tangent(in, i);
+        return t.squaredNorm() > 0 ? std::optional<Vec2>(t) : std::nullopt;
+      }
+      return std::nullopt;
+    };
     std::vector<Vec2> piece;
-    auto flush = [&] {
+    EndTangents ends;
+    auto flush = [&](uint32_t end_vertex) {
       if (piece.size() >= 2) {
-        const size_t g = min_g1_primitive_count(piece, band_mm, 0.5);
+        if (end_vertex < n && kept[end_vertex] && !split[end_vertex]) ends.end = kept_tangent(end_vertex, +1);
+        const size_t g = min_g1_primitive_count(piece, band_mm, 0.5, ends);
         bound += g ? g : min_primitive_count(piece, band_mm);
       }
       piece.clear();
+      ends = {};
     };
-    for (size_t k = 0; k < v.size(); ++k) {
+    for (uint32_t k = 0; k <= n; ++k) {
+      const bool fitted_before = k > 0 && !kept[k - 1], fitted_after = k < n && !kept[k];
+      if (fitted_after && !fitted_before) {  // a stretch begins
+        piece.assign(1, Vec2(v[k].x(), v[k].y()));
+        if (k > 0 && !split[k]) ends.start = kept_tangent(long(k) - 1, -1);
+        continue;
+      }
+      if (!fitted_before) continue;
       piece.push_back(Vec2(v[k].x(), v[k].y()));
-      if (k > 0 && k + 1 < v.size() && split[k]) {
-        flush();
-        piece.push_back(Vec2(v[k].x(), v[k].y()));
+      if (!fitted_after) {
+        flush(k);
+      } else if (split[k]) {
+        flush(k);
+        piece.assign(1, Vec2(v[k].x(), v[k].y()));
       }
     }
-    flush();
   }
   return bound;
 }

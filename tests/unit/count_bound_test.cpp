@@ -92,6 +92,68 @@ TEST_CASE("tangent joints: one circle needs one arc, two tangent arcs of differe
   }
 }
 
+TEST_CASE("tangents fixed at the ends: a chain leaves and arrives along the moves it joins, within the G1 angle",
+          "[fit][bound]") {
+  auto dir = [](double deg) { return Vec2(std::cos(deg_to_rad(deg)), std::sin(deg_to_rad(deg))); };
+  const auto line = sampled(10, 0, 10, [](double x) { return Vec2(x, 0); });
+  CHECK(min_g1_primitive_count(line, 0.01, 0.5, {dir(0.3), dir(-0.3)}) == 1);
+  // Leaving 10 degrees off the line, no arc gets back into the band before the next vertex
+  // (over one 1 mm move it would bulge 0.044 mm): no tangent chain at all.
+  CHECK(min_g1_primitive_count(line, 0.01, 0.5, {dir(10), std::nullopt}) == 0);
+  CHECK(min_g1_primitive_count(line, 0.01, 0.5, {std::nullopt, dir(-10)}) == 0);
+  CHECK(min_g1_primitive_count(line, 0.01, 0.5, {dir(180), std::nullopt}) == 0);  // backwards
+  // A quarter circle from (5, 0) heading +y to (0, 5) heading -x.
+  const auto quarter = printed(arc({0, 0}, 5, 0, 90, 45));
+  CHECK(min_g1_primitive_count(quarter, 0.01, 0.5, {dir(90), dir(180)}) == 1);
+  CHECK(min_g1_primitive_count(quarter, 0.01, 0.5, {dir(90.4), dir(179.6)}) == 1);
+  // Joining a move that turns 3 degrees off the circle's tangent costs primitives, never saves them.
+  const size_t free_count = min_g1_primitive_count(quarter, 0.01, 0.5);
+  for (const EndTangents& joins : {EndTangents{dir(93), std::nullopt}, EndTangents{std::nullopt, dir(183)},
+                                   EndTangents{dir(87), dir(177)}}) {
+    const size_t fixed = min_g1_primitive_count(quarter, 0.01, 0.5, joins);
+    CHECK((fixed == 0 || fixed > free_count));
+  }
+  const auto cubic = printed(sampled(400, -2, 2, [](double x) { return Vec2(x, x * x * x); }));
+  const size_t cubic_free = min_g1_primitive_count(cubic, 0.01, 0.5);
+  for (double off : {0.0, 1.0, 5.0}) {
+    INFO("y = x^3 joined " << off << " degrees off its own tangent (slope 12)");
+    const double along = rad_to_deg(std::atan(12.0));
+    const size_t fixed = min_g1_primitive_count(cubic, 0.01, 0.5, {dir(along + off), dir(along - off)});
+    CHECK((fixed == 0 || fixed >= cubic_free));
+  }
+}
+
+TEST_CASE("a fit joining an input arc tangentially has no fewer primitives than the bound with that tangent",
+          "[fit][bound]") {
+  // G3 from (5, 0) to (0, 5) about the origin, arriving along -x; then G1 moves along
+  // wobbling curves that leave (0, 5) along -x too.
+  for (double wobble : {0.0, 0.05, 0.2}) {
+    const auto curve = printed(sampled(120, 0, 1, [&](double t) {
+      const double a = deg_to_rad(90 + 150 * t);
+      const double r = 3 + wobble * std::sin(6 * kPi * t);
+      return Vec2(0, 2) + r * Vec2(std::cos(a), std::sin(a));
+    }));
+    std::string text = "G21 G90 G17\nG0 X5 Y0 Z0\nG1 F600\nG3 X0 Y5 I-5 J0\n";
+    for (size_t i = 1; i < curve.size(); ++i) text += fmt::format("G1 X{:.4f} Y{:.4f}\n", curve[i].x(), curve[i].y());
+    text += "M2\n";
+    for (double tol : {0.01, 0.002}) {
+      CompressOptions opt;
+      opt.fit.tolerance_mm = tol;
+      opt.fit.min_radius_mm = 0;
+      DiagnosticSink sink;
+      const CompressResult r = compress("t.nc", text, opt, sink);
+      REQUIRE(r.ok);
+      const size_t count = r.stats.lines_out + r.stats.arcs_out;
+      const size_t bound = min_g1_primitive_count(curve, tol, opt.fit.g1_angle_deg, {Vec2(-1, 0), std::nullopt});
+      INFO("wobble " << wobble << " at " << tol << " mm: " << count << " primitives, " << r.forced_kinks
+                     << " forced kinks, bound " << bound);
+      CHECK(bound >= 1);
+      CHECK(r.comparison.max_smooth_kink_deg <= opt.fit.g1_angle_deg);
+      if (r.forced_kinks == 0) CHECK(count >= bound);
+    }
+  }
+}
+
 TEST_CASE("a right-angle corner: no tangent chain gets round it inside the band, and repeated vertices are no obstacle",
           "[fit][bound]") {
   std::vector<Vec2> corner;

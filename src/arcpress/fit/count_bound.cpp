@@ -166,7 +166,8 @@ size_t min_primitive_count(std::span<const Vec2> pts, double band_mm) {
   return best[n];
 }
 
-size_t min_g1_primitive_count(std::span<const Vec2> pts, double band_mm, double g1_angle_deg) {
+size_t min_g1_primitive_count(std::span<const Vec2> pts, double band_mm, double g1_angle_deg,
+                              const EndTangents& joins) {
   const size_t n = pts.size() < 2 ? 0 : pts.size() - 1;  // moves
   if (n == 0) return 0;
   const double eps = band_mm, g1 = deg_to_rad(g1_angle_deg);
@@ -198,8 +199,21 @@ size_t min_g1_primitive_count(std::span<const Vec2> pts, double band_mm, double 
   };
   {
     const double ref = reference(0);
-    add_states(0, take_new({{ref - kPi, ref + kPi}}, taken[0]));
+    if (joins.start) {
+      const double t = near(std::atan2(joins.start->y(), joins.start->x()), ref);
+      add_states(0, take_new({{t - g1, t + g1}}, taken[0]));
+    } else {
+      add_states(0, take_new({{ref - kPi, ref + kPi}}, taken[0]));
+    }
   }
+  // Whether the last primitive, arriving along tangents a .. b (rad), joins the end tangent.
+  const std::optional<double> end_rad =
+      joins.end ? std::optional<double>(std::atan2(joins.end->y(), joins.end->x())) : std::nullopt;
+  auto joins_end = [&](double a, double b) {
+    if (!end_rad) return true;
+    const double e = near(*end_rad, (a + b) / 2);
+    return e >= a - g1 && e <= b + g1;
+  };
   // Circles turning left (k >= 0) and right (k <= 0) apart: a move inside the arc may not cut
   // more than ε into the circle, and its middle, from `a` at u, bounds k from one side only:
   // k w - 2 u·N >= -2ε turning left, <= 2ε turning right (from |u - N/k| >= 1/|k| - ε).
@@ -270,10 +284,13 @@ size_t min_g1_primitive_count(std::span<const Vec2> pts, double band_mm, double 
           off = {std::min(off.lo, r.lo), std::max(off.hi, r.hi)};
         }
         if (off.lo > off.hi) continue;
-        if (j == n) return count;
         // The arc ends along its start tangent mirrored in the chord; the next may turn by g1.
         const double ref = reference(j);
         const double a = near(2 * chord - st.mid - off.hi, ref), b = a + (off.hi - off.lo);
+        if (j == n) {
+          if (joins_end(a, b)) return count;
+          continue;
+        }
         arriving[j].push_back({a - g1, b + g1});
         touched.push_back(j);
       }

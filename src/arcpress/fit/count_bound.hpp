@@ -5,6 +5,7 @@
 // primitives are all of this kind (and held to more: the moves between vertices, the joints'
 // tangents, the options' limits), so no fit of the same polyline in the same band has fewer.
 #include <cstddef>
+#include <optional>
 #include <span>
 
 #include "arcpress/core/geometry.hpp"
@@ -17,14 +18,22 @@ namespace arcpress {
 /// by the vertex that ended the test before, so meant for curves of thousands of points.
 size_t min_primitive_count(std::span<const Vec2> pts, double band_mm);
 
+/// Tangents a chain of primitives keeps at its ends, where it joins a move that is not
+/// fitted (an input arc, a lone line).
+struct EndTangents {
+  std::optional<Vec2> start, end;  ///< directions (any length); none: free
+};
+
 /// The fewest primitives as above that also join tangentially, each joint turning by at
 /// most `g1_angle_deg`, each arc sweeping at most half a turn (the fitter's default limit)
 /// and an arc over one move bulging by at most the band off it; 0 when no such chain
-/// exists (a corner). The start tangent is free. Found breadth first over (vertex, tangent)
+/// exists (a corner). The first primitive leaves, and the last arrives, within
+/// `g1_angle_deg` of `joins` where they are given. Found breadth first over (vertex, tangent)
 /// states, each tangent range taken once, by the first layer that reaches it; the
 /// curvatures that keep the vertices in the band are bounded by half-planes over a tangent
 /// range of a quarter degree (the circle's bend over it allowed for), so a range is kept
 /// whenever some tangent in it could be, and the count is still a lower bound.
-size_t min_g1_primitive_count(std::span<const Vec2> pts, double band_mm, double g1_angle_deg);
+size_t min_g1_primitive_count(std::span<const Vec2> pts, double band_mm, double g1_angle_deg,
+                              const EndTangents& joins = {});
 
 }  // namespace arcpress

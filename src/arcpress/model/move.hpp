@@ -147,6 +147,18 @@ struct Interpretation {
   /// end is known (Move::end_known) and those whose end is not either.
   std::vector<UnplacedMove> unplaced;
 
+  /// A copy of everything but the moves (for a path made anew from this one's). Names
+  /// every field: one added above belongs here too.
+  Interpretation without_moves() const {
+    Interpretation o;
+    o.frames = frames;
+    o.move_of_block = move_of_block;
+    o.start = start;
+    o.start_known = start_known;
+    o.unplaced = unplaced;
+    return o;
+  }
+
   /// Start of move `i` (end of the previous move, or `start`).
   const AxisValues& from(size_t i) const { return i == 0 ? start : moves[i - 1].to; }
   /// Whether move `i` is a G1 that goes nowhere (every axis as before). A fit steps over

@@ -24,8 +24,8 @@ const Interpretation& executed_path(const Interpretation& in, const ArcSegmentat
 
 Interpretation executed_path(const Interpretation& in, const ArcSegmentation& rule) {
   if (!has_executed_chords(in, rule)) return in;
-  Interpretation out = in;
-  out.moves.clear();
+  Interpretation out = in.without_moves();
+  out.moves.reserve(in.moves.size() * 2);
   std::vector<uint32_t> index_of(in.moves.size());  // input move -> its last move in `out`
   for (size_t i = 0; i < in.moves.size(); ++i) {
     const Move& m = in.moves[i];

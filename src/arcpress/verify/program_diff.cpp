@@ -101,6 +101,10 @@ constexpr size_t kShareSegments = 65536;
 
 Path path_of(const Interpretation& in, double chord_mm, double tolerance_mm) {
   Path p;
+  // Most moves are one segment: room for that many, so the vectors are not grown step by step.
+  p.points.reserve(in.moves.size() + 1);
+  for (auto* v : {&p.first, &p.move_of, &p.section_of}) v->reserve(in.moves.size());
+  p.arc_of.reserve(in.moves.size());
   std::vector<Vec3> pts;
   bool in_section = false;
   for (size_t i = 0; i < in.moves.size(); ++i) {
