@@ -177,9 +177,16 @@ int main(int argc, char** argv) {
       ModalInterpreter reader(dialect, sink, initial_state(dialect));
       uint32_t line = 0;
       size_t moves = 0;
+      Program p;
+      Interpretation in;
       for (size_t at = 0; at < text.size();) {
-        Program p;
-        Interpretation in;
+        // Each piece read into the last one's buffers, emptied, as the engine reads it.
+        p.text.clear();
+        p.blocks.clear();
+        p.words.clear();
+        in.moves.clear();
+        in.move_of_block.clear();
+        in.unplaced.clear();
         reserve_piece(p, in);
         reader.begin(p, in);
         while (at < text.size() && p.text.size() < kPieceBytes) {

@@ -52,7 +52,7 @@ class Interpreter {
   }
 
   void step(uint32_t bi) {
-    if (o_->move_of_block.size() <= bi) o_->move_of_block.resize(bi + 1, -1);
+    while (o_->move_of_block.size() <= bi) o_->move_of_block.push_back(-1);
     block(bi, p_->blocks[bi]);
   }
 
