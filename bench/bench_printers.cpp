@@ -249,8 +249,7 @@ int main(int argc, char** argv) {
     const size_t aw = ref == reference.end() ? 0 : band == 0.025 ? ref->second.at_025 : ref->second.at_010;
     const double program = r.comparison.max_deviation_mm, executed = r.check.max_deviation_mm;
     // A smooth joint over the G1 angle that the fit did not report as forced breaks the promise.
-    const size_t unforced =
-        r.comparison.smooth_joints_over_g1 > r.forced_kinks ? r.comparison.smooth_joints_over_g1 - r.forced_kinks : 0;
+    const size_t unforced = r.unforced_kink_lines().size();
     violations += (program > band) + (executed > band) + unforced;
     wins += aw && blocks <= aw;
     ++rows;

@@ -6,12 +6,15 @@
 #include <unistd.h>
 #include <stdlib.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <cstdio>
 #include <iostream>
+#include <iterator>
 #include <string>
+#include <vector>
 
 #include "arcpress/api/arcpress.hpp"
 #include "arcpress/api/compressor.hpp"
@@ -257,24 +260,36 @@ int run_compress(const CompressArgs& a) {
       // The check measures exactly only what is over a twentieth of the band.
       const double floor_mm = kExactShare * r.band_mm;
       if (r.check.max_deviation_mm < floor_mm) where = fmt::format(", under {:.6f} mm everywhere (measured no closer)", floor_mm);
+      const std::vector<uint32_t> unforced = r.unforced_kink_lines();
       fmt::print(stderr,
                  "  deviation      {:.6f} mm max (band {} mm{}){}\n"
-                 "  smooth joints  {} made, max kink {:.3f} deg, {} over {} deg ({} forced by the band or the digits)\n",
+                 "  smooth joints  {} made, max kink {:.3f} deg, {} over {} deg{}\n",
                  r.check.max_deviation_mm, r.band_mm,
                  opt.executed_rule().moves_on_chords()
                      ? fmt::format(", on the path {}'s firmware moves: arcs as its chords",
                                    rule_name(opt.executed_rule().rule))
                      : std::string(", on the programmed path"),
-                 where, c.smooth_joints, c.max_smooth_kink_deg,
-                 c.smooth_joints_over_g1, a.opt.fit.g1_angle_deg, r.forced_kinks);
+                 where, c.smooth_joints, c.max_smooth_kink_deg, c.smooth_joints_over_g1, a.opt.fit.g1_angle_deg,
+                 c.smooth_joints_over_g1 == 0 ? std::string()
+                 : unforced.empty()           ? std::string(", each forced by the band or the digits")
+                                              : fmt::format(", {} of them not forced (at input line {})", unforced.size(),
+                                                            unforced.front()));
     } else {
       fmt::print(stderr,
                  "  deviation      not measured (--no-verify)\n"
                  "  smooth joints  {} forced by the band or the digits to change tangent (others not measured)\n",
                  r.forced_kinks);
     }
-    // Where the tangent had to break: the input lines of the first few such joints.
-    if (const auto& at = r.forced_kink_lines; !at.empty()) {
+    // Where the tangent had to break: the input lines of the first few such joints; where the
+    // output was read back, those of them that turn by more than the G1 angle as read.
+    std::vector<uint32_t> at = r.forced_kink_lines;
+    if (r.verified) {
+      std::vector<uint32_t> over = r.comparison.kink_lines, both;
+      std::sort(over.begin(), over.end());
+      std::set_intersection(at.begin(), at.end(), over.begin(), over.end(), std::back_inserter(both));
+      at.swap(both);
+    }
+    if (!at.empty()) {
       constexpr size_t kShown = 10;
       const std::vector<uint32_t> first(at.begin(), at.begin() + static_cast<long>(std::min(at.size(), kShown)));
       fmt::print(stderr, "  forced at      input line{} {}{}\n", at.size() > 1 ? "s" : "", fmt::join(first, ", "),

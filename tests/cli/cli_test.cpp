@@ -153,6 +153,8 @@ TEST_CASE("the stats name the input lines where the band forced the tangent to b
     if (named.peek() == ',') named.ignore();
   }
   CHECK(count >= 1);
+  // The joints over the G1 angle as read back are named, each one the fit reported forced.
+  CHECK(c.err.find(fmt::format("{} over 0.5 deg, each forced by the band or the digits", count)) != std::string::npos);
   auto kept = run_arcpress("--stats --method keep", dome);
   CHECK(kept.err.find("forced at") == std::string::npos);
 }

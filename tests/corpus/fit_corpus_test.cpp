@@ -64,9 +64,7 @@ TEST_CASE("every corpus file compresses inside the band with its non-motion line
       CHECK(planes_out == planes_in + r.stats.plane_words_added);
       // Joints as the output reads back (after rounding), against the fitter's own account;
       // joints between runs, and between a run and a lone move, count as much as any.
-      std::vector<uint32_t> unreported;
-      std::set_difference(r.comparison.kink_lines.begin(), r.comparison.kink_lines.end(), r.forced_kink_lines.begin(),
-                          r.forced_kink_lines.end(), std::back_inserter(unreported));
+      const std::vector<uint32_t> unreported = r.unforced_kink_lines();
       INFO(fmt::format("kinks over {} deg at input lines {} that the fitter did not report as forced",
                        opt.fit.g1_angle_deg, fmt::join(unreported.begin(), unreported.begin() + std::min<size_t>(unreported.size(), 20), " ")));
       CHECK(unreported.empty());

@@ -1,7 +1,9 @@
 #pragma once
 // The C++ façade: one call runs the whole pipeline on a program held in memory.
 // lex -> interpret -> extract runs -> fit -> emit (-> verify).
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <optional>
 #include <span>
 #include <string>
@@ -65,7 +67,10 @@ struct CompressResult {
   size_t bytes_in = 0;
   size_t bytes_out = 0;
   EmitStats stats;
-  size_t forced_kinks = 0;   ///< smooth joints where the band forced a tangent change
+  /// Joints where the fit could not keep the tangent (the band, or the digits, forced a
+  /// change): the fitter's account, which also names joints that turned out within the G1
+  /// angle as read back, or that the check does not count as smooth.
+  size_t forced_kinks = 0;
   /// Where they are: the input line of the move that starts at each, in order.
   std::vector<uint32_t> forced_kink_lines;
   size_t g1_moves = 0;       ///< G1 moves in the input
@@ -87,6 +92,16 @@ struct CompressResult {
   PathComparison comparison;
   /// True when the output may be used: read fine and, when verified, the same program as
   /// the input within the band, move by move and as a whole.
+  /// The smooth joints the check found turning by more than the G1 angle
+  /// (comparison.kink_lines) that the fit did not report as forced, by input line: a
+  /// broken promise wherever it is not empty.
+  std::vector<uint32_t> unforced_kink_lines() const {
+    std::vector<uint32_t> over = comparison.kink_lines, forced = forced_kink_lines, out;
+    std::sort(over.begin(), over.end());
+    std::sort(forced.begin(), forced.end());
+    std::set_difference(over.begin(), over.end(), forced.begin(), forced.end(), std::back_inserter(out));
+    return out;
+  }
   bool within_band() const {
     return !verified || (check.agrees(band_mm) && (check.compared_all() || unplaced_kept) && comparison.within(band_mm));
   }
