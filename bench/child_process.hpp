@@ -1,6 +1,6 @@
 #pragma once
 // Runs a command as a child process, its standard output and error thrown away, and reports
-// what the kernel measured of it: wall seconds and peak resident set (wait4).
+// what the kernel measured of it: wall seconds, peak resident set and page faults (wait4).
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/resource.h>
@@ -20,6 +20,7 @@ struct ChildRun {
   int exit_code = -1;       ///< -1: it could not start, or a signal ended it
   double seconds = 0;       ///< wall time
   double peak_mib = 0;      ///< peak resident set, MiB
+  long minor_faults = 0;    ///< pages the kernel mapped in for it (no disk read)
 };
 
 /// Runs `words` (the program first) and waits for it.
@@ -42,6 +43,7 @@ inline ChildRun run_child(std::vector<std::string> words) {
   if (wait4(pid, &status, 0, &use) != pid) return r;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.peak_mib = double(use.ru_maxrss) / 1024.0;  // kilobytes on Linux
+  r.minor_faults = use.ru_minflt;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
 }

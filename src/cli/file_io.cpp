@@ -117,8 +117,11 @@ std::string InputFile::tail(size_t n) const {
 std::string read_input(const std::string& path) {
   InputFile in(path);
   std::string data;
-  if (in.size()) data.reserve(*in.size());
-  while (in.read(data, size_t(1) << 16) > 0) {
+  constexpr size_t kChunk = size_t(1) << 16;
+  // Room for the whole file and for the chunk each read asks room for, so that the last
+  // reads do not move it all to a larger buffer.
+  if (in.size()) data.reserve(*in.size() + kChunk);
+  while (in.read(data, kChunk) > 0) {
   }
   return data;
 }

@@ -361,6 +361,7 @@ int main(int argc, char** argv) {
   // what is freed for the next rather than give it back and fault it in again.
   ::mallopt(M_MMAP_THRESHOLD, 64 << 20);
   ::mallopt(M_TRIM_THRESHOLD, 128 << 20);
+  ::mallopt(M_TOP_PAD, 32 << 20);
   cli::remove_temporary_files_on_signals();
   CLI::App app{
       "arcpress: replaces runs of short G1 moves in a G-code program with the fewest\n"

@@ -101,10 +101,12 @@ constexpr size_t kShareSegments = 65536;
 
 Path path_of(const Interpretation& in, double chord_mm, double tolerance_mm) {
   Path p;
-  // Most moves are one segment: room for that many, so the vectors are not grown step by step.
-  p.points.reserve(in.moves.size() + 1);
-  for (auto* v : {&p.first, &p.move_of, &p.section_of}) v->reserve(in.moves.size());
-  p.arc_of.reserve(in.moves.size());
+  // Room for a segment and a half per move (most moves are one segment; arcs and long
+  // travels are several), so the vectors are seldom grown step by step.
+  const size_t room = in.moves.size() + in.moves.size() / 2 + 1;
+  p.points.reserve(room);
+  for (auto* v : {&p.first, &p.move_of, &p.section_of}) v->reserve(room);
+  p.arc_of.reserve(room);
   std::vector<Vec3> pts;
   bool in_section = false;
   for (size_t i = 0; i < in.moves.size(); ++i) {
