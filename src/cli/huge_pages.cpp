@@ -10,6 +10,7 @@
 // `arcpress diff` of the bunny and its compressed output runs in less than half the time
 // (docs/benchmarks.md). Where the system decides otherwise the requests change nothing.
 #include <sys/mman.h>
+#include <sys/syscall.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -37,9 +38,10 @@ void advise(std::uintptr_t begin, std::uintptr_t end) {
 /// The heap's end up to which huge pages were asked for (0: not yet looked at).
 std::atomic<std::uintptr_t> heap_advised{0};
 
-/// Asks for huge pages over what the heap grew by since the last look.
+/// Asks for huge pages over what the heap grew by since the last look. (The break is asked
+/// of the kernel: sbrk(0) reads malloc's copy, which another thread may be writing.)
 void advise_heap_growth() {
-  const std::uintptr_t end = reinterpret_cast<std::uintptr_t>(::sbrk(0));
+  const std::uintptr_t end = static_cast<std::uintptr_t>(::syscall(SYS_brk, 0));
   std::uintptr_t from = heap_advised.load(std::memory_order_relaxed);
   if (from == 0) {  // the heap so far holds the small start-up allocations: left as it is
     heap_advised.compare_exchange_strong(from, huge_page_below(end));
