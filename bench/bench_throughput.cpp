@@ -10,7 +10,10 @@
 // runs on each core, and its best rate, the reader and the one-thread compression are taken
 // on the core that gave it, so each ratio compares like with like; the all-threads
 // compression runs on every core.
-//   bench_throughput [--markdown] [PARSE_CEILING]
+// With --stages, where one thread's time goes instead: the reader alone, the pipeline writing
+// every move as it is without the check (--method keep --no-verify), fitting without the
+// check (--no-verify), and the default, as MB/s and as shares of the default's time.
+//   bench_throughput [--markdown] [--stages] [PARSE_CEILING]
 // With --markdown, the table alone, as docs/streaming.md shows it (scripts/docs_figures.sh).
 #include <fmt/format.h>
 
@@ -96,8 +99,7 @@ struct Streamed {
   size_t lines_out = 0;
 };
 
-Streamed stream(const std::string& text, unsigned threads) {
-  CompressOptions opt;
+Streamed stream(const std::string& text, unsigned threads, CompressOptions opt = {}) {
   opt.threads = threads;
   DiagnosticSink sink;
   Compressor c("bench", opt, sink);
@@ -117,11 +119,49 @@ Streamed stream(const std::string& text, unsigned threads) {
   return s;
 }
 
+/// Seconds (best of kRepeats) to read `text` as the engine's reader does: line by line into
+/// pieces of kPieceBytes, each read on from the state the last one ended in.
+double read_seconds(const std::string& text) {
+  return best_seconds([&] {
+    DiagnosticSink sink;
+    const Dialect dialect;
+    ModalInterpreter reader(dialect, sink, initial_state(dialect));
+    uint32_t line = 0;
+    size_t moves = 0;
+    Program p;
+    Interpretation in;
+    for (size_t at = 0; at < text.size();) {
+      // Each piece read into the last one's buffers, emptied, as the engine reads it.
+      p.text.clear();
+      p.blocks.clear();
+      p.words.clear();
+      in.moves.clear();
+      in.move_of_block.clear();
+      in.unplaced.clear();
+      reserve_piece(p, in);
+      reader.begin(p, in);
+      while (at < text.size() && p.text.size() < kPieceBytes) {
+        const size_t nl = text.find('\n', at);
+        const size_t end = nl == std::string::npos ? text.size() : nl + 1;
+        const size_t begin = p.text.size();
+        p.text.append(text, at, end - at);
+        lex_line(p, begin, p.text.size(), ++line, sink);
+        reader.step(uint32_t(p.blocks.size() - 1));
+        at = end;
+      }
+      moves += in.moves.size();
+    }
+    if (moves == 0) std::puts("");
+  });
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const bool markdown = argc > 1 && std::string(argv[1]) == "--markdown";
   if (markdown) --argc, ++argv;
+  const bool stages = argc > 1 && std::string(argv[1]) == "--stages";
+  if (stages) --argc, ++argv;
   const std::string ceiling = argc > 1 ? argv[1] : ARCPRESS_PARSE_CEILING;
   const fs::path corpus = ARCPRESS_CORPUS_DIR;
   const fs::path bunny = corpus / "printer" / "prusaslicer-2.5_bunny_marlin.gcode";
@@ -146,7 +186,14 @@ int main(int argc, char** argv) {
   }};
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   const std::vector<int> every = allowed_cores();
-  if (markdown) {
+  if (stages && markdown) {
+    fmt::print("| file | MB | tokenizer MB/s | read MB/s | keep, unchecked | fit, unchecked | default | read | rest of "
+               "the pipeline | fit | check |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
+  } else if (stages) {
+    fmt::print("one thread's time by stage (MB/s, then shares of the default's time), best of {}\n", kRepeats);
+    fmt::print("{:<10} {:>6} {:>9} | {:>7} {:>7} {:>7} {:>7} | {:>6} {:>6} {:>6} {:>6}\n", "file", "MB", "tokenizer", "read",
+               "keep", "fit", "default", "read", "rest", "fit", "check");
+  } else if (markdown) {
     fmt::print("| file | MB | tokenizer MB/s | read MB/s | ratio | compress, 1 thread | ratio | {} threads | ratio | gain | "
                "lines out | max deviation mm |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n",
                cores);
@@ -169,39 +216,25 @@ int main(int argc, char** argv) {
       if (const auto r = ceiling_mb_s(ceiling, file); r && *r > tok.value_or(0.0)) tok = r, core = c;
     }
     if (core >= 0) pin({core});
-    // The reader as the engine runs it: line by line into pieces of kPieceBytes, each read
-    // on from the state the last one ended in.
-    const double read_s = best_seconds([&] {
-      DiagnosticSink sink;
-      const Dialect dialect;
-      ModalInterpreter reader(dialect, sink, initial_state(dialect));
-      uint32_t line = 0;
-      size_t moves = 0;
-      Program p;
-      Interpretation in;
-      for (size_t at = 0; at < text.size();) {
-        // Each piece read into the last one's buffers, emptied, as the engine reads it.
-        p.text.clear();
-        p.blocks.clear();
-        p.words.clear();
-        in.moves.clear();
-        in.move_of_block.clear();
-        in.unplaced.clear();
-        reserve_piece(p, in);
-        reader.begin(p, in);
-        while (at < text.size() && p.text.size() < kPieceBytes) {
-          const size_t nl = text.find('\n', at);
-          const size_t end = nl == std::string::npos ? text.size() : nl + 1;
-          const size_t begin = p.text.size();
-          p.text.append(text, at, end - at);
-          lex_line(p, begin, p.text.size(), ++line, sink);
-          reader.step(uint32_t(p.blocks.size() - 1));
-          at = end;
-        }
-        moves += in.moves.size();
-      }
-      if (moves == 0) std::puts("");
-    });
+    const double read_s = read_seconds(text);
+    if (stages) {
+      // One thread, the stages added one at a time: the reader alone; the whole pipeline
+      // writing every move as it is, unchecked; fitting, unchecked; and checking (the default).
+      CompressOptions keep, unchecked;
+      keep.fit.method = FitOptions::Method::Keep;
+      keep.verify = unchecked.verify = false;
+      Streamed r;
+      const double keep_s = best_seconds([&] { r = stream(text, 1, keep); });
+      const double fit_s = best_seconds([&] { r = stream(text, 1, unchecked); });
+      const double full_s = best_seconds([&] { r = stream(text, 1); });
+      auto share = [&](double s) { return fmt::format("{:.0f} %", 100 * s / full_s); };
+      fmt::print(fmt::runtime(markdown ? "| {} | {:.1f} | {} | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {} | {} | {} | {} |\n"
+                                       : "{:<10} {:>6.1f} {:>9} | {:>7.1f} {:>7.1f} {:>7.1f} {:>7.1f} | {:>6} {:>6} {:>6} {:>6}\n"),
+                 name, mb, tok ? fmt::format("{:.0f}", *tok) : "-", mb / read_s, mb / keep_s, mb / fit_s, mb / full_s,
+                 share(read_s), share(keep_s - read_s), share(fit_s - keep_s), share(full_s - fit_s));
+      std::fflush(stdout);
+      continue;
+    }
     Streamed one, many;
     const double one_s = best_seconds([&] { one = stream(text, 1); });
     if (!every.empty()) pin(every);
@@ -218,6 +251,7 @@ int main(int argc, char** argv) {
     std::fflush(stdout);
   }
   fs::remove_all(dir);
-  if (!markdown) fmt::print("MB/s; ratio: of the tokenizer's MB/s on the same file; gain: 1 thread's time over all threads'\n");
+  if (!markdown && !stages)
+    fmt::print("MB/s; ratio: of the tokenizer's MB/s on the same file; gain: 1 thread's time over all threads'\n");
   return all_ok ? 0 : 1;
 }

@@ -3,8 +3,8 @@
 # so that none goes stale: each table sits between `<!-- figures: NAME -->` and
 # `<!-- /figures -->` and is replaced whole by what its command prints now.
 #   scripts/docs_figures.sh [NAME...]     (default: every table; needs `scripts/build.sh --test`)
-# Tables: corpus (README: scripts/corpus_table.sh 0.01), throughput (docs/streaming.md:
-# bench_throughput), memory (docs/streaming.md: bench_memory, about a minute), and the
+# Tables: corpus (README: scripts/corpus_table.sh 0.01), throughput and stages
+# (docs/streaming.md: bench_throughput, bench_throughput --stages), memory (docs/streaming.md: bench_memory, about a minute), and the
 # benches' own output in docs/benchmarks.md: curves (bench_curves 1, about a minute), diff
 # (bench_diff), pathological (bench_pathological); printers and printer-causes in
 # docs/printers.md (bench_printers, about a minute).
@@ -30,13 +30,14 @@ PY
 )
 
 wanted=("$@")
-[ ${#wanted[@]} -eq 0 ] && wanted=(corpus throughput memory curves diff pathological printers printer-causes)
+[ ${#wanted[@]} -eq 0 ] && wanted=(corpus throughput stages memory curves diff pathological printers printer-causes)
 # A bench's own output, as a block of text.
 as_text() { printf '```text\n%s\n```\n' "$(cat)"; }
 for name in "${wanted[@]}"; do
   case $name in
     corpus) bash scripts/corpus_table.sh 0.01 | replace README.md corpus ;;
     throughput) ./build/bench/bench_throughput --markdown | replace docs/streaming.md throughput ;;
+    stages) ./build/bench/bench_throughput --markdown --stages | replace docs/streaming.md stages ;;
     memory)
       out=$(./build/bench/bench_memory --markdown) || { echo "$out" >&2; echo "docs_figures: bench_memory failed" >&2; exit 1; }
       replace docs/streaming.md memory <<<"$out" ;;
@@ -45,6 +46,6 @@ for name in "${wanted[@]}"; do
     pathological) ./build/bench/bench_pathological | as_text | replace docs/benchmarks.md pathological ;;
     printers) ./build/bench/bench_printers --markdown | replace docs/printers.md printers ;;
     printer-causes) ./build/bench/bench_printers --causes | replace docs/printers.md printer-causes ;;
-    *) echo "docs_figures: no table '$name' (corpus, throughput, memory, curves, diff, pathological, printers, printer-causes)" >&2; exit 2 ;;
+    *) echo "docs_figures: no table '$name' (corpus, throughput, stages, memory, curves, diff, pathological, printers, printer-causes)" >&2; exit 2 ;;
   esac
 done
