@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <optional>
 
@@ -103,7 +104,7 @@ class Interpreter {
 
     bool repeated = false;  // a word the controller refuses to see twice
     uint32_t letters_seen = 0;
-    for (auto* w = p_->words_begin(b); w != p_->words_end(b); ++w) {
+    for (const Word *w = p_->words_begin(b), *end = p_->words_end(b); w != end; ++w) {
       char L = w->letter;
       if (kOncePerBlock[uint8_t(L - 'A') & 31] && L >= 'A' && L <= 'Z' && !w->flag) {
         const uint32_t bit = 1u << (L - 'A');
@@ -277,15 +278,23 @@ class Interpreter {
     AxisValues target = s_.pos;
     uint32_t known_after = s_.known;
     uint32_t written = 0;  // axes this block writes
+    // Why each axis is unknown after the block: as before it, unless the block gives a reason
+    // of its own (the copy is made then: most blocks give none).
     Unfit after_why[kAxisCount];
-    for (int ax = 0; ax < kAxisCount; ++ax) after_why[ax] = s_.why[ax].reason;
-    bool reasons_changed = false;  // this block makes an axis unknown for a reason of its own
-    for (int ax = 0; ax < kAxisCount; ++ax) {
-      if (!((words_seen >> ax) & 1u)) continue;
+    bool reasons_changed = false;
+    auto set_why = [&](int ax, Unfit why) {
+      if (!reasons_changed)
+        for (int k = 0; k < kAxisCount; ++k) after_why[k] = s_.why[k].reason;
+      reasons_changed = true;
+      after_why[ax] = why;
+    };
+    auto why_after = [&](int ax) { return reasons_changed ? after_why[ax] : s_.why[ax].reason; };
+    for (uint32_t axes = words_seen; axes != 0; axes &= axes - 1) {
+      const int ax = std::countr_zero(axes);
       written |= 1u << ax;
       if ((expr_axis >> ax) & 1u) {
         known_after &= ~(1u << ax);
-        after_why[ax] = Unfit::UnknownAfterExpression, reasons_changed = true;
+        set_why(ax, Unfit::UnknownAfterExpression);
         continue;
       }
       double v = value[ax];
@@ -294,7 +303,7 @@ class Interpreter {
       bool relative = ax == kE ? fr.e_relative : !fr.absolute;
       if (g53) {
         known_after &= ~(1u << ax);  // machine coordinates: not in our frame
-        after_why[ax] = Unfit::UnknownAfterMachine, reasons_changed = true;
+        set_why(ax, Unfit::UnknownAfterMachine);
         target[ax] = v * scale;
       } else if (relative) {
         target[ax] = s_.pos[ax] + v * scale;
@@ -326,13 +335,13 @@ class Interpreter {
       if ((unknown_moved >> ax) & 1u) {
         // The axis unknown at the start says why; one this block makes unknown, this block.
         const bool at_start = !((s_.known >> ax) & 1u);
-        unplaced_why = at_start ? s_.why[ax].reason : after_why[ax];
+        unplaced_why = at_start ? s_.why[ax].reason : why_after(ax);
         s_.cause_line = at_start ? s_.why[ax].line : b.line;
         break;
       }
     if (kind == MoveKind::Other && s_.motion != 0) {  // cycles end where they like
       for (int ax : {kX, kY, kZ})
-        if ((known_after >> ax) & 1u) after_why[ax] = Unfit::UnknownAfterCycle, reasons_changed = true;
+        if ((known_after >> ax) & 1u) set_why(ax, Unfit::UnknownAfterCycle);
       known_after &= ~kXyzMask;
     }
     Move& m = add_move(bi, kind, target, known, turns);
@@ -373,7 +382,7 @@ class Interpreter {
     s_.known = known_after;
     for (int ax = 0; ax < kAxisCount && (known_changed || reasons_changed); ++ax) {
       if ((s_.known >> ax) & 1u) s_.why[ax] = {Unfit::None, 0};
-      else if (after_why[ax] != s_.why[ax].reason) s_.why[ax] = {after_why[ax], b.line};
+      else if (why_after(ax) != s_.why[ax].reason) s_.why[ax] = {why_after(ax), b.line};
     }
   }
 
