@@ -6,10 +6,10 @@
 // every hardware thread, in MB/s and as a share of it; and the fit's quality: blocks out and
 // the measured maximum deviation. Best of three runs each.
 // The cores of a shared machine need not run alike (here one ran the tokenizer at half the
-// other's rate, run after run, and which one changed over minutes): per file, the tokenizer
-// runs on each core, and its best rate, the reader and the one-thread compression are taken
-// on the core that gave it, so each ratio compares like with like; the all-threads
-// compression runs on every core.
+// other's rate, run after run, and which one changed over minutes): per file, a run of the
+// tokenizer on each core picks the faster, and there the tokenizer, the reader and the
+// one-thread compression run in turns, the best of three rounds each, so that each ratio
+// compares like with like; the all-threads compression runs on every core.
 // With --stages, where one thread's time goes instead: the reader alone, the pipeline writing
 // every move as it is without the check (--method keep --no-verify), fitting without the
 // check (--no-verify), and the default, as MB/s and as shares of the default's time.
@@ -75,14 +75,6 @@ std::optional<double> ceiling_once(const std::string& exe, const fs::path& file)
   return mb_s;
 }
 
-/// The tokenizer's best MB/s on `file` over kRepeats runs.
-std::optional<double> ceiling_mb_s(const std::string& exe, const fs::path& file) {
-  std::optional<double> best;
-  for (int k = 0; k < kRepeats; ++k)
-    if (const auto r = ceiling_once(exe, file)) best = std::max(best.value_or(0.0), *r);
-  return best;
-}
-
 template <class F>
 double best_seconds(F&& f) {
   double best = 1e9;
@@ -119,10 +111,11 @@ Streamed stream(const std::string& text, unsigned threads, CompressOptions opt =
   return s;
 }
 
-/// Seconds (best of kRepeats) to read `text` as the engine's reader does: line by line into
-/// pieces of kPieceBytes, each read on from the state the last one ended in.
+/// Seconds to read `text` once as the engine's reader does: line by line into pieces of
+/// kPieceBytes, each read on from the state the last one ended in.
 double read_seconds(const std::string& text) {
-  return best_seconds([&] {
+  const auto t0 = clk::now();
+  {
     DiagnosticSink sink;
     const Dialect dialect;
     ModalInterpreter reader(dialect, sink, initial_state(dialect));
@@ -152,7 +145,16 @@ double read_seconds(const std::string& text) {
       moves += in.moves.size();
     }
     if (moves == 0) std::puts("");
-  });
+  }
+  return std::chrono::duration<double>(clk::now() - t0).count();
+}
+
+/// Seconds that one call of `f` took.
+template <class F>
+double seconds_of(F&& f) {
+  const auto t0 = clk::now();
+  f();
+  return std::chrono::duration<double>(clk::now() - t0).count();
 }
 
 }  // namespace
@@ -207,16 +209,23 @@ int main(int argc, char** argv) {
   for (const auto& [name, file] : files) {
     const std::string text = file_text(file);
     const double mb = double(text.size()) / 1e6;
-    // The fastest core for this file, by the tokenizer; it runs there, as do the reader
-    // and the one-thread compression.
-    std::optional<double> tok = every.empty() ? ceiling_mb_s(ceiling, file) : std::nullopt;
+    // The fastest core for this file, by a run of the tokenizer on each; the tokenizer, the
+    // reader and the one-thread compression then run there, in turns (one run of each per
+    // round, the best of kRepeats rounds), so that a core slowing down over the minutes
+    // slows all alike.
     int core = -1;
+    double probe = 0;
     for (int c : every) {
       pin({c});
-      if (const auto r = ceiling_mb_s(ceiling, file); r && *r > tok.value_or(0.0)) tok = r, core = c;
+      if (const auto r = ceiling_once(ceiling, file); r && *r > probe) probe = *r, core = c;
     }
     if (core >= 0) pin({core});
-    const double read_s = read_seconds(text);
+    std::optional<double> tok;
+    double read_s = 1e9;
+    auto tokenizer_and_reader = [&] {
+      if (const auto r = ceiling_once(ceiling, file)) tok = std::max(tok.value_or(0.0), *r);
+      read_s = std::min(read_s, read_seconds(text));
+    };
     if (stages) {
       // One thread, the stages added one at a time: the reader alone; the whole pipeline
       // writing every move as it is, unchecked; fitting, unchecked; and checking (the default).
@@ -224,9 +233,13 @@ int main(int argc, char** argv) {
       keep.fit.method = FitOptions::Method::Keep;
       keep.verify = unchecked.verify = false;
       Streamed r;
-      const double keep_s = best_seconds([&] { r = stream(text, 1, keep); });
-      const double fit_s = best_seconds([&] { r = stream(text, 1, unchecked); });
-      const double full_s = best_seconds([&] { r = stream(text, 1); });
+      double keep_s = 1e9, fit_s = 1e9, full_s = 1e9;
+      for (int k = 0; k < kRepeats; ++k) {
+        tokenizer_and_reader();
+        keep_s = std::min(keep_s, seconds_of([&] { r = stream(text, 1, keep); }));
+        fit_s = std::min(fit_s, seconds_of([&] { r = stream(text, 1, unchecked); }));
+        full_s = std::min(full_s, seconds_of([&] { r = stream(text, 1); }));
+      }
       auto share = [&](double s) { return fmt::format("{:.0f} %", 100 * s / full_s); };
       fmt::print(fmt::runtime(markdown ? "| {} | {:.1f} | {} | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {} | {} | {} | {} |\n"
                                        : "{:<10} {:>6.1f} {:>9} | {:>7.1f} {:>7.1f} {:>7.1f} {:>7.1f} | {:>6} {:>6} {:>6} {:>6}\n"),
@@ -236,7 +249,11 @@ int main(int argc, char** argv) {
       continue;
     }
     Streamed one, many;
-    const double one_s = best_seconds([&] { one = stream(text, 1); });
+    double one_s = 1e9;
+    for (int k = 0; k < kRepeats; ++k) {
+      tokenizer_and_reader();
+      one_s = std::min(one_s, seconds_of([&] { one = stream(text, 1); }));
+    }
     if (!every.empty()) pin(every);
     const double many_s = best_seconds([&] { many = stream(text, 0); });
     const bool same = one.lines_out == many.lines_out && one.result.check.max_deviation_mm == many.result.check.max_deviation_mm;
