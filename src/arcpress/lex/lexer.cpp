@@ -174,7 +174,7 @@ class LineLexer {
     }
     const size_t start = k;
     Number n = scan_plain_number(k);
-    if (n.blank_inside) {
+    if (n.rescan) {
       k = start;
       n = scan_number(k);
     }
@@ -207,7 +207,9 @@ class LineLexer {
     int digits = 0, decimals = 0;
     bool point = false;
     bool slow = false;          ///< more digits than `mant` holds: read by strtod
-    bool blank_inside = false;  ///< blanks with more of the number after them: scan_number() reads it
+    /// scan_number() must read it: blanks with more of the number after them, or more
+    /// digits than `mant` holds.
+    bool rescan = false;
   };
 
   /// A number written without blanks (what nearly every program writes), from `k`, which
@@ -226,11 +228,11 @@ class LineLexer {
       ++k;
       digits(true);
     }
-    if (n.digits >= 18) n.blank_inside = true;  // (scan_number() counts them as it must)
+    if (n.digits >= 18) n.rescan = true;
     if (k < n_ && (s_[k] == ' ' || s_[k] == '\t')) {
       size_t q = k;
       while (q < n_ && (s_[q] == ' ' || s_[q] == '\t')) ++q;
-      if (q < n_ && (is_digit(s_[q]) || (s_[q] == '.' && !n.point))) n.blank_inside = true;
+      if (q < n_ && (is_digit(s_[q]) || (s_[q] == '.' && !n.point))) n.rescan = true;
     }
     return n;
   }
