@@ -28,6 +28,7 @@ void reserve_piece(Program& program, Interpretation& in) {
   in.moves.reserve(kPieceBytes / 24);
   in.move_of_block.reserve(kPieceBytes / 20);
 }
+
 namespace {
 
 /// Whether no chain of runs goes on across the end of move `m`: it is no move a fit may

@@ -34,7 +34,6 @@ constexpr auto kOncePerBlock = [] {
   return once;
 }();
 
-
 constexpr uint32_t kAllAxes = (1u << kAxisCount) - 1;
 constexpr uint32_t kXyzMask = (1u << kX) | (1u << kY) | (1u << kZ);
 /// The S in force after an S word that is an expression: constant until the next S word.
