@@ -540,10 +540,6 @@ class Emitter {
 
 }  // namespace
 
-bool sets_centre_mode(const Word& w) {
-  return w.letter == 'G' && !w.is_expr && (w.code10() == 901 || w.code10() == 911);
-}
-
 OutputHabits output_habits(const Program& p) {
   OutputHabits h;
   size_t padded = 0, plain = 0, whole_point = 0, whole_bare = 0;

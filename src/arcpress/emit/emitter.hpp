@@ -45,7 +45,9 @@ OutputHabits output_habits(const Program& program);
 
 /// Whether `w` sets the arc centre mode (G90.1 or G91.1): the dialect's arc header is then
 /// not written.
-bool sets_centre_mode(const Word& w);
+inline bool sets_centre_mode(const Word& w) {
+  return w.letter == 'G' && !w.is_expr && (w.code10() == 901 || w.code10() == 911);
+}
 
 /// How the output stands before the first block of a program emitted in pieces (a stream):
 /// the defaults are a program's start.
