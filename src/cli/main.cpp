@@ -105,6 +105,15 @@ Dialect dialect_for(const std::string& name, bool name_given, const std::string&
   return !file.empty() ? load_dialect_file(file) : find_dialect(picked, dialect_search_path(exe_dir()));
 }
 
+/// Throws Error(kExitInput), naming `option`, unless `dialect` names the arc segmentation
+/// its firmware moves along.
+void require_executed_rule(const Dialect& dialect, const char* option) {
+  if (!dialect.executed.moves_on_chords())
+    throw Error(kExitInput, fmt::format("{}: dialect {} names no arc segmentation ([arcs.executed] rule); its "
+                                        "controller moves on the programmed circles",
+                                        option, dialect.name));
+}
+
 struct CompressArgs {
   std::string input = "-";
   std::string output;
@@ -145,8 +154,7 @@ int run_compress(const CompressArgs& a) {
                                         a.opt.fit.max_radius_mm));
   CompressOptions opt = a.opt;
   opt.fit.method = method_named(a.method).value_or(FitOptions::Method::Arcs);  // (CLI11 took only known names)
-  if (a.band == "program") opt.band = CompressOptions::Band::Program;
-  if (a.band == "executed") opt.band = CompressOptions::Band::Executed;
+  if (!a.band.empty()) opt.band = band_named(a.band).value_or(CompressOptions::Band::Dialect);  // (CLI11 took only known names)
   if (a.arc_format == "ijk") opt.arc_format = ArcFormat::Centre;
   if (a.arc_format == "r") opt.arc_format = ArcFormat::Radius;
 
@@ -165,10 +173,7 @@ int run_compress(const CompressArgs& a) {
   std::string why_dialect;
   opt.dialect = dialect_for(a.dialect, a.dialect_given, a.dialect_file, chunk,
                             head == 0 || chunk.size() < head ? std::string() : input.tail(kFlavorBytes), &why_dialect);
-  if (opt.band == CompressOptions::Band::Executed && !opt.dialect.executed.moves_on_chords())
-    throw Error(kExitInput, fmt::format("--band executed: dialect {} names no arc segmentation ([arcs.executed] rule); "
-                                        "its controller moves on the programmed circles",
-                                        opt.dialect.name));
+  if (opt.band == CompressOptions::Band::Executed) require_executed_rule(opt.dialect, "--band executed");
   DiagnosticSink sink(name);
   Compressor compressor(name, opt, sink);
   cli::OutputFile out(out_path);
@@ -331,10 +336,7 @@ int run_diff(const DiffArgs& d) {
   opt.top = d.top;
   opt.threads = d.threads;
   if (d.executed) {
-    if (!dialect.executed.moves_on_chords())
-      throw Error(kExitInput, fmt::format("--executed: dialect {} names no arc segmentation ([arcs.executed] rule); "
-                                          "its controller moves on the programmed circles",
-                                          dialect.name));
+    require_executed_rule(dialect, "--executed");
     if (has_executed_chords(ia, dialect.executed)) ia = executed_path(ia, dialect.executed);
     if (has_executed_chords(ib, dialect.executed)) ib = executed_path(ib, dialect.executed);
   }

@@ -2,11 +2,13 @@
 // The C++ façade: one call runs the whole pipeline on a program held in memory.
 // lex -> interpret -> extract runs -> fit -> emit (-> verify).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iterator>
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "arcpress/core/diagnostic.hpp"
@@ -35,14 +37,14 @@ struct CompressOptions {
   /// Threads that fit runs at once; 0: one per hardware thread. Runs are independent, so
   /// the output is the same for any count.
   unsigned threads = 0;
-  /// Which path the band is held on: the programmed one (the circles as written), or the
-  /// one the firmware moves along (each arc cut into the chords of the dialect's rule,
-  /// Dialect::executed); Dialect: the latter where the dialect names a rule.
   /// A comment naming arcpress, its version and these options, written after the program's
   /// first line where that line is a comment (a slicer's own first line, which its viewer
   /// looks for) and not already followed by one; never with `passthrough`. `arcpress diff`
   /// passes over it.
   bool header = true;
+  /// Which path the band is held on: the programmed one (the circles as written), or the
+  /// one the firmware moves along (each arc cut into the chords of the dialect's rule,
+  /// Dialect::executed); Dialect: the latter where the dialect names a rule.
   enum class Band : uint8_t { Dialect, Program, Executed };
   Band band = Band::Dialect;
   /// The arc segmentation the band is held on: the dialect's where `band` asks for the
@@ -51,6 +53,16 @@ struct CompressOptions {
     return band == Band::Program ? ArcSegmentation{} : dialect.executed;
   }
 };
+
+/// The bands' names as --band and arcpress_options_set_band() take them, in the order of
+/// CompressOptions::Band ("dialect": the dialect's choice).
+inline constexpr std::array<std::string_view, 3> kBandNames{"dialect", "program", "executed"};
+/// The band of that name, if any.
+inline std::optional<CompressOptions::Band> band_named(std::string_view name) {
+  for (size_t i = 0; i < kBandNames.size(); ++i)
+    if (kBandNames[i] == name) return static_cast<CompressOptions::Band>(i);
+  return std::nullopt;
+}
 
 /// G1 moves that were put in no run, for one reason (see left_out_moves()).
 struct NotFitted {
@@ -90,8 +102,6 @@ struct CompressResult {
   /// Move by move: every output move ends on an input vertex, the deviation of each
   /// replaced stretch, and the tangent change at smooth joints (fit statistics).
   PathComparison comparison;
-  /// True when the output may be used: read fine and, when verified, the same program as
-  /// the input within the band, move by move and as a whole.
   /// The smooth joints the check found turning by more than the G1 angle
   /// (comparison.kink_lines) that the fit did not report as forced, by input line: a
   /// broken promise wherever it is not empty.
@@ -102,6 +112,8 @@ struct CompressResult {
     std::set_difference(over.begin(), over.end(), forced.begin(), forced.end(), std::back_inserter(out));
     return out;
   }
+  /// True when the output may be used: read fine and, when verified, the same program as
+  /// the input within the band, move by move and as a whole.
   bool within_band() const {
     return !verified || (check.agrees(band_mm) && (check.compared_all() || unplaced_kept) && comparison.within(band_mm));
   }

@@ -124,13 +124,12 @@ arcpress_status arcpress_options_set_strict(arcpress_options* o, int strict) {
 
 arcpress_status arcpress_options_set_band(arcpress_options* o, const char* band) {
   if (!o || !band) return ARCPRESS_BAD_INPUT;
-  using B = arcpress::CompressOptions::Band;
-  const std::string b = band;
-  if (b != "executed" && b != "program" && b != "dialect") {
-    o->error = "unknown band '" + b + "' (executed, program or dialect)";
+  const auto picked = arcpress::band_named(band);
+  if (!picked) {
+    o->error = std::string("unknown band '") + band + "' (executed, program or dialect)";
     return ARCPRESS_BAD_INPUT;
   }
-  o->options.band = b == "executed" ? B::Executed : b == "program" ? B::Program : B::Dialect;
+  o->options.band = *picked;
   o->error.clear();
   return ARCPRESS_OK;
 }

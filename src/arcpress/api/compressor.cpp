@@ -40,7 +40,8 @@ bool ends_chains(const Move& m) { return !m.fittable() && !(is_arc(m.kind) && m.
 std::string header_comment(const CompressOptions& o, char like) {
   const std::string text = fmt::format(
       "arcpress {} --tolerance {} --dialect {} --band {} --g1-angle {} --corner-angle {} --method {}", kVersion,
-      o.fit.tolerance_mm, o.dialect.name, o.executed_rule().moves_on_chords() ? "executed" : "program",
+      o.fit.tolerance_mm, o.dialect.name,
+      kBandNames[size_t(o.executed_rule().moves_on_chords() ? CompressOptions::Band::Executed : CompressOptions::Band::Program)],
       o.fit.g1_angle_deg, o.fit.corner_angle_deg, method_name(o.fit.method));
   return like == ';' ? "; " + text : "(" + text + ")";
 }
@@ -266,8 +267,6 @@ struct Compressor::Impl {
     rethrow();
   }
 
-  /// Moves the finished pieces at the front, in order, into `ready` and the result; with
-  /// `all`, waits for every piece.
   /// Puts the header comment (CompressOptions::header) into the first piece's `text` after
   /// its first line, where that is a comment the dialect reads and not followed by one
   /// already, in the same form; the lines added.
@@ -287,6 +286,8 @@ struct Compressor::Impl {
     return 1;
   }
 
+  /// Moves the finished pieces at the front, in order, into `ready` and the result; with
+  /// `all`, waits for every piece.
   void release(bool all) {
     while (true) {
       Slot slot;

@@ -188,7 +188,7 @@ std::pair<size_t, size_t> keep_real_kinks(const Interpretation& in, const RunCha
       const uint32_t start = i == 0 ? 0 : f.prims[i - 1].end_vertex;
       const Vec2 arrive = primitive_tangent(f.prims[i], at(start), at(v), true);
       const Vec2 leave = primitive_tangent(f.prims[i + 1], at(v), at(f.prims[i + 1].end_vertex), false);
-      const double turn_deg = std::atan2(std::abs(cross2(arrive, leave)), arrive.dot(leave)) * 180 / kPi;
+      const double turn_deg = rad_to_deg(std::atan2(std::abs(cross2(arrive, leave)), arrive.dot(leave)));
       return turn_deg <= fit_detail::kJointShare * g1_angle_deg;  // (the turn the fitter itself makes at most)
     };
     f.forced_at.erase(std::remove_if(f.forced_at.begin(), f.forced_at.end(), allowed), f.forced_at.end());
