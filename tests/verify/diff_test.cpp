@@ -318,6 +318,28 @@ TEST_CASE("feed is compared with the move at the same place in program order", "
   CHECK(joint.max_feed_difference_pct == 0.0);
 }
 
+TEST_CASE("a piece that bends off a short move stays paired with it rather than with a later pass nearby", "[diff]") {
+  // A prints a short move (1, 0) -> (1.128, 0) and turns back down; later a wipe at F7200
+  // passes the end of that move at 45°. B writes the short move as an arc that bulges 0.037 mm
+  // below it (inside the 0.05 mm band), so its last pieces head 45° to 60° off the move:
+  // they are still the move's, and its feed is the one to compare.
+  auto program = [](const std::string& short_move) {
+    return "G21 G90 M83\nG0 X0 Y0 Z0.2\nG1 X1 Y0 E0.1 F1200\n" + short_move +
+           "G1 X0.9 Y-0.2 E0.1\nG1 E-1 F2400\nG1 X1.08 Y-0.06 F7200\nG1 X1.16 Y0.02 E-0.1\nG1 X2 Y2\nG0 Z1\n";
+  };
+  std::string a = program("G1 X1.128 Y0 E0.02\n");
+  std::string b = program("G3 X1.128 Y0 I0.064 J0.03695 E0.02\n");
+  ProgramDiff d = diff_of(a, b, 0.05);
+  CHECK(d.max_deviation_mm < 0.05);
+  CHECK(d.max_feed_difference_pct == 0.0);
+  CHECK(d.findings.empty());
+  // A feed that did change on that move is still caught.
+  std::string b_slow = program("G3 X1.128 Y0 I0.064 J0.03695 E0.02 F900\n");
+  b_slow.replace(b_slow.find("G1 X0.9 Y-0.2 E0.1"), 18, "G1 X0.9 Y-0.2 E0.1 F1200");
+  ProgramDiff slow = diff_of(a, b_slow, 0.05);
+  CHECK(slow.max_feed_difference_pct == Approx(25.0));
+}
+
 TEST_CASE("the same path in inches and in millimetres is the same", "[diff]") {
   std::string mm = "G21 G90\nG0 X0 Y0 Z0\nG1 X25.4 Y0 F254\nG2 X50.8 Y0 I12.7 J0\nM2\n";
   std::string inch = "G20 G90\nG0 X0 Y0 Z0\nG1 X1 Y0 F10\nG2 X2 Y0 I0.5 J0\nM2\n";

@@ -474,7 +474,8 @@ bool near_feed_change(const Interpretation& in, uint32_t i, const Vec3& p, doubl
 /// order: at the middle of the B segment (away from the joints, where two moves meet), the
 /// counterpart is the first A segment from the last one paired on that lies within the band
 /// and runs roughly the same way (an arc in the band may cross the input's chords at some
-/// angle). Travel that retraces a printed line elsewhere in the program is thus not taken
+/// angle), or, for a piece of an arc that lies over the last one paired or the next, that
+/// one while the piece does not run against it. Travel that retraces a printed line elsewhere in the program is thus not taken
 /// for it. Only when no such segment follows within a window is the nearest A segment
 /// anywhere taken, if it lies ahead and runs the same way; a B segment with no counterpart
 /// is not compared, nor one whose middle is within the band of a joint where A's or B's
@@ -497,6 +498,8 @@ void compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, cons
   std::vector<size_t> section_start(sections + 1, pa.size());
   for (size_t k = pa.size(); k-- > 0;) section_start[pa.section_of[k]] = k;
   auto in_section = [&](size_t k, size_t sb) { return !same_sections || pa.section_of[k] == pb.section_of[sb]; };
+  // (An arc's closing step has no direction of its own: it is nobody's counterpart.)
+  auto directed = [&](size_t k) { return pa.arc_of[k] != Path::kClosingStep; };
   size_t cursor = 0;
   for (size_t sb = 0; sb < pb.size(); ++sb) {
     Vec3 db = pb.b(sb) - pb.a(sb);
@@ -507,18 +510,35 @@ void compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, cons
     size_t found = pa.size();
     auto search = [&](size_t from, size_t to) {
       for (size_t k = from; k < std::min(pa.size(), to) && found == pa.size(); ++k)
-        if (in_section(k, sb) && (pa.nearest(k, mid) - mid).norm() <= tolerance_mm && cosine(k, db) >= along) found = k;
+        if (in_section(k, sb) && directed(k) && (pa.nearest(k, mid) - mid).norm() <= tolerance_mm &&
+            cosine(k, db) >= along)
+          found = k;
     };
+    // The segment paired last, and the next, first; then, where a piece of a B arc runs off
+    // both by more than the window's angle, the one the whole arc lies over (both its ends
+    // within the band of it), unless the piece runs against it: an arc over a short move
+    // heads up to 90° off it inside the band, and a later pass that crosses the arc at its
+    // own heading is not the move it stands for.
+    search(cursor, cursor + 2);
+    if (found == pa.size() && pb.curved(sb)) {
+      const uint32_t arc = pb.move_of[sb];
+      const Vec3 from = xyz(ib.from(arc)), to = xyz(ib.moves[arc].to);
+      auto within = [&](size_t k, const Vec3& p) { return (pa.nearest(k, p) - p).norm() <= tolerance_mm; };
+      for (size_t k = cursor; k < std::min(pa.size(), cursor + 2) && found == pa.size(); ++k)
+        if (in_section(k, sb) && directed(k) && cosine(k, db) >= 0 && within(k, mid) && within(k, from) &&
+            within(k, to))
+          found = k;
+    }
     // The first steps of the window, then whether any segment lies within the band at all:
     // where none does (B strays from A there), the rest of the window holds no counterpart.
-    search(cursor, cursor + kWindowFirst);
+    if (found == pa.size()) search(cursor + 2, cursor + kWindowFirst);
     if (found == pa.size()) {
       if (!index_a.any_within(mid, tolerance_mm)) continue;
       search(cursor + kWindowFirst, cursor + kWindow);
     }
     if (found == pa.size()) {
       SegmentIndex::Nearest n = index_a.nearest(mid, uint32_t(std::min(cursor, pa.size() - 1)));
-      if (n.segment < cursor || !in_section(n.segment, sb) || n.distance_mm > tolerance_mm ||
+      if (n.segment < cursor || !in_section(n.segment, sb) || !directed(n.segment) || n.distance_mm > tolerance_mm ||
           cosine(n.segment, db) < same_way)
         continue;
       found = n.segment;
