@@ -8,7 +8,9 @@
 #include <iterator>
 
 #include "arcpress/api/arcpress.hpp"
+#include "arcpress/dialect/dialect_loader.hpp"
 #include "arcpress/lex/lexer.hpp"
+#include "arcpress/model/interpreter.hpp"
 #include "support.hpp"
 
 using namespace arcpress;
@@ -128,4 +130,36 @@ TEST_CASE("runs fitted, and their blocks composed, on several threads give the s
     runs += a.stats.runs;
   }
   CHECK(runs > 1000);  // threads had runs to share
+}
+
+TEST_CASE("arcpress diff finds every printer corpus file the same as its output in a wide band, read as a "
+          "controller that takes I and J for the absolute centre or for the offset",
+          "[corpus][diff]") {
+  // In a band of 0.05 mm an arc written over one short move of a slicer's perimeter heads
+  // far off that move, and the wipe that retraces the perimeter passes within the band:
+  // the feed is still compared with the perimeter's own move.
+  ARCPRESS_CORPUS_FILES_OR_SKIP(files)
+  for (const char* name : {"heidenhain-iso", "fanuc"}) {
+    const Dialect dialect = load_dialect_file(ARCPRESS_SOURCE_DIR "/dialects/" + std::string(name) + ".toml");
+    for (const auto& f : files) {
+      if (f.parent_path().filename() != "printer") continue;
+      INFO(fmt::format("{} read as {}", f.string(), name));
+      const std::string text = test::read_file(f);
+      DiagnosticSink sink(f.string());
+      CompressOptions opt;
+      opt.dialect = dialect;
+      opt.fit.tolerance_mm = 0.05;
+      const CompressResult r = compress(f.string(), text, opt, sink);
+      REQUIRE(r.within_band());
+      DiagnosticSink sa("a"), sb("b");
+      const Program pa = lex("a", text, sa), pb = lex("b", r.output, sb);
+      const Interpretation ia = interpret(pa, sa, dialect), ib = interpret(pb, sb, dialect);
+      DiffOptions dopt;
+      dopt.tolerance_mm = opt.fit.tolerance_mm;
+      const ProgramDiff d = diff_programs(pa, ia, pb, ib, dopt);
+      INFO(fmt::format("{}", fmt::join(d.findings, "; ")));
+      CHECK(d.agrees(opt.fit.tolerance_mm));
+      CHECK(d.max_feed_difference_pct == 0.0);
+    }
+  }
 }
