@@ -476,10 +476,10 @@ bool near_feed_change(const Interpretation& in, uint32_t i, const Vec3& p, doubl
 /// and runs roughly the same way (an arc in the band may cross the input's chords at some
 /// angle), or, for a piece of an arc that lies over the last one paired or the next, that
 /// one while the piece does not run against it. Travel that retraces a printed line
-/// elsewhere in the program is thus not taken for it. Only when no such segment follows within a window is the nearest A segment
-/// anywhere taken, if it lies ahead and runs the same way; a B segment with no counterpart
-/// is not compared, nor one whose middle is within the band of a joint where A's or B's
-/// feed changes. `visit(a_move, b_move, point)`.
+/// elsewhere in the program is thus not taken for it. Only when no such segment follows
+/// within a window is the nearest A segment anywhere taken, if it lies ahead and runs the
+/// same way; a B segment with no counterpart is not compared, nor one whose middle is within
+/// the band of a joint where A's or B's feed changes. `visit(a_move, b_move, point)`.
 template <class Visit>
 void compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, const Interpretation& ib,
                   const SegmentIndex& index_a, double tolerance_mm, Visit&& visit) {
