@@ -8,9 +8,19 @@
 #include <iterator>
 #include <random>
 
+#include "arcpress/lex/lexer.hpp"
+#include "arcpress/model/interpreter.hpp"
+
 namespace fs = std::filesystem;
 
 namespace arcpress::test {
+
+ProgramDiff diff_texts(const std::string& a, const std::string& b, const DiffOptions& opt, const Dialect& dialect) {
+  DiagnosticSink sa("a.nc"), sb("b.nc");
+  const Program pa = lex("a.nc", a, sa), pb = lex("b.nc", b, sb);
+  const Interpretation ia = interpret(pa, sa, dialect), ib = interpret(pb, sb, dialect);
+  return diff_programs(pa, ia, pb, ib, opt);
+}
 
 std::vector<fs::path> corpus_files() {
   std::vector<fs::path> files;

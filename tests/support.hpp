@@ -4,11 +4,17 @@
 #include <string>
 #include <vector>
 
+#include "arcpress/dialect/dialect.hpp"
+#include "arcpress/verify/program_diff.hpp"
+
 namespace arcpress::test {
 
 /// All files of the development corpus (sorted), or empty when the folder is absent.
 std::vector<std::filesystem::path> corpus_files();
 std::string read_file(const std::filesystem::path& p);
+/// Programs `a` and `b` read with `dialect` and compared as `arcpress diff` compares them.
+ProgramDiff diff_texts(const std::string& a, const std::string& b, const DiffOptions& opt,
+                       const Dialect& dialect = Dialect{});
 void write_file(const std::filesystem::path& p, const std::string& data);
 
 struct Command {

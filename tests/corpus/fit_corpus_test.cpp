@@ -10,7 +10,6 @@
 #include "arcpress/api/arcpress.hpp"
 #include "arcpress/dialect/dialect_loader.hpp"
 #include "arcpress/lex/lexer.hpp"
-#include "arcpress/model/interpreter.hpp"
 #include "support.hpp"
 
 using namespace arcpress;
@@ -151,12 +150,9 @@ TEST_CASE("arcpress diff finds every printer corpus file the same as its output 
       opt.fit.tolerance_mm = 0.05;
       const CompressResult r = compress(f.string(), text, opt, sink);
       REQUIRE(r.within_band());
-      DiagnosticSink sa("a"), sb("b");
-      const Program pa = lex("a", text, sa), pb = lex("b", r.output, sb);
-      const Interpretation ia = interpret(pa, sa, dialect), ib = interpret(pb, sb, dialect);
       DiffOptions dopt;
       dopt.tolerance_mm = opt.fit.tolerance_mm;
-      const ProgramDiff d = diff_programs(pa, ia, pb, ib, dopt);
+      const ProgramDiff d = test::diff_texts(text, r.output, dopt, dialect);
       INFO(fmt::format("{}", fmt::join(d.findings, "; ")));
       CHECK(d.agrees(opt.fit.tolerance_mm));
       CHECK(d.max_feed_difference_pct == 0.0);

@@ -21,12 +21,9 @@ using namespace arcpress;
 namespace {
 
 ProgramDiff diff_of(const std::string& a, const std::string& b, double tol = 0.01) {
-  DiagnosticSink sa("a.nc"), sb("b.nc");
-  Program pa = lex("a.nc", a, sa), pb = lex("b.nc", b, sb);
-  Interpretation ia = interpret(pa, sa), ib = interpret(pb, sb);
   DiffOptions opt;
   opt.tolerance_mm = tol;
-  return diff_programs(pa, ia, pb, ib, opt);
+  return test::diff_texts(a, b, opt);
 }
 
 /// A zig-zag cut: rapid in, spindle on, ten feed moves, rapid out.
