@@ -34,15 +34,16 @@ extern "C" void on_fatal_signal(int sig) {
 
 std::string error_text(int err) { return std::strerror(err); }
 
-/// Writes all of `data` to `fd`; returns 0 or the errno of the failure.
-int write_all(int fd, std::string_view data) {
-  size_t done = 0;
-  while (done < data.size()) {
-    const ssize_t n = ::write(fd, data.data() + done, data.size() - done);
+/// Writes all of `data` to `fd`; returns 0 or the errno of the failure, and adds the bytes
+/// that were written to `done`.
+int write_all(int fd, std::string_view data, size_t& done) {
+  for (size_t at = 0; at < data.size();) {
+    const ssize_t n = ::write(fd, data.data() + at, data.size() - at);
     if (n < 0) {
       if (errno == EINTR) continue;
       return errno;
     }
+    at += size_t(n);
     done += size_t(n);
   }
   return 0;
@@ -242,8 +243,16 @@ void OutputFile::fail(const std::string& what, int err) {
 
 void OutputFile::write(std::string_view data) {
   if (done_) throw Error(kExitIo, fmt::format("cannot write '{}': already closed", path_));
-  if (const int err = write_all(fd_, data); err != 0) fail("cannot write", err);
-  written_ += data.size();
+  const int err = write_all(fd_, data, written_);
+  if (err == EPIPE) {
+    // The reader went away (`arcpress big.gcode | head`): said as such, with how much it took.
+    const size_t taken = written_;
+    discard();
+    if (is_stdout_) g_stdout_failed = true;
+    throw Error(kExitIo, fmt::format("{} closed after {} bytes",
+                                     is_stdout_ ? std::string("standard output") : "'" + path_ + "'", taken));
+  }
+  if (err != 0) fail("cannot write", err);
 }
 
 void OutputFile::commit() {
@@ -304,6 +313,9 @@ void write_output(const std::string& path, std::string_view data) {
 }
 
 void remove_temporary_files_on_signals() {
+  // A reader that closes its end makes a write fail with EPIPE, reported as an I/O error
+  // (exit 3), rather than kill the process without a word.
+  ::signal(SIGPIPE, SIG_IGN);
   struct sigaction sa {};
   sa.sa_handler = on_fatal_signal;
   sigemptyset(&sa.sa_mask);

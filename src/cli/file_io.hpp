@@ -94,8 +94,9 @@ void write_output(const std::string& path, std::string_view data);
 void write_stdout(std::string_view data);
 
 /// Removes the temporary file of a write in progress when SIGINT, SIGTERM or SIGHUP arrives,
-/// then dies of the signal as the program would have (exit status 128 + signal). Call once
-/// at start.
+/// then dies of the signal as the program would have (exit status 128 + signal); and ignores
+/// SIGPIPE, so that a reader closing a pipe is an I/O error ("standard output closed after N
+/// bytes", exit 3). Call once at start.
 void remove_temporary_files_on_signals();
 
 }  // namespace arcpress::cli

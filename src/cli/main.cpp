@@ -70,6 +70,55 @@ CLI::Validator finite_in(const OptionRange& range) {
       described, "FINITE");
 }
 
+/// Edits (insertions, deletions, substitutions) that turn `a` into `b`.
+size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+/// What to do about the arguments `app` did not expect, one line each: the nearest real
+/// option for a mistyped one, and for a second program name, that a file is written with -o.
+/// `positional` says what the command's own arguments are.
+std::string explain_extras(const CLI::App& app, const std::vector<std::string>& extras, const std::string& positional,
+                           bool takes_output) {
+  std::vector<std::string> names;
+  for (const CLI::Option* o : app.get_options()) {
+    for (const std::string& l : o->get_lnames()) names.push_back("--" + l);
+    for (const std::string& s : o->get_snames()) names.push_back("-" + s);
+  }
+  std::string out;
+  bool after_option = false;  // a word after an unknown option is taken for its value
+  for (const std::string& e : extras) {
+    if (e.size() > 1 && e[0] == '-') {
+      const std::string given = e.substr(0, e.find('='));
+      std::string nearest;
+      size_t best = std::max<size_t>(2, given.size() / 3) + 1;
+      for (const std::string& n : names)
+        if (const size_t d = edit_distance(given, n); d < best) best = d, nearest = n;
+      out += nearest.empty() ? fmt::format("arcpress: unknown option '{}' (see --help)\n", given)
+                             : fmt::format("arcpress: unknown option '{}'; did you mean '{}'?\n", given, nearest);
+      after_option = e.find('=') == std::string::npos;
+      continue;
+    }
+    if (!after_option)
+      out += takes_output ? fmt::format("arcpress: unexpected argument '{}': {}; to write a file, use -o {}\n", e,
+                                        positional, e)
+                          : fmt::format("arcpress: unexpected argument '{}': {}\n", e, positional);
+    after_option = false;
+  }
+  return out.empty() ? "arcpress: unexpected arguments (see --help)\n" : out;
+}
+
 std::string real_path(const std::string& p) {
   char buf[PATH_MAX];
   return ::realpath(p.c_str(), buf) ? std::string(buf) : std::string();
@@ -96,9 +145,15 @@ Dialect dialect_for(const std::string& name, bool name_given, const std::string&
     std::optional<ProgramFlavor> flavor = program_flavor(program);
     const bool at_end = !flavor && (flavor = program_flavor(tail_lines));
     if (flavor) {
-      picked = flavor->dialect;
-      reason = at_end ? fmt::format("the program's '{}' near its end", flavor->evidence)
-                      : fmt::format("the program's '{}' at line {}", flavor->evidence, flavor->line);
+      const std::string where = at_end ? fmt::format("the program's '{}' near its end", flavor->evidence)
+                                       : fmt::format("the program's '{}' at line {}", flavor->evidence, flavor->line);
+      if (flavor->dialect.empty()) {
+        reason = fmt::format("the default: {} names no single firmware (pass --dialect {})", where,
+                             fmt::join(flavor_dialects(), ", "));
+      } else {
+        picked = flavor->dialect;
+        reason = where;
+      }
     }
   }
   if (why) *why = reason;
@@ -386,7 +441,7 @@ int main(int argc, char** argv) {
       app.add_option("--dialect", a.dialect,
                      "Target controller dialect (see 'arcpress dialects'); absent: the one the program names for "
                      "itself (a slicer's gcode_flavor or FLAVOR line), else rs274")
-          ->capture_default_str();
+          ->type_name("NAME");
   app.add_option("--dialect-file", a.dialect_file, "Load the dialect from this TOML file instead");
   app.add_option("--arc-format", a.arc_format, "ijk: centre words; r: radius words where the dialect reads them "
                                                 "(default: the dialect's choice)")
@@ -457,7 +512,7 @@ int main(int argc, char** argv) {
           ->add_option("--dialect", diff.dialect,
                        "How both programs are read; absent: the dialect A names for itself (a slicer's flavor "
                        "line), else rs274")
-          ->capture_default_str();
+          ->type_name("NAME");
   diff_cmd->add_option("--dialect-file", diff.dialect_file, "Read both programs with this dialect file");
   diff_cmd->add_flag("--executed", diff.executed,
                      "Compare the paths the dialect's firmware really moves along: every arc of both programs cut "
@@ -490,6 +545,13 @@ int main(int argc, char** argv) {
     return printed(app.exit(e));
   } catch (const CLI::Success& e) {
     return printed(app.exit(e));
+  } catch (const CLI::ExtrasError&) {
+    const bool in_diff = diff_cmd->parsed();
+    std::fputs((in_diff ? explain_extras(*diff_cmd, diff_cmd->remaining(), "diff compares two programs, A and B", false)
+                        : explain_extras(app, app.remaining(), "arcpress reads one program", true))
+                   .c_str(),
+               stderr);
+    return kExitInput;
   } catch (const CLI::ParseError& e) {
     app.exit(e);
     return kExitInput;

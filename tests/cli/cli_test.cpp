@@ -76,6 +76,27 @@ TEST_CASE("usage errors exit with 2", "[cli]") {
   CHECK(run_arcpress("--dialect nosuch", kProgram).exit_code == 2);
 }
 
+TEST_CASE("a usage error says what to type instead", "[cli]") {
+  const std::string sample = "'" ARCPRESS_SOURCE_DIR "/samples/contour.nc'";
+  // A second file name: the output is written with -o.
+  auto two = run_arcpress(sample + " out.nc");
+  CHECK(two.exit_code == 2);
+  CHECK(two.err == "arcpress: unexpected argument 'out.nc': arcpress reads one program; to write a file, use -o out.nc\n");
+  // A mistyped option: the nearest real one, and its value is not taken for a file name.
+  auto typo = run_arcpress(sample + " --tolerence 0.01");
+  CHECK(typo.exit_code == 2);
+  CHECK(typo.err == "arcpress: unknown option '--tolerence'; did you mean '--tolerance'?\n");
+  auto diff_typo = run_arcpress("diff " + sample + " " + sample + " --plto=x.svg");
+  CHECK(diff_typo.err == "arcpress: unknown option '--plto'; did you mean '--plot'?\n");
+  auto diff_three = run_arcpress("diff " + sample + " " + sample + " c.nc");
+  CHECK(diff_three.err == "arcpress: unexpected argument 'c.nc': diff compares two programs, A and B\n");
+  CHECK(run_arcpress("--zzzzzzzz").err == "arcpress: unknown option '--zzzzzzzz' (see --help)\n");
+  // The dialect's default is no fixed name: absent, it comes from the program.
+  const std::string help = run_arcpress("--help").out;
+  CHECK(help.find("--dialect NAME ") != std::string::npos);
+  CHECK(help.find("=rs274") == std::string::npos);
+}
+
 TEST_CASE("a missing input file exits with 3", "[cli]") {
   auto c = run_arcpress("/nonexistent/in.nc -o /tmp/x.nc");
   CHECK(c.exit_code == 3);
@@ -318,6 +339,15 @@ TEST_CASE("without --dialect a slicer's program is written for the firmware it n
   CHECK(c.exit_code == 0);
   CHECK(c.err.find("dialect        klipper") != std::string::npos);
   CHECK(c.err.find("by the program's '; gcode_flavor = klipper' at line 97") != std::string::npos);
+  // PrusaSlicer's default flavor, RepRap/Sprinter, names no single firmware: the default
+  // dialect, and --stats says why and what to pass.
+  std::string reprap = t;
+  reprap.replace(reprap.find("= klipper"), 9, "= reprap");
+  auto unnamed = run_arcpress("--stats", reprap);
+  CHECK(unnamed.exit_code == 0);
+  CHECK(unnamed.err.find("dialect        rs274") != std::string::npos);
+  CHECK(unnamed.err.find(", by the default: the program's '; gcode_flavor = reprap' at line 97 names no single "
+                         "firmware (pass --dialect marlin, klipper, reprapfirmware, smoothieware)\n") != std::string::npos);
   // A dialect named on the command line wins.
   auto named = run_arcpress("--stats --dialect marlin", t);
   CHECK(named.err.find("dialect        marlin") != std::string::npos);

@@ -56,6 +56,26 @@ TEST_CASE("a failed write on standard output is an error, never a zero exit", "[
   CHECK(to_full.err.find("cannot write '/dev/full': No space left on device") != std::string::npos);
 }
 
+TEST_CASE("a reader that closes the pipe early gets exit 3 and how many bytes it took, never a silent death",
+          "[cli][output]") {
+  auto d = arcpress::test::temp_dir("pipe");
+  // Output far larger than a pipe holds, so that writes go on after `head` has left.
+  std::string program = "G21 G90\n";
+  for (int k = 0; k < 60000; ++k) program += fmt::format("G1 X{:.3f} Y{:.3f} F600\nM117 step {}\n", k * 0.1, (k % 7) * 0.5, k);
+  arcpress::test::write_file(d / "big.nc", program);
+  auto head = run_shell(fmt::format("cd '{}'\n\"$ARCPRESS\" big.nc | head -c 1000 > /dev/null\necho ${{PIPESTATUS[0]}}",
+                                    d.string()));
+  CHECK(head.out == "3\n");
+  CHECK(head.err.find("arcpress: standard output closed after ") != std::string::npos);
+  CHECK(head.err.find(" bytes\n") != std::string::npos);
+  // The reader is gone before diff writes its report: the same.
+  auto diff = run_shell(fmt::format("cd '{}'\n(sleep 0.5; \"$ARCPRESS\" diff --json big.nc big.nc) | true\n"
+                                    "echo ${{PIPESTATUS[0]}}",
+                                    d.string()));
+  CHECK(diff.out == "3\n");
+  CHECK(diff.err.find("arcpress: standard output closed after 0 bytes") != std::string::npos);
+}
+
 TEST_CASE("devices, FIFOs and /dev/stdout are written directly, never replaced", "[cli][output]") {
   auto d = arcpress::test::temp_dir("devices");
   const std::string expected = sample_output();

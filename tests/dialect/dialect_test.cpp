@@ -304,6 +304,25 @@ TEST_CASE("words a dialect refuses are reported where the input has them, and pa
   CHECK(all.find("4 more") == std::string::npos);
 }
 
+TEST_CASE("a comment form the dialect does not read is reported only where it opens a comment", "[dialect]") {
+  auto comment_warnings = [](const std::string& dialect, const std::string& text) {
+    DiagnosticSink sink("p.gcode");
+    CompressOptions opt;
+    opt.dialect = shipped(dialect);
+    compress("p.gcode", text, opt, sink);
+    return sink.warning_count("W-DIALECT-COMMENT");
+  };
+  // Marlin reads ';' comments only: a '(' that opens a comment is reported, one inside a
+  // ';' comment is that comment's text.
+  CHECK(comment_warnings("marlin", "G1 X1 (note)\n") == 1);
+  CHECK(comment_warnings("marlin", "; estimated printing time (normal mode) = 1h\n") == 0);
+  CHECK(comment_warnings("marlin", "G1 X1 ; move (fast)\n") == 0);
+  CHECK(comment_warnings("marlin", "G1 X1 (a) ; b (c)\n") == 1);
+  // Fanuc reads '( )' only: a ';' inside parentheses opens nothing.
+  CHECK(comment_warnings("fanuc", "G1 X1 (a; b)\n") == 0);
+  CHECK(comment_warnings("fanuc", "G1 X1 (a) ; b\n") == 1);
+}
+
 TEST_CASE("a lathe dialect reads X words as diameters from the start, and G8 as radii", "[dialect][lathe]") {
   DiagnosticSink sink;
   Program p = lex("t.nc", "G18 G21 G90\nG0 X20. Z1.\nG1 Z0. F50.\nG8\nG1 X12.\n", sink);
@@ -330,11 +349,16 @@ TEST_CASE("a program names its own dialect by its slicer's flavor, where the fla
   CHECK(flavor("; gcode_flavor = klipper\n")->dialect == "klipper");
   CHECK(flavor("; gcode_flavor = reprapfirmware\n")->dialect == "reprapfirmware");
   CHECK(flavor("; gcode_flavor = smoothie\n")->dialect == "smoothieware");
-  // RepRap/Sprinter is several firmwares; a program without a flavor names none.
-  CHECK_FALSE(flavor("; gcode_flavor = reprap\n"));
+  // RepRap/Sprinter is several firmwares: the line is seen, and names no dialect. A program
+  // without a flavor line names none.
+  const auto reprap = flavor("G28\n; gcode_flavor = reprap\n");
+  REQUIRE(reprap);
+  CHECK(reprap->dialect.empty());
+  CHECK(reprap->line == 2);
   CHECK_FALSE(flavor("G21 G90\nG1 X1 (gcode_flavor = marlin)\n"));
   // Every dialect a flavor maps to is shipped.
   for (const char* text : {"; gcode_flavor = marlin\n", "; gcode_flavor = klipper\n",
                            "; gcode_flavor = reprapfirmware\n", "; gcode_flavor = smoothie\n"})
     CHECK(shipped(flavor(text)->dialect).name == flavor(text)->dialect);
+  for (const std::string& name : flavor_dialects()) CHECK(shipped(name).name == name);
 }

@@ -31,7 +31,7 @@ case $mode in
   subdirectory)
     cmake -S "$source/tests/package/subdirectory" -B "$work/consumer" -DCMAKE_BUILD_TYPE=Release >/dev/null
     cmake --build "$work/consumer" -j2 >/dev/null
-    check "$work/consumer/compress_c"
+    check "$work/consumer/compress_c" "$work/consumer/compress"
     ;;
   *) echo "usage: run.sh installed|subdirectory BUILD_DIR SOURCE_DIR PROGRAM" >&2; exit 2 ;;
 esac

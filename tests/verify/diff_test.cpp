@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <random>
+#include <regex>
 #include <vector>
 
 #include "arcpress/api/arcpress.hpp"
@@ -376,6 +377,51 @@ TEST_CASE("arcpress diff on the command line: text, JSON, exit codes", "[diff][c
   CHECK(ok.out.find("\"verdict\": \"same\"") != std::string::npos);
 }
 
+TEST_CASE("the SVG plot's text stays inside the picture and off the drawing, however long the file names",
+          "[diff][plot]") {
+  auto dir = test::temp_dir("plot-text");
+  const std::filesystem::path deep = dir / std::string(180, 'n') / "Ø-pièce 部品 with a long name.nc";
+  std::filesystem::create_directories(deep.parent_path());
+  std::string a = "G21 G90\nG0 X10 Y0 Z0\n", b = a;
+  for (int k = 1; k <= 360; ++k) {
+    const double t = 2 * kPi * k / 360, r = k == 90 ? 10.02 : 10.0;
+    a += fmt::format("G1 X{:.4f} Y{:.4f} F300\n", 10 * std::cos(t), 10 * std::sin(t));
+    b += fmt::format("G1 X{:.4f} Y{:.4f} F300\n", r * std::cos(t), r * std::sin(t));
+  }
+  test::write_file(deep, a);
+  test::write_file(dir / "b.nc", b);
+  auto c = test::run_arcpress(fmt::format("diff '{}' '{}/b.nc' --plot '{}/plot.svg'", deep.string(), dir.string(),
+                                          dir.string()));
+  CHECK(c.exit_code == 1);
+  const std::string svg = test::read_file(dir / "plot.svg");
+  // The lowest point any path or the worst place's ring reaches.
+  double drawing_bottom = 0;
+  const std::regex coordinate("[MLA ]-?[0-9.]+ (-?[0-9.]+)"), ring("cy=\"([0-9.]+)\"");
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), coordinate); it != std::sregex_iterator(); ++it)
+    drawing_bottom = std::max(drawing_bottom, std::stod((*it)[1]));
+  std::smatch m;
+  REQUIRE(std::regex_search(svg, m, ring));
+  drawing_bottom = std::max(drawing_bottom, std::stod(m[1]) + 9);
+  // Every line of text, counted in characters (a UTF-8 sequence is one) at the widest a
+  // 14 px sans-serif character is (9 px), ends inside the 1200 px; all but the title lies
+  // below the drawing.
+  const std::regex text_element("<text x=\"([0-9.]+)\" y=\"([0-9.]+)\"[^>]*>([^<]*)</text>");
+  size_t lines = 0;
+  bool names_shown = false;
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), text_element); it != std::sregex_iterator(); ++it) {
+    std::string t = std::regex_replace((*it)[3].str(), std::regex("&[a-z]+;"), "&");
+    size_t chars = 0;
+    for (char ch : t) chars += (static_cast<unsigned char>(ch) & 0xC0) != 0x80;
+    INFO(t);
+    CHECK(std::stod((*it)[1]) + 9.0 * double(chars) <= 1200);
+    if (lines++ > 0) CHECK(std::stod((*it)[2]) > drawing_bottom);
+    names_shown |= t.find("long name.nc") != std::string::npos;
+  }
+  CHECK(lines >= 6);
+  CHECK(names_shown);  // a long path keeps its file name
+  CHECK(svg.find("DIFFERENT: ") != std::string::npos);
+}
+
 TEST_CASE("the SVG plot renders in headless Chromium: not blank, legend and worst place shown", "[diff][plot]") {
   if (std::system("command -v chromium > /dev/null 2>&1") != 0) {
     WARN("chromium is not installed (Debian package chromium): skipped");
@@ -395,7 +441,7 @@ TEST_CASE("the SVG plot renders in headless Chromium: not blank, legend and wors
   CHECK(c.exit_code == 1);
   std::string svg = test::read_file(dir / "plot.svg");
   CHECK(svg.find("id=\"legend\"") != std::string::npos);
-  CHECK(svg.find("worst 0.020000 mm: ") != std::string::npos);
+  CHECK(svg.find("worst 0.020000 mm (ringed): ") != std::string::npos);
   // A blank page of the same size, to compare the screenshots with.
   test::write_file(dir / "blank.svg", "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"1200\" height=\"1210\">"
                                       "<rect width=\"100%\" height=\"100%\" fill=\"white\"/></svg>\n");

@@ -19,15 +19,17 @@ std::string_view trimmed(std::string_view s) {
   return s;
 }
 
+/// Slicers' flavor names that say which firmware, and the shipped dialect of each.
+constexpr std::pair<const char*, const char*> kFlavors[] = {
+    {"marlin", "marlin"},     {"marlin2", "marlin"},  {"marlinlegacy", "marlin"},
+    {"marlinfirmware", "marlin"},
+    {"klipper", "klipper"},   {"reprapfirmware", "reprapfirmware"},
+    {"smoothie", "smoothieware"}, {"smoothieware", "smoothieware"},
+};
+
 /// The shipped dialect a slicer's flavor name maps to without doubt, or empty.
 std::string dialect_of_flavor(const std::string& flavor) {
-  static const std::pair<const char*, const char*> kMap[] = {
-      {"marlin", "marlin"},     {"marlin2", "marlin"},  {"marlinlegacy", "marlin"},
-      {"marlinfirmware", "marlin"},
-      {"klipper", "klipper"},   {"reprapfirmware", "reprapfirmware"},
-      {"smoothie", "smoothieware"}, {"smoothieware", "smoothieware"},
-  };
-  for (const auto& [name, dialect] : kMap)
+  for (const auto& [name, dialect] : kFlavors)
     if (flavor == name) return dialect;
   return {};
 }
@@ -54,11 +56,17 @@ std::optional<ProgramFlavor> program_flavor(std::string_view program) {
       if (rest.empty() || rest.front() != '=') continue;
       flavor = std::string(trimmed(rest.substr(1)));
     }
-    const std::string dialect = dialect_of_flavor(flavor);
-    if (dialect.empty()) return std::nullopt;  // a flavor, but not one that says which firmware
-    return ProgramFlavor{dialect, std::string(text), line};
+    // (An empty dialect: a flavor, but not one that says which firmware.)
+    return ProgramFlavor{dialect_of_flavor(flavor), std::string(text), line};
   }
   return std::nullopt;
+}
+
+std::vector<std::string> flavor_dialects() {
+  std::vector<std::string> out;
+  for (const auto& [name, dialect] : kFlavors)
+    if (std::find(out.begin(), out.end(), dialect) == out.end()) out.push_back(dialect);
+  return out;
 }
 
 }  // namespace arcpress

@@ -7,18 +7,24 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace arcpress {
 
 struct ProgramFlavor {
-  std::string dialect;   ///< the shipped dialect it maps to ("marlin", "klipper", ...)
+  /// The shipped dialect it maps to ("marlin", "klipper", ...); empty where the flavor names
+  /// no single firmware (RepRap/Sprinter, Cura's "RepRap (RepRap)"), so none is picked.
+  std::string dialect;
   std::string evidence;  ///< the program's own words, e.g. "; gcode_flavor = marlin2"
   uint32_t line = 0;     ///< 1-based line of the evidence
 };
 
-/// The dialect `program` names, where it names one that maps to a shipped dialect without
-/// doubt; nothing otherwise (no flavor, or one such as RepRap/Sprinter that several
-/// firmwares answer to).
+/// The first flavor line of `program`: the shipped dialect it maps to without doubt, or an
+/// empty dialect where the flavor is one that several firmwares answer to (RepRap/Sprinter);
+/// nothing where the program has no flavor line.
 std::optional<ProgramFlavor> program_flavor(std::string_view program);
+
+/// The dialects a flavor line maps to, for a message that says what to pass instead.
+std::vector<std::string> flavor_dialects();
 
 }  // namespace arcpress

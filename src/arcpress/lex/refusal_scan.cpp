@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 namespace arcpress {
@@ -32,6 +34,25 @@ std::vector<RefusedWord> parse_refused(const Dialect& d) {
   return out;
 }
 
+/// Where a line's first '(' comment and its ';' comment open, as the lexer reads them: a
+/// '(' inside a ';' comment, or a ';' inside '( )', opens nothing. npos where none opens.
+std::pair<size_t, size_t> comment_openers(std::string_view raw) {
+  size_t paren = std::string_view::npos;
+  bool in_paren = false;
+  for (size_t k = 0; k < raw.size(); ++k) {
+    const char c = raw[k];
+    if (in_paren) {
+      in_paren = c != ')';
+    } else if (c == '(') {
+      in_paren = true;
+      if (paren == std::string_view::npos) paren = k;
+    } else if (c == ';') {
+      return {paren, k};
+    }
+  }
+  return {paren, std::string_view::npos};
+}
+
 }  // namespace
 
 void scan_refusals(const Program& program, const Dialect& dialect, DiagnosticSink& sink) {
@@ -48,8 +69,7 @@ void scan_refusals(const Program& program, const Dialect& dialect, DiagnosticSin
                        fmt::format("'{}' is refused by {}; the block is passed through unchanged",
                                    program.raw(b, *w), dialect.name));
     if (b.has_comment) {
-      std::string_view raw = program.raw(b);
-      size_t paren = raw.find('('), semi = raw.find(';');
+      const auto [paren, semi] = comment_openers(program.raw(b));
       if (paren != std::string_view::npos && !dialect.paren_comments)
         sink.warning({b.line, uint32_t(paren + 1)}, "W-DIALECT-COMMENT",
                      fmt::format("{} does not read '( )' as a comment", dialect.name));

@@ -4,11 +4,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 namespace arcpress {
 namespace {
 
-constexpr double kWidthPx = 1200, kMarginPx = 40, kLegendPx = 90;
+constexpr double kWidthPx = 1200, kMarginPx = 40, kLegendPx = 150;
+/// The widest a character of the 14 px sans-serif text is taken to be: a line of text holds
+/// at most (kWidthPx - 2 kMarginPx) / kCharPx characters, so none runs off the picture.
+constexpr double kCharPx = 9;
+constexpr size_t kLineChars = size_t((kWidthPx - 2 * kMarginPx) / kCharPx);
 /// Colour buckets from 0 to the band; one more for beyond it.
 constexpr int kBuckets = 10;
 
@@ -30,6 +36,17 @@ std::string xml_escape(const std::string& s) {
     else o += c;
   }
   return o;
+}
+
+/// `text` cut to at most `chars` characters (UTF-8 sequences counted as one), its middle
+/// replaced by "..." where it is longer: a path keeps its start and its file name.
+std::string elided(const std::string& text, size_t chars) {
+  std::vector<size_t> starts;  // byte offset of each character
+  for (size_t k = 0; k < text.size(); ++k)
+    if ((static_cast<unsigned char>(text[k]) & 0xC0) != 0x80) starts.push_back(k);
+  if (starts.size() <= chars) return text;
+  const size_t keep = chars > 3 ? chars - 3 : 0, head = keep / 3, tail = keep - head;
+  return text.substr(0, starts[head]) + "..." + text.substr(starts[starts.size() - tail]);
 }
 
 class Canvas {
@@ -121,8 +138,8 @@ std::string diff_svg(const Interpretation& ia, const Interpretation& ib, const P
       "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{:.0f}\" height=\"{:.0f}\" viewBox=\"0 0 {:.0f} {:.0f}\" "
       "font-family=\"sans-serif\" font-size=\"14\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n",
       kWidthPx, total_h, kWidthPx, total_h);
-  svg += fmt::format("<text x=\"{}\" y=\"24\">arcpress diff, {} plane: {} (grey) and {} (coloured by deviation)</text>\n",
-                     kMarginPx, plane_name, xml_escape(names.a), xml_escape(names.b));
+  svg += fmt::format("<text x=\"{}\" y=\"24\">arcpress diff, {} plane: A grey, B coloured by deviation</text>\n",
+                     kMarginPx, plane_name);
   // A: one thin grey path.
   std::string da;
   for (size_t i = 0; i < ia.moves.size(); ++i) {
@@ -158,18 +175,20 @@ std::string diff_svg(const Interpretation& ia, const Interpretation& ib, const P
     canvas.add_move(ib, i, db);
   }
   flush();
-  // The worst place.
+  // The worst place: a ring on the drawing, its numbers in the legend below it, so that no
+  // text covers the paths.
   if (!d.worst.empty()) {
-    const DiffPlace& w = d.worst.front();
-    Vec2 p = canvas.px(w.at);
+    const Vec2 p = canvas.px(d.worst.front().at);
     svg += fmt::format(
-        "<circle id=\"worst\" cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"9\" fill=\"none\" stroke=\"#c000c0\" stroke-width=\"2\"/>\n"
-        "<text x=\"{:.1f}\" y=\"{:.1f}\" fill=\"#800080\">worst {:.6f} mm: {} line {}, {} line {}</text>\n",
-        p.x(), p.y(), std::min(p.x() + 12, kWidthPx - 420), std::max(p.y() - 12, 40.0), w.deviation_mm,
-        xml_escape(names.a), w.line_a, xml_escape(names.b), w.line_b);
+        "<circle id=\"worst\" cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"9\" fill=\"none\" stroke=\"#c000c0\" stroke-width=\"2\"/>\n",
+        p.x(), p.y());
   }
-  // Legend.
+  // Legend: each line of text no wider than the picture.
   double ly = height + 20;
+  auto line = [&](double y, const std::string& text, const char* attributes = "") {
+    svg += fmt::format("<text x=\"{}\" y=\"{:.0f}\"{}>{}</text>\n", kMarginPx, y, attributes,
+                       xml_escape(elided(text, kLineChars)));
+  };
   svg += "<g id=\"legend\">\n<defs><linearGradient id=\"band\">";
   for (int k = 0; k < kBuckets; ++k)
     svg += fmt::format("<stop offset=\"{:.2f}\" stop-color=\"{}\"/>", double(k) / (kBuckets - 1), bucket_colour(k));
@@ -180,11 +199,18 @@ std::string diff_svg(const Interpretation& ia, const Interpretation& ib, const P
   svg += fmt::format("<text x=\"{}\" y=\"{:.0f}\">0</text><text x=\"{}\" y=\"{:.0f}\">{} mm</text>"
                      "<text x=\"{}\" y=\"{:.0f}\">&gt; tolerance {} mm</text>\n",
                      kMarginPx, ly + 34, kMarginPx + 360, ly + 34, tol, kMarginPx + 460, ly + 34, tol);
-  svg += fmt::format("<text x=\"{}\" y=\"{:.0f}\">deviation of {} from {}: max {:.6f} mm, tolerance {} mm — {}</text>\n",
-                     kMarginPx, ly + 58, xml_escape(names.b), xml_escape(names.a), d.max_deviation_mm, tol,
-                     d.verdict(tol) == ProgramDiff::Verdict::Same        ? "SAME"
-                     : d.verdict(tol) == ProgramDiff::Verdict::Different ? "DIFFERENT"
-                                                                          : "INCOMPLETE");
+  const char* verdict = d.verdict(tol) == ProgramDiff::Verdict::Same        ? "SAME"
+                        : d.verdict(tol) == ProgramDiff::Verdict::Different ? "DIFFERENT"
+                                                                             : "INCOMPLETE";
+  line(ly + 58, fmt::format("{}: B deviates from A by {:.6f} mm at most, tolerance {} mm", verdict,
+                            d.max_deviation_mm, tol));
+  if (!d.worst.empty()) {
+    const DiffPlace& w = d.worst.front();
+    line(ly + 78, fmt::format("worst {:.6f} mm (ringed): A line {}, B line {}", w.deviation_mm, w.line_a, w.line_b),
+         " id=\"worst-label\" fill=\"#800080\"");
+  }
+  line(ly + 98, "A: " + names.a);
+  line(ly + 118, "B: " + names.b);
   svg += "</g>\n</svg>\n";
   return svg;
 }
