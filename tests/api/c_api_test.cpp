@@ -2,6 +2,10 @@
 // between handles, and the same text as the C++ engine.
 #include <catch2/catch.hpp>
 
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <string>
 #include <thread>
@@ -137,5 +141,100 @@ TEST_CASE("the C library sets the band, the extrusion variance and the header as
   CHECK(arcpress_options_set_band(o, "chords") == ARCPRESS_BAD_INPUT);
   CHECK(std::string(arcpress_options_last_error(o)).find("unknown band") != std::string::npos);
   CHECK(arcpress_options_set_extrusion_variance(o, 2) == ARCPRESS_BAD_INPUT);
+  arcpress_options_free(o);
+}
+
+TEST_CASE("a compressor owns what it reads: options changed or freed after it is made change nothing", "[capi]") {
+  const auto expected = through_c(kProgram, 1000, "fanuc");
+  REQUIRE(expected.second == ARCPRESS_OK);
+  arcpress_options* o = arcpress_options_new();
+  REQUIRE(arcpress_options_set_dialect(o, "fanuc") == ARCPRESS_OK);
+  arcpress_compressor* c = nullptr;
+  REQUIRE(arcpress_compressor_new(o, "c", &c) == ARCPRESS_OK);
+  // A lathe dialect reads X as a diameter: read through the options, every X would halve.
+  REQUIRE(arcpress_options_set_dialect(o, "haas-lathe") == ARCPRESS_OK);
+  REQUIRE(arcpress_options_set_tolerance(o, 5) == ARCPRESS_OK);
+  arcpress_options_free(o);
+  REQUIRE(arcpress_push(c, kProgram.data(), kProgram.size()) == ARCPRESS_OK);
+  CHECK(arcpress_finish(c) == ARCPRESS_OK);
+  const char* text = nullptr;
+  size_t n = 0;
+  REQUIRE(arcpress_take(c, &text, &n) == ARCPRESS_OK);
+  CHECK(std::string(text, n) == expected.first);
+  arcpress_compressor_free(c);
+  // The same in C++: a compressor made from options that end with the statement.
+  arcpress::DiagnosticSink sink;
+  arcpress::Compressor cpp("c", arcpress::CompressOptions{}, sink);
+  cpp.push(kProgram);
+  cpp.finish();
+  CHECK(cpp.result().ok);
+  CHECK(cpp.result().within_band());
+}
+
+TEST_CASE("after a call fails every later call fails: a push whose threads cannot start never ends in OK",
+          "[capi]") {
+  // A child process with 1 GiB of address space: 1024 threads' stacks do not fit in it.
+  std::string program = "G21 G90\nG0 X0 Y0 Z0\nG1 F600\n";
+  for (int k = 0; program.size() < (size_t(1) << 20); ++k)
+    program += "G1 X" + std::to_string(0.1 * k) + " Y" + std::to_string(std::sin(0.01 * k)) + "\n";
+  const pid_t pid = ::fork();
+  REQUIRE(pid >= 0);
+  if (pid == 0) {
+    const struct rlimit limit = {rlim_t(1) << 30, rlim_t(1) << 30};
+    ::setrlimit(RLIMIT_AS, &limit);
+    arcpress_options* o = arcpress_options_new();
+    arcpress_options_set_threads(o, 1024);
+    arcpress_compressor* c = nullptr;
+    if (arcpress_compressor_new(o, "c", &c) != ARCPRESS_OK) ::_exit(10);
+    arcpress_status first = ARCPRESS_OK;
+    size_t at = 0;
+    for (; at < program.size() && first == ARCPRESS_OK; at += 65536)
+      first = arcpress_push(c, program.data() + at, std::min<size_t>(65536, program.size() - at));
+    if (first == ARCPRESS_OK) ::_exit(11);  // the threads started after all: nothing shown
+    if (at < program.size() && arcpress_push(c, program.data() + at, program.size() - at) == ARCPRESS_OK) ::_exit(12);
+    const char* text = nullptr;
+    size_t n = 0;
+    if (arcpress_take(c, &text, &n) == ARCPRESS_OK) ::_exit(13);
+    if (arcpress_finish(c) == ARCPRESS_OK) ::_exit(14);
+    if (arcpress_finish(c) == ARCPRESS_OK) ::_exit(15);
+    ::_exit(0);
+  }
+  int status = 0;
+  REQUIRE(::waitpid(pid, &status, 0) == pid);
+  REQUIRE(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 0);
+}
+
+TEST_CASE("the C library refuses what the command refuses, with the status of its kind", "[capi]") {
+  arcpress_options* o = arcpress_options_new();
+  // More threads than any count the command takes.
+  CHECK(arcpress_options_set_threads(o, 100000) == ARCPRESS_BAD_INPUT);
+  CHECK(std::string(arcpress_options_last_error(o)).find("thread count") != std::string::npos);
+  // A dialect path longer than the system takes: an I/O error, not an internal one.
+  CHECK(arcpress_options_set_dialect_file(o, ("/tmp/" + std::string(5000, 'd') + ".toml").c_str()) ==
+        ARCPRESS_IO_ERROR);
+  // An empty file is no dialect.
+  auto dir = arcpress::test::temp_dir("capi-dialect");
+  arcpress::test::write_file(dir / "empty.toml", "");
+  CHECK(arcpress_options_set_dialect_file(o, (dir / "empty.toml").c_str()) == ARCPRESS_BAD_INPUT);
+  CHECK(std::string(arcpress_options_last_error(o)).find("name: missing") != std::string::npos);
+  // The executed band on a dialect whose controller moves on the circles.
+  REQUIRE(arcpress_options_set_dialect(o, "rs274") == ARCPRESS_OK);
+  REQUIRE(arcpress_options_set_band(o, "executed") == ARCPRESS_OK);
+  arcpress_compressor* c = nullptr;
+  CHECK(arcpress_compressor_new(o, "c", &c) == ARCPRESS_BAD_INPUT);
+  CHECK(c == nullptr);
+  CHECK(std::string(arcpress_options_last_error(o)).find("names no arc segmentation") != std::string::npos);
+  // Statistics before finish() claim no check.
+  REQUIRE(arcpress_options_set_band(o, "dialect") == ARCPRESS_OK);
+  REQUIRE(arcpress_compressor_new(o, "c", &c) == ARCPRESS_OK);
+  REQUIRE(arcpress_push(c, kProgram.data(), kProgram.size()) == ARCPRESS_OK);
+  arcpress_stats stats{};
+  REQUIRE(arcpress_get_stats(c, &stats) == ARCPRESS_OK);
+  CHECK(stats.verified == 0);
+  REQUIRE(arcpress_finish(c) == ARCPRESS_OK);
+  REQUIRE(arcpress_get_stats(c, &stats) == ARCPRESS_OK);
+  CHECK(stats.verified == 1);
+  arcpress_compressor_free(c);
   arcpress_options_free(o);
 }

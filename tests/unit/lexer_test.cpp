@@ -1,7 +1,12 @@
 #include <catch2/catch.hpp>
 
+#include <fmt/format.h>
+
+#include <cmath>
+
 #include "arcpress/api/arcpress.hpp"
 #include "arcpress/lex/lexer.hpp"
+#include "support.hpp"
 
 using namespace arcpress;
 
@@ -201,4 +206,30 @@ TEST_CASE("a word longer than 65535 bytes keeps its block as it is, with its pla
   const CompressResult r = compress("long.nc", text, opt, again);
   REQUIRE(r.ok);
   CHECK(r.output == text);
+}
+
+TEST_CASE("a block of more than 65535 words keeps its block as it is, with its place, and is never read short",
+          "[lex]") {
+  // Inside a run of G1 moves: the M0 must survive, and diff must not call the line absent.
+  std::string run = "G21 G90\nG0 X0 Y0 Z0\nG1 F300\n";
+  for (int k = 1; k <= 20; ++k) run += fmt::format("G1 X{:.4f} Y{:.4f}\n", 0.5 * k, std::sin(0.1 * k));
+  std::string crowded = "M0";
+  for (int k = 0; k < 65535; ++k) crowded += " X1";
+  crowded += " G1 X10.5 Y0.9\n";
+  std::string tail;
+  for (int k = 22; k <= 40; ++k) tail += fmt::format("G1 X{:.4f} Y{:.4f}\n", 0.5 * k, std::sin(0.1 * k));
+  const std::string text = run + crowded + tail + "M2\n";
+  DiagnosticSink sink("crowded.nc");
+  const Program p = lex("crowded.nc", text, sink);
+  REQUIRE(p.blocks.size() == 44);
+  CHECK(p.blocks[23].kind == BlockKind::Opaque);
+  CHECK(sink.format_all().find("crowded.nc:24:196606: warning: E-LEX-WORD-COUNT: block has more than 65535 words") !=
+        std::string::npos);
+  CompressOptions opt;
+  DiagnosticSink again("crowded.nc");
+  const CompressResult r = compress("crowded.nc", text, opt, again);
+  REQUIRE(r.ok);
+  CHECK(r.output.find("\n" + crowded) != std::string::npos);
+  DiffOptions dopt;
+  CHECK(test::diff_texts(text, run + tail + "M2\n", dopt).verdict(dopt.tolerance_mm) != ProgramDiff::Verdict::Same);
 }

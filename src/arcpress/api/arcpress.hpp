@@ -34,8 +34,8 @@ struct CompressOptions {
   /// Re-read the output and compare it with the input as `arcpress diff` does (path both
   /// ways, rapids, non-motion blocks, feed, extrusion) before it is used.
   bool verify = true;
-  /// Threads that fit runs at once; 0: one per hardware thread. Runs are independent, so
-  /// the output is the same for any count.
+  /// Threads that fit runs at once, at most kMaxThreads; 0: one per hardware thread. Runs
+  /// are independent, so the output is the same for any count.
   unsigned threads = 0;
   /// A comment naming arcpress, its version and these options, written after the program's
   /// first line where that line is a comment (a slicer's own first line, which its viewer
@@ -136,6 +136,9 @@ inline constexpr OptionRange kMaxRadiusRange{0, 1e6, true, "mm"};
 inline constexpr OptionRange kMaxSweepRange{1, 359, false, "degrees"};
 inline constexpr OptionRange kMinArcLengthRange{0, 1e4, false, "mm"};
 inline constexpr OptionRange kExtrusionVarianceRange{0, 1, false, "(share of the rate)"};
+
+/// The most threads CompressOptions::threads and DiffOptions::threads may ask for.
+inline constexpr unsigned kMaxThreads = 1024;
 
 /// Throws Error(kExitInput) unless every number of `o` is finite and in its documented range
 /// (the CLI's options table); compress() calls it, so no search is ever asked to run for a

@@ -108,7 +108,12 @@ arcpress_status arcpress_options_set_dialect_file(arcpress_options* o, const cha
 
 arcpress_status arcpress_options_set_threads(arcpress_options* o, unsigned threads) {
   if (!o) return ARCPRESS_BAD_INPUT;
+  if (threads > arcpress::kMaxThreads) {
+    o->error = "the thread count must be from 0 to " + std::to_string(arcpress::kMaxThreads);
+    return ARCPRESS_BAD_INPUT;
+  }
   o->options.threads = threads;
+  o->error.clear();
   return ARCPRESS_OK;
 }
 arcpress_status arcpress_options_set_verify(arcpress_options* o, int verify) {
@@ -209,7 +214,7 @@ arcpress_status arcpress_get_stats(const arcpress_compressor* c, arcpress_stats*
   s->lines_out = r.stats.lines_out;
   s->arcs_out = r.stats.arcs_out;
   s->max_deviation_mm = r.check.max_deviation_mm;
-  s->verified = r.verified ? 1 : 0;
+  s->verified = r.verified && c->finished ? 1 : 0;  // measured only once every piece is
   return ARCPRESS_OK;
 }
 

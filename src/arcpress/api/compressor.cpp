@@ -55,7 +55,7 @@ struct Compressor::Impl {
   };
 
   Impl(std::string n, const CompressOptions& o, DiagnosticSink& s)
-      : name(std::move(n)), opt(o), sink(s), reader(o.dialect, s, initial_state(o.dialect)) {
+      : name(std::move(n)), opt(o), sink(s), reader(opt.dialect, s, initial_state(opt.dialect)) {
     const size_t threads = worker_count(opt.threads, size_t(-1));
     limit = kPiecesInFlight * threads;
     total.ok = true;
@@ -383,15 +383,35 @@ struct Compressor::Impl {
 
 Compressor::Compressor(std::string name, const CompressOptions& opt, DiagnosticSink& sink) {
   check_options(opt.fit);
+  if (opt.threads > kMaxThreads)
+    throw Error(kExitInput, fmt::format("the thread count must be from 0 to {}, got {}", kMaxThreads, opt.threads));
   if (opt.arc_format == ArcFormat::Radius && !opt.dialect.radius_word)
     throw Error(kExitInput, opt.dialect.name + " does not read R-form arcs; use I/J/K");
+  if (opt.band == CompressOptions::Band::Executed && !opt.dialect.executed.moves_on_chords())
+    throw Error(kExitInput, fmt::format("the executed band: dialect {} names no arc segmentation ([arcs.executed] "
+                                        "rule); its controller moves on the programmed circles",
+                                        opt.dialect.name));
   sink.set_strict(opt.strict);
   impl_ = std::make_unique<Impl>(std::move(name), opt, sink);
 }
 Compressor::~Compressor() = default;
-void Compressor::push(std::string_view bytes) { impl_->push(bytes); }
-size_t Compressor::take(std::string& out) { return impl_->take(out); }
-void Compressor::finish() { impl_->finish(); }
+
+/// Runs `f` on the engine; once one call has failed, that failure is every later call's:
+/// what was pushed before it may be lost, so nothing after it may pass for whole.
+template <class F>
+auto Compressor::guarded(F&& f) -> decltype(f()) {
+  if (broken_) std::rethrow_exception(broken_);
+  try {
+    return f();
+  } catch (...) {
+    broken_ = std::current_exception();
+    throw;
+  }
+}
+
+void Compressor::push(std::string_view bytes) { guarded([&] { impl_->push(bytes); }); }
+size_t Compressor::take(std::string& out) { return guarded([&] { return impl_->take(out); }); }
+void Compressor::finish() { guarded([&] { impl_->finish(); }); }
 const CompressResult& Compressor::result() const { return impl_->total; }
 size_t Compressor::bytes_read() const { return impl_->bytes_read; }
 size_t Compressor::forced_cuts() const { return impl_->forced; }

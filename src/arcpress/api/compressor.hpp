@@ -14,6 +14,7 @@
 // that many. The text is the same for any number of threads and any way the bytes are cut
 // into pushes.
 #include <cstddef>
+#include <exception>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -37,9 +38,11 @@ void reserve_piece(Program& program, Interpretation& in);
 
 class Compressor {
  public:
-  /// Compresses the program called `name` with `opt` (checked by check_options(): throws
-  /// Error(kExitInput) for an option out of range). Diagnostics go to `sink`, which must
-  /// outlive the compressor; it is only written on the calls' thread.
+  /// Compresses the program called `name` with `opt`, of which it keeps its own copy
+  /// (checked by check_options(): throws Error(kExitInput) for an option out of range, more
+  /// than kMaxThreads threads, or the executed band on a dialect with no arc segmentation).
+  /// Diagnostics go to `sink`, which must outlive the compressor; it is only written on the
+  /// calls' thread.
   Compressor(std::string name, const CompressOptions& opt, DiagnosticSink& sink);
   ~Compressor();
   Compressor(const Compressor&) = delete;
@@ -47,7 +50,8 @@ class Compressor {
 
   /// Takes the next bytes of the program, cut anywhere (in a line, in a CRLF). May wait for
   /// the workers while the pieces in flight are as many as allowed. Throws std::logic_error
-  /// after finish().
+  /// after finish(). A call of push(), take() or finish() that throws (a thread that cannot
+  /// start, memory) leaves the compressor broken: every later call throws the same.
   void push(std::string_view bytes);
   /// Appends the output finished so far, in order, to `out` and returns how many bytes that
   /// was. Output is final once taken: it is never revised.
@@ -70,8 +74,12 @@ class Compressor {
   size_t pieces() const;
 
  private:
+  template <class F>
+  auto guarded(F&& f) -> decltype(f());
+
   struct Impl;
   std::unique_ptr<Impl> impl_;
+  std::exception_ptr broken_;  ///< the failure every call after it throws again
 };
 
 }  // namespace arcpress

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -162,6 +164,7 @@ Dialect parse_dialect(const std::string& text, const std::string& path) {
   Dialect d;
   d.source = path;
   TableReader top(root, path, "");
+  if (!root.contains("name")) top.fail(root.source(), "name", "missing: a dialect file names its dialect");
   top.text("name", d.name);
   top.text("description", d.description);
   if (d.name.empty() || d.name.find_first_of(" /\t") != std::string::npos)
@@ -245,9 +248,13 @@ Dialect parse_dialect(const std::string& text, const std::string& path) {
 }
 
 Dialect load_dialect_file(const std::string& path) {
-  if (fs::is_directory(path)) throw Error(kExitIo, fmt::format("cannot read dialect file '{}': it is a folder", path));
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw Error(kExitIo, fmt::format("cannot read dialect file '{}': it is a folder", path));
+  errno = 0;
   std::ifstream f(path, std::ios::binary);
-  if (!f) throw Error(kExitIo, fmt::format("cannot read dialect file '{}'", path));
+  if (!f)
+    throw Error(kExitIo, fmt::format("cannot read dialect file '{}': {}", path,
+                                     errno ? std::strerror(errno) : ec ? ec.message() : "cannot open it"));
   std::stringstream ss;
   ss << f.rdbuf();
   return parse_dialect(ss.str(), path);

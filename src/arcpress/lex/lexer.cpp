@@ -274,7 +274,7 @@ class LineLexer {
 
   /// Adds the word whose letter is at `i` and whose text ends at `after` to the block; false
   /// (and the block kept as it is) for a word too long for Word::length, which a rewritten
-  /// block could not copy whole. The word is built where it is stored (built aside and
+  /// block could not copy whole, or one past the most Block::word_count can count. The word is built where it is stored (built aside and
   /// copied, its narrow fields' stores stall the copy's wide loads).
   bool push(size_t i, size_t after, char letter, double value, bool is_expr, int decimals, bool point, bool flag) {
     const size_t length = after - i;
@@ -283,9 +283,21 @@ class LineLexer {
              fmt::format("word '{}' is {} bytes long; at most {} are read", letter, length, UINT16_MAX));
       return false;
     }
+    if (b_.word_count == UINT16_MAX) {
+      opaque(i, "E-LEX-WORD-COUNT",
+             fmt::format("block has more than {} words; it is passed through unread", UINT16_MAX));
+      return false;
+    }
     if (b_.word_count == 0) b_.first_word = uint32_t(p_.words.size());
-    p_.words.emplace_back(value, uint32_t(i + 1), uint16_t(length), letter, is_expr,
-                          uint8_t(decimals > 255 ? 255 : decimals), point, flag);
+    Word& w = p_.words.emplace_back();
+    w.value = value;
+    w.col = uint32_t(i + 1);
+    w.length = uint16_t(length);
+    w.letter = letter;
+    w.is_expr = is_expr;
+    w.decimals = uint8_t(decimals > 255 ? 255 : decimals);
+    w.has_point = point;
+    w.flag = flag;
     ++b_.word_count;
     after_ = after;
     return true;
