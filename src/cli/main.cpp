@@ -22,6 +22,7 @@
 #include "arcpress/core/error.hpp"
 #include "arcpress/dialect/dialect_loader.hpp"
 #include "arcpress/dialect/program_flavor.hpp"
+#include "arcpress/lex/foreign_content.hpp"
 #include "arcpress/lex/lexer.hpp"
 #include "arcpress/model/interpreter.hpp"
 #include "arcpress/verify/diff_plot.hpp"
@@ -117,6 +118,19 @@ std::string explain_extras(const CLI::App& app, const std::vector<std::string>& 
     after_option = false;
   }
   return out.empty() ? "arcpress: unexpected arguments (see --help)\n" : out;
+}
+
+/// What `sinks` say, for standard error: of a file that is not G-code, only that (its
+/// unreadable lines are no news then).
+std::string diagnostics_text(std::initializer_list<const DiagnosticSink*> sinks) {
+  std::string out;
+  for (const DiagnosticSink* sink : sinks) {
+    const auto& all = sink->all();
+    const auto foreign =
+        std::find_if(all.begin(), all.end(), [](const Diagnostic& d) { return d.code == "E-INPUT-NOT-GCODE"; });
+    out += foreign != all.end() ? sink->format(*foreign) + "\n" : sink->format_all();
+  }
+  return out;
 }
 
 std::string real_path(const std::string& p) {
@@ -250,7 +264,7 @@ int run_compress(const CompressArgs& a) {
   if (compressor.take(text) > 0) out.write(text);
   progress.clear();
   const CompressResult& r = compressor.result();
-  std::string diags = sink.format_all();
+  const std::string diags = diagnostics_text({&sink});
   if (!diags.empty()) std::fputs(diags.c_str(), stderr);
   // Where the output cannot be used, it is taken back: a file is left as it was.
   auto nothing_written = [&] {
@@ -382,8 +396,12 @@ int run_diff(const DiffArgs& d) {
   DiagnosticSink sa(d.a), sb(d.b);
   Program pa = lex(d.a, std::move(text_a), sa);
   Program pb = lex(d.b, std::move(text_b), sb);
+  // Two files that are not programs have no paths to compare: never a SAME.
+  for (auto [program, sink] : {std::pair{&pa, &sa}, std::pair{&pb, &sb}})
+    if (const std::optional<ForeignContent> foreign = foreign_content(*program, true))
+      sink->error(foreign->at, "E-INPUT-NOT-GCODE", fmt::format("does not look like G-code ({})", foreign->why));
   Interpretation ia = interpret(pa, sa, dialect), ib = interpret(pb, sb, dialect);
-  std::string diags = sa.format_all() + sb.format_all();
+  const std::string diags = diagnostics_text({&sa, &sb});
   if (!diags.empty()) std::fputs(diags.c_str(), stderr);
   if (sa.error_count() + sb.error_count() > 0) return kExitInput;
   DiffOptions opt;

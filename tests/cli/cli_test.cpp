@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <random>
 #include <sstream>
 #include <string>
+#include <tuple>
 
 #include "support.hpp"
 
@@ -366,4 +368,64 @@ TEST_CASE("without --dialect a slicer's program is written for the firmware it n
   CHECK(run_arcpress("diff --dialect rs274" + files).exit_code == 0);
   CHECK(run_arcpress("diff --dialect klipper" + files).exit_code == 1);
   CHECK(run_arcpress("diff" + files).exit_code == 1);  // as A names itself: Klipper
+}
+
+TEST_CASE("a file that is not G-code is refused with exit 2, why, and nothing written", "[cli][foreign]") {
+  auto d = arcpress::test::temp_dir("foreign");
+  std::mt19937 rng(46);
+  std::string noise(20000, '\0');
+  for (char& c : noise) c = char(rng() & 0xff);
+  std::string zipped = std::string("PK\x03\x04", 4) + "\x14\x00\x00\x00" + kProgram;  // a .3mf is a ZIP
+  std::string bgcode = "GCDE" + std::string("\x01\x00\x00\x00", 4) + kProgram;
+  // Points exported as a table: one readable block of four. (A line that starts with a
+  // word and a space reads as a host command, as Klipper's `PRINT_START` does.)
+  std::string table = "x,y\n1.0,2.0\n3.5,4.25\nG1 X1\n";
+  for (const auto& [name, text, why] :
+       {std::tuple{"noise.gcode", noise, "binary content: "}, std::tuple{"part.3mf", zipped, "a ZIP archive's signature"},
+        std::tuple{"part.bgcode", bgcode, "a binary G-code (.bgcode) signature"},
+        std::tuple{"points.csv", table, "3 of its 4 blocks cannot be read, the first at line 1"}}) {
+    INFO(name);
+    arcpress::test::write_file(d / name, text);
+    arcpress::test::write_file(d / "out.nc", "kept\n");
+    auto c = run_arcpress(fmt::format("'{}' -o '{}'", (d / name).string(), (d / "out.nc").string()));
+    CHECK(c.exit_code == 2);
+    CHECK(c.err.find(std::string(name) + ":") != std::string::npos);
+    CHECK(c.err.find(": error: E-INPUT-NOT-GCODE: does not look like G-code (" + std::string(why)) != std::string::npos);
+    CHECK(c.err.find("warning") == std::string::npos);  // its unreadable lines are no news
+    CHECK(arcpress::test::read_file(d / "out.nc") == "kept\n");
+    // To a pipe: not a byte.
+    auto piped = run_arcpress("", text);
+    CHECK(piped.exit_code == 2);
+    CHECK(piped.out.empty());
+    // diff never calls two such files the same.
+    CHECK(run_arcpress(fmt::format("diff '{0}' '{0}'", (d / name).string())).exit_code == 2);
+  }
+}
+
+TEST_CASE("a program with a few bad bytes or lines, NULs in comments or NUL padding is still G-code",
+          "[cli][foreign]") {
+  std::string program = "G21 G90\nG0 X0 Y0 Z1\nG1 Z0 F100\n";
+  for (int k = 1; k <= 300; ++k) program += fmt::format("G1 X{:.3f} Y{:.3f}\n", 0.1 * k, std::sin(0.02 * k));
+  // NUL bytes inside comments, and an SD card's NUL padding at the end.
+  auto padded = run_arcpress("", "(note \x01\x02 here)\n; and \x03\x04\x05\x06 there\n" + program +
+                                     std::string(4096, '\0'));
+  CHECK(padded.exit_code == 0);
+  // Seven control bytes outside comments: one short of the line, warned about, passed through.
+  std::string seven = program;
+  seven.insert(seven.find("G1 X0.500"), std::string("\x01\x02\x03\x04\x05\x06\x07\n", 8));
+  auto bad = run_arcpress("", seven);
+  CHECK(bad.exit_code == 0);
+  CHECK(bad.err.find("warning: E-LEX-") != std::string::npos);
+  CHECK(bad.out.find(std::string("\x01\x02\x03\x04\x05\x06\x07\n", 8)) != std::string::npos);
+  // Eight in a short program: over the line.
+  auto eight = run_arcpress("", "G21 G90\nG0 X0 Y0\n\x01\x02\x03\x04\x05\x06\x07\x08\nG1 X1 F100\nM2\n");
+  CHECK(eight.exit_code == 2);
+  // As many unreadable blocks as readable ones: still a program.
+  auto half = run_arcpress("", "G21 G90\n1,2\nG1 X1 F100\n3,4\n");
+  CHECK(half.exit_code == 0);
+  auto more = run_arcpress("", "G21 G90\n1,2\nG1 X1 F100\n3,4\n5,6\n");
+  CHECK(more.exit_code == 2);
+  // Comments alone, or nothing, are programs with nothing to do.
+  CHECK(run_arcpress("", "; only a comment\n(and another)\n").exit_code == 0);
+  CHECK(run_arcpress("", "").exit_code == 0);
 }

@@ -15,6 +15,7 @@
 #include "arcpress/core/error.hpp"
 #include "arcpress/core/workers.hpp"
 #include "arcpress/extract/run.hpp"
+#include "arcpress/lex/foreign_content.hpp"
 #include "arcpress/lex/lexer.hpp"
 #include "arcpress/lex/refusal_scan.hpp"
 #include "arcpress/model/interpreter.hpp"
@@ -229,6 +230,16 @@ struct Compressor::Impl {
 
   void close_piece(bool clean) {
     Piece& p = *cur;
+    // What is not G-code at all is refused before a byte of it is written.
+    if (p.index == 0)
+      if (const std::optional<ForeignContent> foreign = foreign_content(p.program, p.last)) {
+        sink.error(foreign->at, "E-INPUT-NOT-GCODE", fmt::format("does not look like G-code ({})", foreign->why));
+        failed = true;
+        total.ok = false;
+        ready.clear();
+        cur.reset();
+        return;
+      }
     p.end = reader.state();
     p.clean_end = clean;
     if (!habits) habits = output_habits(p.program);
