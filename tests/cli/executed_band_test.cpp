@@ -146,3 +146,31 @@ TEST_CASE("a program that already holds arcs (PrusaSlicer 2.6 and later, OrcaSli
   CHECK(run_arcpress(fmt::format("diff {} {} --dialect marlin", in.string(), out.string())).exit_code == 0);
   CHECK(run_arcpress(fmt::format("diff {} {} --dialect marlin --executed", in.string(), out.string())).exit_code == 0);
 }
+
+TEST_CASE("no corpus output leaves the band on the chord ends its firmware computes: every printer dialect on the "
+          "printer files, Grbl and grblHAL on the CNC files",
+          "[cli][executed][corpus]") {
+  auto dir = temp_dir("executed_corpus");
+  size_t checked = 0;
+  for (const auto& f : corpus_files()) {
+    const std::string kind = f.parent_path().filename().string();
+    if (kind != "printer" && kind != "cnc") continue;
+    const auto dialects = kind == "printer" ? std::vector<std::string>{"marlin", "klipper", "reprapfirmware", "smoothieware", "prusa"}
+                                            : std::vector<std::string>{"grbl", "grblhal"};
+    for (const std::string& dialect : dialects) {
+      INFO(f.filename().string() << " as " << dialect);
+      const auto out = dir / "out.gcode";
+      REQUIRE(run_arcpress(fmt::format("'{}' -o {} --dialect {} --tolerance 0.01 -q", f.string(), out.string(), dialect))
+                  .exit_code == 0);
+      const std::string diff = fmt::format("diff '{}' {{}} --dialect {} --tolerance 0.01 --executed", f.string(), dialect);
+      // A program whose own moves cannot all be placed (moves by expressions, an R too short)
+      // is incomplete against itself too; every other is the same as its output.
+      const int itself = run_arcpress(fmt::format(fmt::runtime(diff), "'" + f.string() + "'")).exit_code;
+      auto d = run_arcpress(fmt::format(fmt::runtime(diff), out.string()));
+      CHECK(d.exit_code == itself);
+      CHECK(d.exit_code != 1);
+      ++checked;
+    }
+  }
+  if (checked == 0) WARN("corpus folder " ARCPRESS_CORPUS_DIR " is absent: skipped");
+}

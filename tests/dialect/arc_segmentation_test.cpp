@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <vector>
 #include <numbers>
 
 #include "arcpress/dialect/arc_segmentation.hpp"
@@ -93,7 +94,13 @@ TEST_CASE("the shipped printer and Grbl dialects name their firmware's rule, and
   CHECK(find_dialect("klipper", path).executed.rule == Rule::Klipper);
   CHECK(find_dialect("reprapfirmware", path).executed.rule == Rule::RepRapFirmware);
   CHECK(find_dialect("grbl", path).executed.rule == Rule::Grbl);
-  CHECK(find_dialect("grblhal", path).executed.rule == Rule::Grbl);
+  CHECK(find_dialect("grblhal", path).executed.rule == Rule::GrblHAL);
+  // Each names its correction period, as its firmware sets it.
+  CHECK(find_dialect("marlin", path).executed.correction_period_or_default() == 25);
+  CHECK(find_dialect("grbl", path).executed.correction_period == 12);
+  CHECK(find_dialect("grblhal", path).executed.correction_period == 12);
+  CHECK(find_dialect("smoothieware", path).executed.correction_period == 5);
+  CHECK(find_dialect("reprapfirmware", path).executed.correction_period == 8);
   CHECK(find_dialect("smoothieware", path).executed.rule == Rule::Smoothieware);
   CHECK_FALSE(find_dialect("fanuc", path).executed.moves_on_chords());
   CHECK(find_dialect("klipper", path).executed.max_segment_mm == 1.0);
@@ -103,5 +110,203 @@ TEST_CASE("the shipped printer and Grbl dialects name their firmware's rule, and
   } catch (const std::exception& e) {
     CHECK(std::string(e.what()).find("bad.toml:3:") != std::string::npos);
     CHECK(std::string(e.what()).find("arcs.executed.rule") != std::string::npos);
+  }
+}
+
+namespace {
+
+// Transcriptions of each firmware's loop, written as the firmware writes it (its variable
+// names, its number types, its counter), for the golden tests below: the chord ends of an
+// arc from the start (px, py) with centre offset (i, j), turning by `travel`, in `segments`.
+struct Point {
+  double x, y;
+};
+
+// Marlin 2.1 Marlin/src/gcode/motion/G2_G3.cpp, plan_arc().
+std::vector<Point> marlin_plan_arc(float px, float py, float i, float j, float travel, int segments, int n_arc_correction) {
+  std::vector<Point> out;
+  float rvec_a = -i, rvec_b = -j;
+  const float center_P = px - rvec_a, center_Q = py - rvec_b;
+  const float theta_per_segment = travel / segments, sq_theta_per_segment = theta_per_segment * theta_per_segment,
+              sin_T = theta_per_segment - sq_theta_per_segment * theta_per_segment / 6,
+              cos_T = 1 - 0.5f * sq_theta_per_segment;
+  int arc_recalc_count = n_arc_correction;
+  for (int k = 1; k < segments; k++) {
+    if (--arc_recalc_count) {
+      const float r_new_Y = rvec_a * sin_T + rvec_b * cos_T;
+      rvec_a = rvec_a * cos_T - rvec_b * sin_T;
+      rvec_b = r_new_Y;
+    } else {
+      arc_recalc_count = n_arc_correction;
+      const float cos_Ti = std::cos(k * theta_per_segment), sin_Ti = std::sin(k * theta_per_segment);
+      rvec_a = -i * cos_Ti + j * sin_Ti;
+      rvec_b = -i * sin_Ti - j * cos_Ti;
+    }
+    out.push_back({center_P + rvec_a, center_Q + rvec_b});
+  }
+  return out;
+}
+
+// Grbl 1.1 grbl/motion_control.c, mc_arc() (float, as on the AVR where double is float).
+std::vector<Point> grbl_mc_arc(float px, float py, float i, float j, float angular_travel, int segments, int n_arc_correction) {
+  std::vector<Point> out;
+  const float center_axis0 = px + i, center_axis1 = py + j;
+  float r_axis0 = -i, r_axis1 = -j;
+  const float theta_per_segment = angular_travel / segments;
+  float cos_T = 2.0f - theta_per_segment * theta_per_segment;
+  const float sin_T = theta_per_segment * 0.16666667f * (cos_T + 4.0f);
+  cos_T *= 0.5f;
+  int count = 0;
+  for (int k = 1; k < segments; k++) {
+    if (count < n_arc_correction) {
+      const float r_axisi = r_axis0 * sin_T + r_axis1 * cos_T;
+      r_axis0 = r_axis0 * cos_T - r_axis1 * sin_T;
+      r_axis1 = r_axisi;
+      count++;
+    } else {
+      const float cos_Ti = std::cos(k * theta_per_segment), sin_Ti = std::sin(k * theta_per_segment);
+      r_axis0 = -i * cos_Ti + j * sin_Ti;
+      r_axis1 = -i * sin_Ti - j * cos_Ti;
+      count = 0;
+    }
+    out.push_back({center_axis0 + r_axis0, center_axis1 + r_axis1});
+  }
+  return out;
+}
+
+// grblHAL core motion_control.c, mc_arc(): the radius vector and centre in double.
+std::vector<Point> grblhal_mc_arc(float px, float py, float i, float j, float angular_travel, int segments) {
+  std::vector<Point> out;
+  double rv_x = -(double)i, rv_y = -(double)j;
+  const double center_x = (double)px - rv_x, center_y = (double)py - rv_y;
+  const float theta_per_segment = angular_travel / segments;
+  float cos_T = 2.0f - theta_per_segment * theta_per_segment;
+  const float sin_T = theta_per_segment * 0.16666667f * (cos_T + 4.0f);
+  cos_T *= 0.5f;
+  int count = 0;
+  for (int k = 1; k < segments; k++) {
+    if (count < 12) {
+      const double r_axisi = rv_x * sin_T + rv_y * cos_T;
+      rv_x = rv_x * cos_T - rv_y * sin_T;
+      rv_y = r_axisi;
+      count++;
+    } else {
+      const float cos_Ti = std::cos(k * theta_per_segment), sin_Ti = std::sin(k * theta_per_segment);
+      rv_x = -i * cos_Ti + j * sin_Ti;
+      rv_y = -i * sin_Ti - j * cos_Ti;
+      count = 0;
+    }
+    out.push_back({(float)(center_x + rv_x), (float)(center_y + rv_y)});
+  }
+  return out;
+}
+
+// Smoothieware src/modules/robot/Robot.cpp, append_arc().
+std::vector<Point> smoothie_append_arc(float px, float py, float i, float j, float angular_travel, int segments,
+                                       int arc_correction) {
+  std::vector<Point> out;
+  const float center_axis0 = px + i, center_axis1 = py + j;
+  float r_axis0 = -i, r_axis1 = -j;
+  const float theta_per_segment = angular_travel / segments;
+  const float cos_T = 1 - 0.5F * theta_per_segment * theta_per_segment, sin_T = theta_per_segment;
+  int count = 0;
+  for (int k = 1; k < segments; k++) {
+    if (count < arc_correction) {
+      const float r_axisi = r_axis0 * sin_T + r_axis1 * cos_T;
+      r_axis0 = r_axis0 * cos_T - r_axis1 * sin_T;
+      r_axis1 = r_axisi;
+      count++;
+    } else {
+      const float cos_Ti = cosf(k * theta_per_segment), sin_Ti = sinf(k * theta_per_segment);
+      r_axis0 = -i * cos_Ti + j * sin_Ti;
+      r_axis1 = -i * sin_Ti - j * cos_Ti;
+      count = 0;
+    }
+    out.push_back({center_axis0 + r_axis0, center_axis1 + r_axis1});
+  }
+  return out;
+}
+
+// RepRapFirmware 3 src/GCodes/GCodes.cpp, DoArcMove() and ReadMove().
+std::vector<Point> rrf_read_move(float px, float py, float iParam, float jParam, float totalArc, int totalSegments,
+                                 int segmentsPerFullArcCalculation) {
+  std::vector<Point> out;
+  const float arcCentre0 = px + iParam, arcCentre1 = py + jParam;
+  const float arcRadius = sqrtf(iParam * iParam + jParam * jParam);
+  float arcCurrentAngle = atan2f(-jParam, -iParam);
+  const float arcAngleIncrement = totalArc / totalSegments;
+  const float angleIncrementSine = sinf(arcAngleIncrement), angleIncrementCosine = cosf(arcAngleIncrement);
+  int segmentsTillNextFullCalc = 0;
+  float currentAngleCosine = 0, currentAngleSine = 0;
+  for (int segmentsLeft = totalSegments; segmentsLeft > 1; --segmentsLeft) {
+    arcCurrentAngle += arcAngleIncrement;
+    if (segmentsTillNextFullCalc == 0) {
+      segmentsTillNextFullCalc = segmentsPerFullArcCalculation;
+      currentAngleCosine = cosf(arcCurrentAngle);
+      currentAngleSine = sinf(arcCurrentAngle);
+    } else {
+      --segmentsTillNextFullCalc;
+      const float newCosine = currentAngleCosine * angleIncrementCosine - currentAngleSine * angleIncrementSine;
+      const float newSine = currentAngleSine * angleIncrementCosine + currentAngleCosine * angleIncrementSine;
+      currentAngleCosine = newCosine;
+      currentAngleSine = newSine;
+    }
+    out.push_back({arcCentre0 + arcRadius * currentAngleCosine, arcCentre1 + arcRadius * currentAngleSine});
+  }
+  return out;
+}
+
+/// Largest distance between two lists of points, pairwise; infinite where their lengths differ.
+double farthest(const std::vector<Vec2>& a, const std::vector<Point>& b) {
+  if (a.size() != b.size()) return HUGE_VAL;
+  double worst = 0;
+  for (size_t k = 0; k < a.size(); ++k) worst = std::max(worst, std::hypot(a[k].x() - b[k].x, a[k].y() - b[k].y));
+  return worst;
+}
+
+}  // namespace
+
+TEST_CASE("golden: every rule's chord ends are the ones its firmware computes, drift and all, to 1e-6 mm",
+          "[segmentation][golden]") {
+  // A small circle cut into large steps, where the small-angle rotation drifts the most (as
+  // in a printer's 0.3 mm arcs), and a larger arc with many chords, past several corrections.
+  struct Case {
+    double px, py, i, j, travel_rad;
+    int segments;
+  };
+  for (const Case c : {Case{46.3, 18.77, 0.223, 0.1935, deg(300), 14}, Case{120.5, -3.25, -4.75, 2.5, deg(-350), 61},
+                       Case{0.5, 0.25, 0.0, 12.0, deg(181), 40}}) {
+    INFO("start " << c.px << ", " << c.py << " offset " << c.i << ", " << c.j << " turn " << c.travel_rad << " in "
+                  << c.segments);
+    const Vec2 start(c.px, c.py), centre(c.px + c.i, c.py + c.j);
+    const float px = float(c.px), py = float(c.py), fi = float(c.i), fj = float(c.j), travel = float(c.travel_rad);
+    auto ends = [&](Rule r, int period) {
+      ArcSegmentation s;
+      s.rule = r;
+      s.correction_period = period;
+      std::vector<Vec2> out;
+      executed_chord_ends(s, start, centre, c.travel_rad, uint32_t(c.segments), out);
+      return out;
+    };
+    // Every end on the circle at equal turns, as the firmware would draw them in exact arithmetic.
+    std::vector<Point> on_circle;
+    for (int k = 1; k < c.segments; ++k) {
+      const double a = std::atan2(-c.j, -c.i) + c.travel_rad * k / c.segments;
+      const double r = std::hypot(c.i, c.j);
+      on_circle.push_back({centre.x() + r * std::cos(a), centre.y() + r * std::sin(a)});
+    }
+    CHECK(farthest(ends(Rule::Marlin, 0), marlin_plan_arc(px, py, fi, fj, travel, c.segments, 25)) < 1e-6);
+    CHECK(farthest(ends(Rule::Marlin, 5), marlin_plan_arc(px, py, fi, fj, travel, c.segments, 5)) < 1e-6);
+    CHECK(farthest(ends(Rule::Grbl, 0), grbl_mc_arc(px, py, fi, fj, travel, c.segments, 12)) < 1e-6);
+    CHECK(farthest(ends(Rule::GrblHAL, 0), grblhal_mc_arc(px, py, fi, fj, travel, c.segments)) < 1e-6);
+    CHECK(farthest(ends(Rule::Smoothieware, 0), smoothie_append_arc(px, py, fi, fj, travel, c.segments, 5)) < 1e-6);
+    CHECK(farthest(ends(Rule::RepRapFirmware, 0), rrf_read_move(px, py, fi, fj, travel, c.segments, 8)) < 1e-6);
+    CHECK(farthest(ends(Rule::Klipper, 0), on_circle) < 1e-9);
+    // The small-angle rotations do pull the ends off the circle: a model that put them on it
+    // would miss what these firmwares move along.
+    if (c.segments == 14) {
+      CHECK(farthest(ends(Rule::Marlin, 0), on_circle) > 1e-4);
+      CHECK(farthest(ends(Rule::Smoothieware, 0), on_circle) > 1e-3);
+    }
   }
 }

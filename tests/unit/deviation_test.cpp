@@ -187,9 +187,11 @@ TEST_CASE("the chords a firmware moves along are bounded from the polyline both 
     const ArcGeom g = ArcGeom::through(pts.front(), pts.back(), centre, sweep > 0);
     const uint32_t n = 1 + uint32_t(40 * unit(rng));
     std::vector<Vec3> chords;
+    std::vector<Vec2> ends;
     for (uint32_t k = 0; k < n; ++k) chords.push_back(g.point_at(double(k) / n));
     chords.push_back(pts.back());
-    const auto bound = chords_deviation_bound(pts, g, n);
+    for (uint32_t k = 1; k < n; ++k) ends.push_back(chords[k].head<2>());
+    const auto bound = chords_deviation_bound(pts, g, ends);
     REQUIRE(bound);
     const double step = 0.0005;
     const double measured = sampled(pts, chords, step);
@@ -199,5 +201,6 @@ TEST_CASE("the chords a firmware moves along are bounded from the polyline both 
   }
   // A helix or a whole turn is not measured this way.
   const ArcGeom full = ArcGeom::through({1, 0, 0}, {1, 0, 0}, {0, 0}, true);
-  CHECK_FALSE(chords_deviation_bound(std::vector<Vec3>{{1, 0, 0}, {-1, 0, 0}, {1, 0, 0}}, full, 8));
+  const std::vector<Vec2> eight{{0.7071, 0.7071}, {0, 1}, {-0.7071, 0.7071}, {-1, 0}, {-0.7071, -0.7071}, {0, -1}, {0.7071, -0.7071}};
+  CHECK_FALSE(chords_deviation_bound(std::vector<Vec3>{{1, 0, 0}, {-1, 0, 0}, {1, 0, 0}}, full, eight));
 }

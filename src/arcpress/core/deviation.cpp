@@ -421,10 +421,10 @@ Deviation arc_deviation_by_angles(std::span<const Vec3> pts, const ArcGeom& arc,
   return dev;
 }
 
-std::optional<double> chords_deviation_bound(std::span<const Vec3> pts, const ArcGeom& arc, uint32_t segments,
+std::optional<double> chords_deviation_bound(std::span<const Vec3> pts, const ArcGeom& arc, std::span<const Vec2> ends,
                                              double stop_above_mm) {
   const double turn = std::abs(arc.sweep);
-  if (pts.size() < 2 || segments == 0 || turn >= 2 * kPi - 1e-9 || turn <= 0 || arc.h0 != arc.h1) return std::nullopt;
+  if (pts.size() < 2 || turn >= 2 * kPi - 1e-9 || turn <= 0 || arc.h0 != arc.h1) return std::nullopt;
   for (const Vec3& p : pts)
     if (std::abs(p.z() - arc.h0) > kLengthEpsMm) return std::nullopt;
   const Vec2 c = arc.center;
@@ -433,48 +433,56 @@ std::optional<double> chords_deviation_bound(std::span<const Vec3> pts, const Ar
     const double a = arc.start_angle + arc.sweep * t;
     return Vec2(std::cos(a), std::sin(a));
   };
-  // Each vertex's share of the turn, in order along it.
-  const size_t m = pts.size() - 1;
-  std::vector<double> t(m + 1);
-  t[0] = 0;
-  t[m] = 1;
-  for (size_t j = 1; j < m; ++j) {
-    const Vec2 d(pts[j].x() - c.x(), pts[j].y() - c.y());
-    double a = sign * (std::atan2(d.y(), d.x()) - arc.start_angle);
+  // The share of the turn at which the ray from the centre through (x, y) lies.
+  auto share_of = [&](double x, double y) {
+    double a = sign * (std::atan2(y - c.y(), x - c.x()) - arc.start_angle);
     a = std::fmod(a, 2 * kPi);
     if (a < 0) a += 2 * kPi;
-    t[j] = a / turn;
-    if (t[j] < t[j - 1] - 1e-12 || t[j] > 1 + 1e-12) return std::nullopt;
-    t[j] = std::clamp(t[j], t[j - 1], 1.0);
-  }
-  const double radius = arc.radius_mm;
-  auto chord_end = [&](uint32_t k) {
+    return a / turn;
+  };
+  // Each vertex's and each chord end's share of the turn, in order along it.
+  auto shares = [&](size_t n, auto point, std::vector<double>& t) {
+    t.assign(n + 1, 0.0);
+    t[n] = 1;
+    for (size_t j = 1; j < n; ++j) {
+      const Vec2 p = point(j);
+      t[j] = share_of(p.x(), p.y());
+      if (t[j] < t[j - 1] - 1e-12 || t[j] > 1 + 1e-12) return false;
+      t[j] = std::clamp(t[j], t[j - 1], 1.0);
+    }
+    return true;
+  };
+  const size_t m = pts.size() - 1, segments = ends.size() + 1;
+  std::vector<double> t, u;
+  if (!shares(m, [&](size_t j) { return Vec2(pts[j].x(), pts[j].y()); }, t) ||
+      !shares(segments, [&](size_t k) { return ends[k - 1]; }, u))
+    return std::nullopt;
+  auto chord_end = [&](size_t k) {
+    if (k == 0) return pts.front();
     if (k >= segments) return pts.back();
-    const Vec2 u = ray(double(k) / segments);
-    return Vec3(c.x() + radius * u.x(), c.y() + radius * u.y(), arc.h0);
+    return Vec3(ends[k - 1].x(), ends[k - 1].y(), arc.h0);
   };
   // Where the ray at share `tau` meets the segment a-b (its nearer end where it misses).
   auto on_ray = [&](const Vec3& a, const Vec3& b, double tau) {
-    const Vec2 u = ray(tau), d(b.x() - a.x(), b.y() - a.y()), ca(c.x() - a.x(), c.y() - a.y());
-    const double den = d.x() * u.y() - d.y() * u.x();
+    const Vec2 r = ray(tau), d(b.x() - a.x(), b.y() - a.y()), ca(c.x() - a.x(), c.y() - a.y());
+    const double den = d.x() * r.y() - d.y() * r.x();
     if (std::abs(den) <= 1e-300) return a;
-    const double mu = std::clamp((ca.x() * u.y() - ca.y() * u.x()) / den, 0.0, 1.0);
+    const double mu = std::clamp((ca.x() * r.y() - ca.y() * r.x()) / den, 0.0, 1.0);
     return Vec3(a + mu * (b - a));
   };
-  // The turn cut at every vertex's share and every chord's end; in each piece, one segment
+  // The turn cut at every vertex's share and every chord end's; in each piece, one segment
   // of the polyline and one chord.
   std::vector<double> cuts(t.begin(), t.end());
-  for (uint32_t k = 1; k < segments; ++k) cuts.push_back(double(k) / segments);
+  cuts.insert(cuts.end(), u.begin() + 1, u.end() - 1);
   std::sort(cuts.begin(), cuts.end());
   double bound = 0;
-  size_t j = 0;
-  uint32_t k = 0;
+  size_t j = 0, k = 0;
   for (size_t i = 0; i + 1 < cuts.size(); ++i) {
     const double lo = cuts[i], hi = cuts[i + 1];
     if (hi <= lo) continue;
     const double mid = 0.5 * (lo + hi);
     while (j + 1 < m && t[j + 1] <= mid) ++j;
-    while (k + 1 < segments && double(k + 1) / segments <= mid) ++k;
+    while (k + 1 < segments && u[k + 1] <= mid) ++k;
     const Vec3 &a = pts[j], &b = pts[j + 1];
     const Vec3 c0 = chord_end(k), c1 = chord_end(k + 1);
     for (double share : {lo, hi})

@@ -60,14 +60,15 @@ Deviation arc_deviation(std::span<const Vec3> pts, const ArcGeom& arc, double st
 /// points (within 1e-9 mm) stands for the distance both ways: never less than either.
 Deviation arc_deviation_by_angles(std::span<const Vec3> pts, const ArcGeom& arc, double stop_above_mm = HUGE_VAL);
 /// An upper bound (mm) of the two-sided distance between the polyline `pts` and the chords a
-/// controller moves along in place of `arc`: `segments` equal turns about its centre, the
-/// last ending at pts.back() (arc and polyline share their ends, as a fitted arc does). The
-/// turn is cut at every vertex's angle and every chord's end: each piece of the polyline
-/// lies beside one chord and each piece of a chord beside one segment, and distance to a
-/// segment is convex along a segment, so the pieces' ends bound both ways. Nothing for a
-/// helix, a whole turn, or a polyline that does not advance along the arc's turn; the
-/// measure stops early, with a result above `stop_above_mm`, once it exceeds it.
-std::optional<double> chords_deviation_bound(std::span<const Vec3> pts, const ArcGeom& arc, uint32_t segments,
+/// controller moves along in place of `arc`: from pts.front() through the chord ends `ends`
+/// (in the plane, in order along the turn: a firmware's, executed_chord_ends()) to
+/// pts.back() (arc and polyline share their ends, as a fitted arc does). The turn is cut at
+/// every vertex's angle and every chord end's: each piece of the polyline lies beside one
+/// chord and each piece of a chord beside one segment, and distance to a segment is convex
+/// along a segment, so the pieces' ends bound both ways. Nothing for a helix, a whole turn,
+/// or a polyline or chord ends that do not advance along the arc's turn; the measure stops
+/// early, with a result above `stop_above_mm`, once it exceeds it.
+std::optional<double> chords_deviation_bound(std::span<const Vec3> pts, const ArcGeom& arc, std::span<const Vec2> ends,
                                              double stop_above_mm = HUGE_VAL);
 /// True when the path a -> b -> c has a real corner at b: it turns by more than
 /// `corner_angle_deg`, or so sharply for its segment lengths that no tangent-continuous

@@ -47,7 +47,8 @@ uint32_t executed_segments(const ArcSegmentation& s, double radius_mm, double sw
           std::clamp(std::sqrt(8 * r * s.max_deviation_mm), s.min_segment_mm, std::max(s.min_segment_mm, s.max_segment_mm));
       return std::max<uint32_t>(1, count_of(flat_mm / seg + 0.8));
     }
-    case Rule::Grbl: {
+    case Rule::Grbl:
+    case Rule::GrblHAL: {
       const double tol = s.max_deviation_mm;
       const double w = tol * (2 * r - tol);
       if (w <= 0) return 1;
@@ -65,6 +66,140 @@ uint32_t executed_segments(const ArcSegmentation& s, double radius_mm, double sw
     }
   }
   return 0;
+}
+
+int ArcSegmentation::correction_period_or_default() const {
+  if (correction_period > 0) return correction_period;
+  switch (rule) {
+    case Rule::Marlin: return 25;         // Configuration_adv.h N_ARC_CORRECTION
+    case Rule::Grbl:
+    case Rule::GrblHAL: return 12;        // config.h N_ARC_CORRECTION
+    case Rule::Smoothieware: return 5;    // arc_correction
+    case Rule::RepRapFirmware: return 8;  // SegmentsPerFulArcCalculation
+    case Rule::None:
+    case Rule::Klipper: return 1;
+  }
+  return 1;
+}
+
+namespace {
+
+/// Marlin plan_arc(), Grbl mc_arc() and Smoothieware append_arc(): the centre is the start
+/// plus the offset, in floats; the radius vector turns by a rotation built from small-angle
+/// sine and cosine, and is computed from the offset exactly at the corrections. `exact_at`
+/// says, for the index i of a chord end (from 1), whether that end is computed exactly, and
+/// `Real` is the radius vector's number type (grblHAL keeps it in double).
+template <class Real, class ExactAt>
+void rotated_ends(const Vec2& start, const Vec2& centre, double sweep_rad, uint32_t segments, float sin_t, float cos_t,
+                  float theta, ExactAt exact_at, bool centre_in_real, std::vector<Vec2>& out) {
+  const float px = float(start.x()), py = float(start.y());
+  const float ox = float(centre.x() - start.x()), oy = float(centre.y() - start.y());  // I, J as the firmware reads them
+  (void)sweep_rad;
+  Real cx, cy;
+  if (centre_in_real) {
+    cx = Real(px) + Real(ox);
+    cy = Real(py) + Real(oy);
+  } else {
+    cx = Real(px + ox);
+    cy = Real(py + oy);
+  }
+  Real rx = -Real(ox), ry = -Real(oy);
+  for (uint32_t i = 1; i < segments; ++i) {
+    if (exact_at(i)) {
+      const float ti = float(i) * theta;
+      const float cos_ti = std::cos(ti), sin_ti = std::sin(ti);
+      rx = Real(-ox * cos_ti + oy * sin_ti);
+      ry = Real(-ox * sin_ti - oy * cos_ti);
+    } else {
+      const Real next_y = rx * Real(sin_t) + ry * Real(cos_t);
+      rx = rx * Real(cos_t) - ry * Real(sin_t);
+      ry = next_y;
+    }
+    // The position the firmware keeps is a float.
+    out.emplace_back(double(float(cx + rx)), double(float(cy + ry)));
+  }
+}
+
+}  // namespace
+
+void executed_chord_ends(const ArcSegmentation& s, const Vec2& start, const Vec2& centre, double sweep_rad,
+                         uint32_t segments, std::vector<Vec2>& out) {
+  if (segments < 2) return;
+  const int period = s.correction_period_or_default();
+  switch (s.rule) {
+    case Rule::None:
+    case Rule::Klipper: {
+      // Klipper planArc() (Python floats): every end turned exactly from the start's radius.
+      const double theta = sweep_rad / segments;
+      const Vec2 r0 = start - centre;
+      for (uint32_t i = 1; i < segments; ++i) {
+        const double c = std::cos(i * theta), sn = std::sin(i * theta);
+        out.emplace_back(centre.x() + r0.x() * c - r0.y() * sn, centre.y() + r0.x() * sn + r0.y() * c);
+      }
+      return;
+    }
+    case Rule::Marlin: {
+      // plan_arc(): sin θ ≈ θ − θ³/6, cos θ ≈ 1 − θ²/2; `if (--arc_recalc_count)` turns, so
+      // every period-th end (i = period, 2·period, ...) is exact.
+      const float theta = float(sweep_rad) / float(segments);
+      const float sq = theta * theta;
+      const float sin_t = theta - sq * theta / 6, cos_t = 1 - 0.5f * sq;
+      rotated_ends<float>(start, centre, sweep_rad, segments, sin_t, cos_t, theta,
+                          [&](uint32_t i) { return i % uint32_t(period) == 0; }, false, out);
+      return;
+    }
+    case Rule::Grbl:
+    case Rule::GrblHAL: {
+      // mc_arc(): cos_T = (2 − θ²)/2, sin_T = θ (cos_T' + 4)/6 with cos_T' = 2 − θ²; it
+      // turns while `count < N_ARC_CORRECTION`, so every (period + 1)-th end is exact.
+      const float theta = float(sweep_rad) / float(segments);
+      float cos_t = 2.0f - theta * theta;
+      const float sin_t = theta * 0.16666667f * (cos_t + 4.0f);
+      cos_t *= 0.5f;
+      auto exact = [&](uint32_t i) { return i % uint32_t(period + 1) == 0; };
+      if (s.rule == Rule::Grbl) rotated_ends<float>(start, centre, sweep_rad, segments, sin_t, cos_t, theta, exact, false, out);
+      else rotated_ends<double>(start, centre, sweep_rad, segments, sin_t, cos_t, theta, exact, true, out);
+      return;
+    }
+    case Rule::Smoothieware: {
+      // append_arc(): sin_T = θ, cos_T = 1 − θ²/2; it turns while `count < arc_correction`.
+      const float theta = float(sweep_rad) / float(segments);
+      const float cos_t = 1 - 0.5f * theta * theta, sin_t = theta;
+      rotated_ends<float>(start, centre, sweep_rad, segments, sin_t, cos_t, theta,
+                          [&](uint32_t i) { return i % uint32_t(period + 1) == 0; }, false, out);
+      return;
+    }
+    case Rule::RepRapFirmware: {
+      // GCodes::DoArcMove() and ReadMove(): the angle advances by a float increment; its sine
+      // and cosine are computed at the first end and then every (period + 1)-th, and in between
+      // turned by the increment's exact sine and cosine; an end is the centre plus the radius
+      // times them.
+      const float ox = float(centre.x() - start.x()), oy = float(centre.y() - start.y());
+      const float cx = float(start.x()) + ox, cy = float(start.y()) + oy;
+      const float radius = std::sqrt(ox * ox + oy * oy);
+      float angle = std::atan2(-oy, -ox);
+      const float increment = float(sweep_rad) / float(segments);
+      const float inc_sin = std::sin(increment), inc_cos = std::cos(increment);
+      float cur_cos = 0, cur_sin = 0;
+      int till_full = 0;
+      for (uint32_t i = 1; i < segments; ++i) {
+        angle += increment;
+        if (till_full == 0) {
+          till_full = period;
+          cur_cos = std::cos(angle);
+          cur_sin = std::sin(angle);
+        } else {
+          --till_full;
+          const float next_cos = cur_cos * inc_cos - cur_sin * inc_sin;
+          const float next_sin = cur_sin * inc_cos + cur_cos * inc_sin;
+          cur_cos = next_cos;
+          cur_sin = next_sin;
+        }
+        out.emplace_back(double(cx + radius * cur_cos), double(cy + radius * cur_sin));
+      }
+      return;
+    }
+  }
 }
 
 double chords_sagitta_mm(double radius_mm, double sweep_rad, uint32_t segments) {

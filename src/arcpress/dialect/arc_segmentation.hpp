@@ -8,6 +8,9 @@
 #include <cstdint>
 #include <optional>
 #include <string_view>
+#include <vector>
+
+#include "arcpress/core/geometry.hpp"
 
 namespace arcpress {
 
@@ -17,8 +20,9 @@ struct ArcSegmentation {
     Marlin,          ///< Marlin 2.1 plan_arc(): MAX/MIN_ARC_SEGMENT_MM, MIN_CIRCLE_SEGMENTS
     Klipper,         ///< Klipper gcode_arcs: floor(length / resolution) segments, at least 1
     RepRapFirmware,  ///< RRF 3: segment sqrt(8 r MaxArcDeviation) within [min, max], count rounded up from 0.2
-    Grbl,            ///< Grbl and grblHAL mc_arc(): floor(half the length / sqrt($12 (2r - $12))), 0 meaning one chord
+    Grbl,            ///< Grbl 1.1 mc_arc(): floor(half the length / sqrt($12 (2r - $12))), 0 meaning one chord
     Smoothieware,    ///< Smoothieware append_arc(): segment from mm_max_arc_error (or mm_per_arc_segment), floor
+    GrblHAL,         ///< grblHAL mc_arc(): Grbl's count; its radius vector is rotated in double precision
   };
   Rule rule = Rule::None;
   /// Longest segment, mm: Marlin MAX_ARC_SEGMENT_MM, Klipper `resolution`, RRF
@@ -31,14 +35,23 @@ struct ArcSegmentation {
   /// The chord error the firmware aims at, mm: RRF MaxArcDeviation, Grbl $12 arc_tolerance,
   /// Smoothieware mm_max_arc_error.
   double max_deviation_mm = 0.002;
+  /// How often the firmware computes a chord end from the sine and cosine of its angle
+  /// instead of turning the last one by a small-angle step (each step pulls the end in by
+  /// about r θ⁴/24): Marlin and Grbl N_ARC_CORRECTION, Smoothieware arc_correction, RRF
+  /// SegmentsPerFulArcCalculation; what it counts is each firmware's own (dialects/README.md).
+  /// 0: the firmware's default (correction_period_or_default()).
+  int correction_period = 0;
 
   bool moves_on_chords() const { return rule != Rule::None; }
+  /// correction_period, or the firmware's default where it is 0: Marlin 25, Grbl and grblHAL
+  /// 12, Smoothieware 5, RepRapFirmware 8 (Klipper computes every end: 1).
+  int correction_period_or_default() const;
   bool operator==(const ArcSegmentation&) const = default;
 };
 
 /// The rules' names as dialect files write them, in the order of ArcSegmentation::Rule.
-inline constexpr std::array<std::string_view, 6> kRuleNames{"none", "marlin", "klipper", "reprapfirmware", "grbl",
-                                                            "smoothieware"};
+inline constexpr std::array<std::string_view, 7> kRuleNames{"none", "marlin", "klipper", "reprapfirmware", "grbl",
+                                                            "smoothieware", "grblhal"};
 inline std::string_view rule_name(ArcSegmentation::Rule rule) { return kRuleNames[static_cast<size_t>(rule)]; }
 /// The rule of that name, if any.
 inline std::optional<ArcSegmentation::Rule> rule_named(std::string_view name) {
@@ -51,6 +64,16 @@ inline std::optional<ArcSegmentation::Rule> rule_named(std::string_view name) {
 /// by `sweep_rad` (either sign) while the plane's normal axis travels `normal_travel_mm`:
 /// 1 means one chord from start to end. Always at least 1; 0 for Rule::None (the circle).
 uint32_t executed_segments(const ArcSegmentation& s, double radius_mm, double sweep_rad, double normal_travel_mm = 0);
+
+/// Where the firmware of `s` ends one chord and begins the next on an arc from `start` about
+/// `centre` (the plane's coordinates, mm) turning by `sweep_rad` (> 0 counter-clockwise) in
+/// `segments` chords (executed_segments()): the segments - 1 points between start and end,
+/// appended to `out`, computed as that firmware computes them: its number type (single
+/// precision but for Klipper's, and grblHAL's radius vector), its small-angle rotation
+/// between exact ends and its correction period. The last chord ends at the arc's end.
+/// Sources: dialects/README.md.
+void executed_chord_ends(const ArcSegmentation& s, const Vec2& start, const Vec2& centre, double sweep_rad,
+                         uint32_t segments, std::vector<Vec2>& out);
 
 /// How far (mm) `segments` equal chords of an arc of `radius_mm` turning by `sweep_rad` lie
 /// inside the circle at most: the sagitta of one segment's angle. 0 for no segments.

@@ -209,6 +209,7 @@ Dialect parse_dialect(const std::string& text, const std::string& path) {
       x.number("min_segment_mm", d.executed.min_segment_mm, 0, 1000);
       x.integer("min_circle_segments", d.executed.min_circle_segments, 0, 100000);
       x.number("max_deviation_mm", d.executed.max_deviation_mm, 0, 10);
+      x.integer("correction_period", d.executed.correction_period, 0, 1000);
       x.finish();
       if (d.executed.rule == ArcSegmentation::Rule::Klipper && d.executed.max_segment_mm <= 0)
         x.fail(e->source(), "max_segment_mm", "klipper's resolution must be above 0");

@@ -65,7 +65,22 @@ std::optional<Chosen> RunFitter::make_arc(uint32_t a, uint32_t e, const Vec2& ce
   // with that taken off keeps the chords in the band. Else the chords are measured
   // themselves (a flat arc); the circle must keep the band too.
   const uint32_t chords = executed_segments(o_.executed, g.radius_mm, g.sweep, g.h1 - g.h0);
-  const double sagitta = chords_sagitta_mm(g.radius_mm, g.sweep, chords);
+  double sagitta = chords_sagitta_mm(g.radius_mm, g.sweep, chords);
+  // The firmware's chord ends, which its small-angle steps may pull off the circle: the
+  // chords lie within their sagitta and that drift of the circle.
+  std::vector<Vec2>& ends = s_.chord_ends;
+  ends.clear();
+  if (chords > 1) {
+    executed_chord_ends(o_.executed, Vec2(pts.front().x(), pts.front().y()), g.center, g.sweep, chords, ends);
+    if (o_.executed.rule != ArcSegmentation::Rule::Klipper) {
+      double drift = 0;
+      for (uint32_t k = 1; k < chords; ++k) {
+        const Vec3 ideal = g.point_at(double(k) / chords);
+        drift = std::max(drift, (ends[k - 1] - Vec2(ideal.x(), ideal.y())).norm());
+      }
+      sagitta += drift;
+    }
+  }
   if (sagitta > 0) {
     Deviation near = arc_deviation(pts, g, band - sagitta);
     if (!near.ordered) return std::nullopt;
@@ -76,14 +91,14 @@ std::optional<Chosen> RunFitter::make_arc(uint32_t a, uint32_t e, const Vec2& ce
       // against the in-plane share of the band, and its height is checked below.)
       std::optional<double> on_chords;
       if (flat) {
-        on_chords = chords_deviation_bound(pts, g, chords, band);
+        on_chords = chords_deviation_bound(pts, g, ends, band);
       } else {
         std::vector<Vec3>& flat_pts = s_.flat_pts;
         flat_pts.assign(pts.begin(), pts.end());
         for (Vec3& p : flat_pts) p.z() = g.h0;
         ArcGeom plane = g;
         plane.h1 = g.h0;
-        on_chords = chords_deviation_bound(flat_pts, plane, chords, band);
+        on_chords = chords_deviation_bound(flat_pts, plane, ends, band);
       }
       if (!on_chords || *on_chords > band) return std::nullopt;
     }

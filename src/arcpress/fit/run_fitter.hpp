@@ -442,6 +442,7 @@ class RunFitter : private FitAngles {
     std::vector<Candidate> scanned;                   // pick()
     std::vector<Candidate> checked_cand;              // checked_from()
     std::vector<Vec3> flat_pts;                       // make_arc(): a helix's vertices in its start plane
+    std::vector<Vec2> chord_ends;                     // make_arc(): the firmware's chord ends
     std::vector<Candidate> best_cand;                 // best_from()
     std::vector<Ranked> ranked;                       // best_from()
     std::vector<Chosen> best_made;                    // best_from()

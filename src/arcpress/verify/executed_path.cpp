@@ -27,6 +27,7 @@ Interpretation executed_path(const Interpretation& in, const ArcSegmentation& ru
   Interpretation out = in.without_moves();
   out.moves.reserve(in.moves.size() * 2);
   std::vector<uint32_t> index_of(in.moves.size());  // input move -> its last move in `out`
+  std::vector<Vec2> ends;
   for (size_t i = 0; i < in.moves.size(); ++i) {
     const Move& m = in.moves[i];
     if (placed_arc(m)) {
@@ -34,14 +35,17 @@ Interpretation executed_path(const Interpretation& in, const ArcSegmentation& ru
       const uint32_t n = executed_segments(rule, g.radius_mm, g.sweep, g.h1 - g.h0);
       const AxisValues& from = in.from(i);
       const auto ax = axes_of(m.plane);
+      // The chord ends as the firmware computes them, in the plane's coordinates; the other
+      // axes (the normal axis, E) advance evenly.
+      ends.clear();
+      executed_chord_ends(rule, Vec2(from[ax.first], from[ax.second]), g.center, g.sweep, n, ends);
       for (uint32_t k = 1; k < n; ++k) {
         const double t = double(k) / n;
         Move c = m;
         c.kind = MoveKind::Line;
         for (int a = 0; a < kAxisCount; ++a) c.to[a] = from[a] + (m.to[a] - from[a]) * t;
-        const Vec3 p = g.point_at(t);  // in the plane's coordinates; its height is the normal axis's
-        c.to[ax.first] = p.x();
-        c.to[ax.second] = p.y();
+        c.to[ax.first] = ends[k - 1].x();
+        c.to[ax.second] = ends[k - 1].y();
         out.moves.push_back(c);
       }
       Move last = m;
