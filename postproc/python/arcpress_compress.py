@@ -5,15 +5,19 @@
 
 The library is looked for at --library, then $ARCPRESS_LIBRARY, then by the system's usual
 rules (ldconfig, LD_LIBRARY_PATH). Exit 0 written; otherwise arcpress's status (1 the check
-failed, 2 bad input, 3 a file) and nothing is left at OUTPUT.
+failed, 2 bad input, 3 a file could not be read or written, 4 anything else) with a message,
+and OUTPUT as it was: the output is written to a new temporary file beside it, renamed into
+place only when all is written, and removed on any failure.
 """
 import argparse
 import ctypes
 import ctypes.util
 import os
 import sys
+import tempfile
 
 OK = 0
+IO_ERROR = 3
 
 
 class Stats(ctypes.Structure):
@@ -50,40 +54,59 @@ def load(path):
 def compress(lib, source, target, dialect, tolerance):
     options = lib.arcpress_options_new()
     compressor = ctypes.c_void_p()
+    partial = None
     try:
         if (lib.arcpress_options_set_tolerance(options, tolerance) != OK or
                 lib.arcpress_options_set_dialect(options, dialect.encode()) != OK or
                 lib.arcpress_compressor_new(options, source.encode(), ctypes.byref(compressor)) != OK):
             print("arcpress_compress:", lib.arcpress_options_last_error(options).decode(), file=sys.stderr)
             return 2
+        if os.path.isdir(target):
+            print(f"arcpress_compress: cannot write '{target}': it is a folder", file=sys.stderr)
+            return IO_ERROR
         text, length = ctypes.c_char_p(), ctypes.c_size_t()
         status = OK
-        partial = target + ".partial"
-        with open(source, "rb") as src, open(partial, "wb") as out:
-            def take():
-                if lib.arcpress_take(compressor, ctypes.byref(text), ctypes.byref(length)) == OK and length.value:
-                    out.write(ctypes.string_at(text, length.value))
-            while status == OK:
-                chunk = src.read(1 << 20)
-                if not chunk:
-                    break
-                status = lib.arcpress_push(compressor, chunk, len(chunk))
+        with open(source, "rb") as src:
+            # A name of its own beside the target: an existing file is never overwritten.
+            folder = os.path.dirname(os.path.abspath(target))
+            fd, partial = tempfile.mkstemp(prefix=os.path.basename(target) + ".", suffix=".partial", dir=folder)
+            with os.fdopen(fd, "wb") as out:
+                def take():
+                    if lib.arcpress_take(compressor, ctypes.byref(text), ctypes.byref(length)) == OK and length.value:
+                        out.write(ctypes.string_at(text, length.value))
+                while status == OK:
+                    chunk = src.read(1 << 20)
+                    if not chunk:
+                        break
+                    status = lib.arcpress_push(compressor, chunk, len(chunk))
+                    take()
+                if status == OK:
+                    status = lib.arcpress_finish(compressor)
                 take()
-            if status == OK:
-                status = lib.arcpress_finish(compressor)
-            take()
+                out.flush()
+                os.fsync(out.fileno())
         sys.stderr.write(lib.arcpress_diagnostics(compressor).decode())
         if status != OK:
-            os.remove(partial)
             print("arcpress_compress:", lib.arcpress_last_error(compressor).decode(), file=sys.stderr)
             return status
         os.replace(partial, target)
+        partial = None
         stats = Stats()
         lib.arcpress_get_stats(compressor, ctypes.byref(stats))
         print(f"arcpress_compress: {stats.bytes_in} -> {stats.bytes_out} bytes, {stats.arcs_out} arcs, "
               f"deviation {stats.max_deviation_mm:.6f} mm", file=sys.stderr)
         return OK
+    except OSError as e:
+        # A missing input, a folder that is not there, a full disk: a file error, said as one.
+        name = e.filename if e.filename else target
+        print(f"arcpress_compress: '{name}': {e.strerror or e}", file=sys.stderr)
+        return IO_ERROR
     finally:
+        if partial is not None:
+            try:
+                os.remove(partial)
+            except OSError:
+                pass
         lib.arcpress_compressor_free(compressor)
         lib.arcpress_options_free(options)
 
