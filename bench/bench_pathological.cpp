@@ -1,6 +1,6 @@
 // Work on small or simple programs that once grew without bound: each case generated at 1x,
 // 2x and 4x its size (moves, length, radius or turns), compressed with verification and
-// compared with itself by `arcpress diff`, each run as a child process. Prints seconds and
+// compared with its output by `arcpress diff` on one thread, each run as a child process. Prints seconds and
 // peak memory per size and the ratio from one size to the next: time and memory follow the
 // number of moves (about 2x per doubling of them, <= 2.3x) and never a length, a radius or
 // a number of turns (about 1x when those double). Ratios of runs under 50 ms are noise and
@@ -55,6 +55,15 @@ std::vector<Case> cases() {
                  }
                  return t + "M2\n";
                }, 25000});
+  c.push_back({"small circle retraced", "moves", [](double n) {
+                 // 36 moves a lap, written as two arcs a lap: the output's pieces all overlap.
+                 std::string t = "G21 G90\nG0 X1 Y0 Z0\nG1 F600\n";
+                 for (int i = 1; i <= int(n); ++i) {
+                   const double a = 2 * M_PI * i / 36;
+                   t += fmt::format("G1 X{:.4f} Y{:.4f}\n", std::cos(a), std::sin(a));
+                 }
+                 return t + "M2\n";
+               }, 36000});
   c.push_back({"huge radius arcs", "radius", [](double r) {
                  return head() + fmt::format("G2 X0 Y19 R-{:.0f}\nG3 X1 Y0 R{:.0f}\nG2 X-{:.0f} Y0 I1.74\nM2\n", r, r, r);
                }, 1e8});
@@ -80,8 +89,9 @@ int main(int argc, char** argv) {
       const double size = c.size * scale * double(1 << k);
       const fs::path file = dir / "case.nc";
       std::ofstream(file) << c.text(size);
-      const ChildRun compress = run_child({ARCPRESS_BINARY, file.string(), "-o", "/dev/null"});
-      const ChildRun diff = run_child({ARCPRESS_BINARY, "diff", file.string(), file.string()});
+      const fs::path out = dir / "out.nc";
+      const ChildRun compress = run_child({ARCPRESS_BINARY, file.string(), "-o", out.string()});
+      const ChildRun diff = run_child({ARCPRESS_BINARY, "diff", file.string(), out.string(), "-j1"});
       auto ratio = [&](const ChildRun& now, const ChildRun& before, bool time) {
         if (k == 0) return std::string("");
         if (time && now.seconds < kNoiseSeconds && before.seconds < kNoiseSeconds) return std::string("-");

@@ -641,3 +641,34 @@ TEST_CASE("golden: Klipper moves a half circle of radius 3 as 9 chords of 20 deg
   // A controller that moves on the circle keeps the arc.
   CHECK(executed_path(in, ArcSegmentation{}).moves.size() == 2);
 }
+
+TEST_CASE("a path traced again measures as it does traced once, and the worst place is on its first trace",
+          "[diff]") {
+  // A circle as 36 moves, against a copy with one vertex pushed out, traced 1 and 40 times:
+  // the index keeps one of each repeated segment, which must change nothing measured.
+  auto laps = [](int n, double pushed_mm, double radius_mm = 10) {
+    std::string t = fmt::format("G21 G90\nG0 X{} Y0 Z0\nG1 F600\n", radius_mm);
+    for (int lap = 0; lap < n; ++lap)
+      for (int k = 1; k <= 36; ++k) {
+        const double a = 2 * kPi * k / 36, r = k == 9 ? radius_mm + pushed_mm : radius_mm;
+        t += fmt::format("G1 X{:.4f} Y{:.4f}\n", r * std::cos(a), r * std::sin(a));
+      }
+    return t + "M2\n";
+  };
+  const ProgramDiff once = diff_of(laps(1, 0), laps(1, 0.004));
+  const ProgramDiff many = diff_of(laps(40, 0), laps(40, 0.004));
+  REQUIRE(once.max_deviation_mm > 0.003);
+  CHECK(many.max_deviation_mm == Approx(once.max_deviation_mm).epsilon(1e-9));
+  REQUIRE_FALSE(many.worst.empty());
+  CHECK(many.worst.front().line_b == once.worst.front().line_b);  // ties go to the first trace
+  // The same with the output's arcs: a circle of arcs traced many times against its moves.
+  DiagnosticSink sink;
+  CompressOptions copt;
+  const std::string input = laps(40, 0, 1);
+  const CompressResult r = compress("laps.nc", input, copt, sink);
+  REQUIRE(r.stats.arcs_out > 0);
+  const ProgramDiff arcs = diff_of(input, r.output);
+  const ProgramDiff arcs_once = diff_of(laps(1, 0, 1), compress("lap.nc", laps(1, 0, 1), copt, sink).output);
+  CHECK(arcs.same(0.01));
+  CHECK(arcs.max_deviation_mm == Approx(arcs_once.max_deviation_mm).margin(1e-6));
+}

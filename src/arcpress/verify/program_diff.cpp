@@ -3,6 +3,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <unordered_set>
+#include <cstring>
+#include <array>
 #include <atomic>
 #include <cctype>
 #include <cmath>
@@ -68,6 +71,45 @@ struct Path {
   Vec3 middle(size_t s) const { return curved(s) ? point_on_piece(arc(s), a(s), b(s), 0.5) : Vec3((a(s) + b(s)) / 2); }
   /// How far piece s lies from its chord (0 for a segment).
   double sagitta(size_t s) const { return curved(s) ? piece_sagitta_mm(arc(s), a(s), b(s)) : 0.0; }
+  /// The segments that repeat no earlier one exactly (same ends, and the same arc or none),
+  /// ascending: a path traced again adds none.
+  std::vector<uint32_t> distinct_segments() const {
+    struct Key {
+      std::array<double, 12> v;
+      bool operator==(const Key&) const = default;
+    };
+    struct Hash {
+      size_t operator()(const Key& k) const {
+        uint64_t h = 14695981039346656037ull;
+        for (double d : k.v) {
+          uint64_t bits = 0;
+          std::memcpy(&bits, &d, sizeof bits);
+          h = (h ^ bits) * 1099511628211ull;
+        }
+        return size_t(h);
+      }
+    };
+    std::unordered_set<Key, Hash> seen;
+    seen.reserve(size());
+    std::vector<uint32_t> out;
+    out.reserve(size());
+    for (size_t s = 0; s < size(); ++s) {
+      Key k{};
+      const Vec3 pa = a(s), pb = b(s);
+      k.v = {pa.x(), pa.y(), pa.z(), pb.x(), pb.y(), pb.z(), 0, 0, 0, 0, 0, 0};
+      if (curved(s)) {
+        const FlatArc& c = arc(s);
+        k.v[6] = 1;
+        k.v[7] = double(int(c.plane));
+        k.v[8] = c.center.x();
+        k.v[9] = c.center.y();
+        k.v[10] = c.center.z();
+        k.v[11] = c.ccw ? c.radius_mm : -c.radius_mm;
+      }
+      if (seen.insert(k).second) out.push_back(uint32_t(s));
+    }
+    return out;
+  }
 };
 
 /// An arc whose chords (kMaxChordsPerMove of them) lie farther than this share of the band
@@ -605,8 +647,8 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
     return p.arcs.empty() ? SegmentIndex::NearestOnPiece{}
                           : SegmentIndex::NearestOnPiece([&p](const Vec3& q, uint32_t s) { return p.nearest(s, q); });
   };
-  SegmentIndex index_a(pa.points, pa.first, pieces(pa), pa.max_sagitta_mm),
-      index_b(pb.points, pb.first, pieces(pb), pb.max_sagitta_mm);
+  SegmentIndex index_a(pa.points, pa.first, pieces(pa), pa.max_sagitta_mm, pa.distinct_segments()),
+      index_b(pb.points, pb.first, pieces(pb), pb.max_sagitta_mm, pb.distinct_segments());
   bool spindle_differs = false;
   if (pa.size() > 0 && pb.size() > 0) {
     const size_t share_count = (std::max(pa.size(), pb.size()) + kShareSegments - 1) / kShareSegments;

@@ -96,6 +96,7 @@ struct SegmentIndex::Impl {
   double slack_mm = 0;
   std::vector<Box> chunks;  ///< kChunkSegments segments each
   std::vector<Box> groups;  ///< kGroupChunks chunks each
+  std::vector<uint32_t> distinct;  ///< the segments the tree holds; empty: all
   std::atomic<uint64_t> scanned{0};  ///< boxes the linear scans have visited, and segments measured
   std::once_flag built;
   std::atomic<bool> tree_ready{false};
@@ -111,8 +112,11 @@ struct SegmentIndex::Impl {
     if (tree_ready.load(std::memory_order_acquire)) return true;
     if (scanned.load(std::memory_order_relaxed) < kScanBudgetPerSegment * count) return false;
     std::call_once(built, [&] {
-      tree.insert(boost::counting_iterator<uint32_t>(0), boost::counting_iterator<uint32_t>(count), SegmentMap{lines},
-                  StartMap{lines});
+      if (distinct.empty())
+        tree.insert(boost::counting_iterator<uint32_t>(0), boost::counting_iterator<uint32_t>(count), SegmentMap{lines},
+                    StartMap{lines});
+      else
+        tree.insert(distinct.begin(), distinct.end(), SegmentMap{lines}, StartMap{lines});
       tree.build();
       tree_ready.store(true, std::memory_order_release);
     });
@@ -178,6 +182,12 @@ SegmentIndex::SegmentIndex(const std::vector<Vec3>& points, const std::vector<ui
     : SegmentIndex(points, first) {
   impl_->on_piece = std::move(on_piece);
   impl_->slack_mm = slack_mm;
+}
+
+SegmentIndex::SegmentIndex(const std::vector<Vec3>& points, const std::vector<uint32_t>& first,
+                           NearestOnPiece on_piece, double slack_mm, std::vector<uint32_t> distinct)
+    : SegmentIndex(points, first, std::move(on_piece), slack_mm) {
+  if (distinct.size() < impl_->count) impl_->distinct = std::move(distinct);
 }
 
 SegmentIndex::~SegmentIndex() = default;

@@ -32,6 +32,12 @@ class SegmentIndex {
   /// none lies farther than `slack_mm` (mm) from its segment. Empty `on_piece`: segments.
   SegmentIndex(const std::vector<Vec3>& points, const std::vector<uint32_t>& first, NearestOnPiece on_piece,
                double slack_mm);
+  /// As above, where only the segments `distinct` (ascending) need be searched: each other
+  /// one repeats an earlier one exactly (a path traced again), so it is never nearer and, of
+  /// ties, never the lowest-numbered. A path traced n times then costs each query as one
+  /// trace does, not n times that.
+  SegmentIndex(const std::vector<Vec3>& points, const std::vector<uint32_t>& first, NearestOnPiece on_piece,
+               double slack_mm, std::vector<uint32_t> distinct);
   ~SegmentIndex();
   SegmentIndex(const SegmentIndex&) = delete;
   SegmentIndex& operator=(const SegmentIndex&) = delete;
