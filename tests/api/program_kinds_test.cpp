@@ -170,10 +170,11 @@ TEST_CASE("a program with G1 moves of which none could be fitted gets one warnin
   CHECK(quiet.warning_count("W-FIT-NONE") == 0);
 }
 
-TEST_CASE("a run whose fit the check refuses is written as the input's moves, and the rest is still compressed",
+TEST_CASE("a run too far from the origin for the check to measure is written as the input's moves, and the rest is "
+          "still compressed",
           "[api][fallback]") {
   // Two circles of radius 5 mm: one at the origin, one at X -1e15, where a double holds a
-  // coordinate to 0.125 mm and no fitted arc reads back inside a 0.01 mm band.
+  // coordinate to 0.125 mm and no fitted arc could be measured inside a 0.01 mm band.
   std::string t = "G21 G90\nG0 X5 Y0 Z0\nG1 F600\n";
   for (int i = 1; i < 300; ++i)
     t += fmt::format("G1 X{:.4f} Y{:.4f}\n", 5 * std::cos(kPi * i / 75), 5 * std::sin(kPi * i / 75));
@@ -188,7 +189,10 @@ TEST_CASE("a run whose fit the check refuses is written as the input's moves, an
   REQUIRE(r.ok);
   REQUIRE(r.verified);
   CHECK(r.within_band());
-  CHECK(r.runs_kept_as_input == 1);
+  CHECK(r.runs_kept_as_input == 0);  // never fitted, so never refused
+  REQUIRE(r.not_fitted.size() == 1);
+  CHECK(r.not_fitted.front().why == Unfit::FarFromOrigin);
+  CHECK(r.not_fitted.front().moves == 300);
   CHECK(r.stats.arcs_out >= 2);  // the circle at the origin
   // The far circle's moves are the input's own lines, byte for byte.
   const std::string far = t.substr(t.find("G1 Z0\n"));

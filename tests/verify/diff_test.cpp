@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "arcpress/api/arcpress.hpp"
+#include "arcpress/dialect/dialect_loader.hpp"
 #include "arcpress/lex/lexer.hpp"
 #include "arcpress/model/interpreter.hpp"
 #include "arcpress/verify/diff_plot.hpp"
@@ -671,4 +672,61 @@ TEST_CASE("a path traced again measures as it does traced once, and the worst pl
   const ProgramDiff arcs_once = diff_of(laps(1, 0, 1), compress("lap.nc", laps(1, 0, 1), copt, sink).output);
   CHECK(arcs.same(0.01));
   CHECK(arcs.max_deviation_mm == Approx(arcs_once.max_deviation_mm).margin(1e-6));
+}
+
+TEST_CASE("a program compared with itself is the same in every dialect, whatever its numbers", "[diff][extreme]") {
+  std::string far_circle = "G21 G90\nG0 X1000000000000 Y0 Z0\nG1 F600\n";
+  for (int k = 1; k <= 400; ++k)
+    far_circle += fmt::format("G1 X{:.4f} Y{:.4f}\n", 1e12 + 10 * std::cos(2 * kPi * k / 400) - 10,
+                              10 * std::sin(2 * kPi * k / 400));
+  std::string huge_arcs = "G21 G90\nG0 X0 Y0 Z0\nG1 F100\n";
+  for (int k = 1; k <= 200; ++k) huge_arcs += fmt::format("G{} X{:.3f} Y0 R1000000000000000\n", 2 + k % 2, 0.05 * k);
+  const std::vector<std::string> programs = {
+      // A minor arc of radius 1e15 over a chord of 136 mm: next to its chord, no full circle.
+      "G0 X33.7363 Y136.29\nG3 Y0 R1000000000000000 F100\n",
+      // Coordinates near -1e15, too far to measure within any band: the same moves both sides.
+      "G21 G90\nG0 X-1000000000000000 Y-1000000000000000\nG1 X-999999999999999 Y-1000000000000000 F100\n"
+      "G1 X-999999999999998 Y-999999999999999\n",
+      // A major arc of radius 1e15 (R negative): a circle of 6.3e15 mm, too big to follow.
+      "G21 G90\nG0 X0 Y0\nG2 X0.05 Y0 R-1000000000000000 F100\n",
+      far_circle, huge_arcs};
+  const std::vector<Dialect> dialects = list_dialects({ARCPRESS_SOURCE_DIR "/dialects"});
+  REQUIRE(dialects.size() >= 17);
+  for (const Dialect& d : dialects) {
+    for (const std::string& p : programs) {
+      INFO(d.name << ":\n" << p.substr(0, 200));
+      DiffOptions opt;
+      const ProgramDiff r = test::diff_texts(p, p, opt, d);
+      CHECK(r.verdict(opt.tolerance_mm) == ProgramDiff::Verdict::Same);
+      CHECK(r.max_deviation_mm == 0);
+    }
+  }
+}
+
+TEST_CASE("text written back as it was passes the check, and moves too far to check are not fitted", "[diff][extreme]") {
+  std::string far_circle = "G21 G90\nG0 X1000000000000 Y0 Z0\nG1 F600\n";
+  for (int k = 1; k <= 400; ++k)
+    far_circle += fmt::format("G1 X{:.4f} Y{:.4f}\n", 1e12 + 10 * std::cos(2 * kPi * k / 400) - 10,
+                              10 * std::sin(2 * kPi * k / 400));
+  std::string huge_arcs = "G21 G90\nG0 X0 Y0 Z0\nG1 F100\n";
+  for (int k = 1; k <= 2000; ++k) huge_arcs += fmt::format("G{} X{:.3f} Y0 R1000000000000000\n", 2 + k % 2, 0.05 * k);
+  for (const auto method : {FitOptions::Method::Arcs, FitOptions::Method::Keep})
+    for (const std::string& p : {std::string("G0 X33.7363 Y136.29\nG3 Y0 R1000000000000000 F100\n"), huge_arcs,
+                                 far_circle}) {
+      INFO(p.substr(0, 120));
+      DiagnosticSink sink;
+      CompressOptions opt;
+      opt.fit.method = method;
+      opt.header = false;
+      const CompressResult r = compress("x.nc", p, opt, sink);
+      CHECK(r.ok);
+      CHECK(r.within_band());
+      CHECK(r.output == p);
+      CHECK(r.check.compared_all());
+    }
+  DiagnosticSink sink;
+  const CompressResult r = compress("far.nc", far_circle, CompressOptions{}, sink);
+  REQUIRE(r.not_fitted.size() == 1);
+  CHECK(r.not_fitted.front().why == Unfit::FarFromOrigin);
+  CHECK(r.not_fitted.front().moves == 400);
 }

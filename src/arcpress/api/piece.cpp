@@ -261,6 +261,16 @@ void compress_piece(Piece& piece, const CompressOptions& options) {
   CompressOptions opt = options;
   opt.threads = piece.threads;
   const Program& prog = piece.program;
+  // A G1 move the check could not measure (too far from the origin for the band) is kept as
+  // it is: nothing is written that was not checked.
+  const double farthest_mm = farthest_measurable_mm(opt.fit.tolerance_mm);
+  for (size_t i = 0; i < piece.in.moves.size(); ++i) {
+    Move& m = piece.in.moves[i];
+    const AxisValues& from = piece.in.from(i);
+    const double reach_mm = std::max({std::abs(from[kX]), std::abs(from[kY]), std::abs(from[kZ]),
+                                      m.xyz().cwiseAbs().maxCoeff()});
+    if (m.fittable() && !(reach_mm <= farthest_mm)) m.unfit = Unfit::FarFromOrigin;
+  }
   const Interpretation& in = piece.in;
   CompressResult& r = piece.result;
   r.blocks_in = prog.blocks.size();

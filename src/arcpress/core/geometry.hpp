@@ -3,6 +3,7 @@
 // says otherwise; angles are radians unless a name ends in _deg.
 #include <Eigen/Core>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace arcpress {
@@ -12,6 +13,16 @@ using Vec3 = Eigen::Vector3d;
 
 /// Floating-point noise floor for lengths in mm: "is this zero?". Never a user tolerance.
 inline constexpr double kLengthEpsMm = 1e-9;
+
+/// A point is measured against a band of `band_mm` only where its coordinates' rounding (a
+/// double's epsilon times their size, several times over in each distance) stays within
+/// this share of the band...
+inline constexpr double kFarShare = 1e-3 / 8;
+/// ... so up to this many mm from the origin (about 5 600 km for a band of 0.01 mm). The
+/// check measures no move beyond it, so the fitter rewrites none.
+inline double farthest_measurable_mm(double band_mm) {
+  return kFarShare * band_mm / std::numeric_limits<double>::epsilon();
+}
 
 inline constexpr double kPi = std::numbers::pi;
 inline double deg_to_rad(double deg) { return deg * kPi / 180.0; }

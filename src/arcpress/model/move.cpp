@@ -26,6 +26,7 @@ const char* describe(Unfit why) {
     case Unfit::DiameterMode: return "lathe diameter mode (G7): left as it is";
     case Unfit::FeedUnknown: return "no feed rate in force";
     case Unfit::NoPathAxis: return "moves only E or extra axes";
+    case Unfit::FarFromOrigin: return "too far from the origin for the check to measure a fit of it within the band";
   }
   return "?";
 }

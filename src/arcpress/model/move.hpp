@@ -90,6 +90,7 @@ enum class Unfit : uint8_t {
   DiameterMode,     ///< lathe G7: X words are diameters
   FeedUnknown,      ///< no F in force yet
   NoPathAxis,       ///< it moves only E or the extra axes (a retraction, a rotary index)
+  FarFromOrigin,    ///< so far from the origin that the check could not measure a fit of it (farthest_measurable_mm())
 };
 
 /// A few words on `why`, for reports: "comment in the block", ...

@@ -64,6 +64,10 @@ std::string diff_text(const ProgramDiff& d, const DiffNames& n, double tol) {
       t += fmt::format("{}: {} feed move(s) too far from the origin to measure within the band, not compared (first "
                        "at line {})\n",
                        name, s.far_moves, s.first_far_line);
+    if (s.identical_unmeasured > 0)
+      t += fmt::format("{}: {} feed move(s) too far from the origin or arc(s) too big to measure, each the same as "
+                       "the other program's: compared as identical\n",
+                       name, s.identical_unmeasured);
     if (s.unplaced_feed_moves > 0)
       t += fmt::format("{}: {} feed move(s) not compared: their position is not known (first at line {}: {})\n", name,
                        s.unplaced_feed_moves, s.first_unplaced_line, s.unplaced_reason);

@@ -32,7 +32,8 @@ Interpretation executed_path(const Interpretation& in, const ArcSegmentation& ru
     const Move& m = in.moves[i];
     if (placed_arc(m)) {
       const ArcGeom g = arc_of_move(in, i);
-      const uint32_t n = executed_segments(rule, g.radius_mm, g.sweep, g.h1 - g.h0);
+      // (A flat arc, which no chord end can be told from its chord: the chord.)
+      const uint32_t n = flat_arc_sagitta_mm(g) <= kFlatArcMm ? 1 : executed_segments(rule, g.radius_mm, g.sweep, g.h1 - g.h0);
       const AxisValues& from = in.from(i);
       const auto ax = axes_of(m.plane);
       // The chord ends as the firmware computes them, in the plane's coordinates; the other

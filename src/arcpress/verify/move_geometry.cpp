@@ -18,10 +18,20 @@ ArcGeom arc_of_move(const Interpretation& in, size_t i) {
   const Move& m = in.moves[i];
   Vec3 s = in_plane(in.from(i), m.plane), e = in_plane(m.to, m.plane);
   ArcGeom g = ArcGeom::through(s, e, project(m.center, m.plane), m.kind == MoveKind::ArcCCW);
-  if (std::abs(g.sweep) < 1e-12 || (s - e).head<2>().norm() <= kSamePointMm)
+  // Only end points that coincide make a whole turn: an arc of a huge radius between two
+  // distinct points turns by next to nothing, and is next to its chord.
+  if ((s - e).head<2>().norm() <= kSamePointMm)
     g.sweep = (m.kind == MoveKind::ArcCCW ? 1 : -1) * 2 * kPi;
   g.sweep += (g.sweep >= 0 ? 1 : -1) * 2 * kPi * std::max(0, m.turns - 1);
   return g;
+}
+
+double flat_arc_sagitta_mm(const ArcGeom& g) {
+  const double turn = std::abs(g.sweep);
+  if (!(turn <= kPi) || g.h0 != g.h1 || !std::isfinite(g.radius_mm)) return HUGE_VAL;
+  const double s = std::sin(turn / 4);
+  const double sagitta = 2 * g.radius_mm * s * s;
+  return sagitta <= kFlatArcMm ? sagitta : HUGE_VAL;
 }
 
 double move_path(const Interpretation& in, size_t i, double chord_mm, std::vector<Vec3>& out) {
@@ -31,6 +41,10 @@ double move_path(const Interpretation& in, size_t i, double chord_mm, std::vecto
     return 0;
   }
   ArcGeom g = arc_of_move(in, i);
+  if (const double flat = flat_arc_sagitta_mm(g); flat <= kFlatArcMm) {
+    out.push_back(m.xyz());  // its chord: no point of it can be told from the arc's
+    return flat;
+  }
   double r = std::max(g.radius_mm, kLengthEpsMm);
   double step = 2 * std::acos(std::clamp(1 - chord_mm / r, -1.0, 1.0));
   const double wanted = std::ceil(std::abs(g.sweep) / std::max(step, 1e-300));
@@ -64,7 +78,8 @@ std::optional<FlatArc> arc_pieces(const Interpretation& in, size_t i, double max
   if (!is_arc(m.kind) || m.turns > 1) return std::nullopt;
   const ArcGeom g = arc_of_move(in, i);
   const double r = g.radius_mm;
-  if (g.h1 != g.h0 || !(r > kLengthEpsMm) || !std::isfinite(r)) return std::nullopt;
+  if (g.h1 != g.h0 || !(r > kLengthEpsMm) || !std::isfinite(r) || flat_arc_sagitta_mm(g) <= kFlatArcMm)
+    return std::nullopt;
   const double fine = std::min(2 * std::acos(std::clamp(1 - max_sagitta_mm / r, -1.0, 1.0)),
                                2 * std::asin(std::min(1.0, max_piece_mm / (2 * r))));
   const double by_sweep = std::ceil(std::abs(g.sweep) / max_sweep_rad);

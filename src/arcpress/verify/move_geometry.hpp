@@ -14,6 +14,14 @@ namespace arcpress {
 /// coincide in the plane make a full turn; a P word adds turns.
 ArcGeom arc_of_move(const Interpretation& in, size_t i);
 
+/// An arc that bulges off its chord by no more than this (mm: a floating-point epsilon of
+/// lengths, far below any band) is measured as its chord. An arc of a huge radius between
+/// two near points is one, and its centre too far off for a double to place its points.
+inline constexpr double kFlatArcMm = 1e-9;
+/// How far arc `g` bulges off its chord (mm) where that is at most kFlatArcMm (a flat arc,
+/// less than half a turn, in its plane), else infinity.
+double flat_arc_sagitta_mm(const ArcGeom& g);
+
 /// Most chords one arc is followed by: its radius and turns never set more work than this.
 inline constexpr size_t kMaxChordsPerMove = 16384;
 

@@ -48,11 +48,14 @@ struct Path {
   /// within the measure's precision): not measured. The first one's move.
   size_t rough_arcs = 0;
   uint32_t first_rough_move = 0;
-  /// Feed moves too far from the origin to measure (kFarShare): not measured. The first one.
+  /// Feed moves too far from the origin to measure (farthest_measurable_mm()): not measured. The first one.
   size_t far_moves = 0;
   uint32_t first_far_move = 0;
   /// How much farther than the measure's precision the chords of any other arc lie, mm.
   double chord_excess_mm = 0;
+  /// The moves not measured (far from the origin, or arcs too big), as exact keys: where the
+  /// other program has the very same moves, they are the same path and need no measure.
+  std::vector<std::array<double, 12>> unmeasured;
   std::vector<uint32_t> rapids;                      ///< move indices of rapids whose end is known
   /// Move indices of feed moves from an unknown position to a known one.
   std::vector<uint32_t> entries;
@@ -118,10 +121,6 @@ constexpr double kRoughShare = 0.1;
 /// Two arcs' centres this close (a share of the radius, and of 1 mm) are one centre: the
 /// floating noise of reading the same numbers two ways, a floating-point epsilon.
 constexpr double kSameCentreShare = 1e-12;
-/// A feed move is measured only where its coordinates' rounding (a double's epsilon times
-/// their size, several times over in each distance) stays within this share of the band:
-/// for a band of 0.01 mm, within about 5.6e9 mm (5 600 km) of the origin.
-constexpr double kFarShare = 1e-3 / 8;
 /// Longest piece of a path put into the index, mm.
 constexpr double kPieceMm = 10.0;
 /// Most pieces one straight segment is cut into: past this a segment's pieces grow longer
@@ -140,6 +139,15 @@ constexpr double kPieceSagittaShare = 0.5;
 /// enough that the few points each share measures before its own maximum has grown cost
 /// little, few enough that two or more threads have shares to take.
 constexpr size_t kShareSegments = 65536;
+
+/// Move i exactly: kind, plane, turns, start, end and centre.
+std::array<double, 12> move_key(const Interpretation& in, size_t i) {
+  const Move& m = in.moves[i];
+  const AxisValues& f = in.from(i);
+  const bool arc = is_arc(m.kind);
+  return {double(int(m.kind)) * 1000 + double(int(m.plane)) * 100 + double(m.turns), f[kX], f[kY], f[kZ], m.to[kX],
+          m.to[kY], m.to[kZ], arc ? m.center.x() : 0.0, arc ? m.center.y() : 0.0, arc ? m.center.z() : 0.0, 0, 0};
+}
 
 Path path_of(const Interpretation& in, double chord_mm, double tolerance_mm) {
   Path p;
@@ -160,10 +168,14 @@ Path path_of(const Interpretation& in, double chord_mm, double tolerance_mm) {
       continue;
     }
     // So far from the origin that a double holds its points more coarsely than the measure
-    // needs: not measured (a program would differ from itself by its rounding).
-    const double farthest = std::max(xyz(in.from(i)).cwiseAbs().maxCoeff(), xyz(m.to).cwiseAbs().maxCoeff());
-    if (!(farthest <= kFarShare * tolerance_mm / std::numeric_limits<double>::epsilon())) {
+    // needs: not measured (a program would differ from itself by its rounding). An arc's
+    // points are placed from its centre, unless it is flat enough to be its chord.
+    double farthest = std::max(xyz(in.from(i)).cwiseAbs().maxCoeff(), xyz(m.to).cwiseAbs().maxCoeff());
+    if (is_arc(m.kind) && !(flat_arc_sagitta_mm(arc_of_move(in, i)) <= kFlatArcMm))
+      farthest = std::max(farthest, m.center.cwiseAbs().maxCoeff());
+    if (!(farthest <= farthest_measurable_mm(tolerance_mm))) {
       if (p.far_moves++ == 0) p.first_far_move = uint32_t(i);
+      p.unmeasured.push_back(move_key(in, i));
       in_section = false;
       continue;
     }
@@ -193,7 +205,10 @@ Path path_of(const Interpretation& in, double chord_mm, double tolerance_mm) {
         // An arc too big (its radius, its turns) to follow within the measure's precision:
         // within a tenth of the band, its chords' distance is counted against the verdict;
         // beyond, it is not measured at all.
-        if (sagitta_mm > kRoughShare * tolerance_mm && p.rough_arcs++ == 0) p.first_rough_move = uint32_t(i);
+        if (sagitta_mm > kRoughShare * tolerance_mm) {
+          if (p.rough_arcs++ == 0) p.first_rough_move = uint32_t(i);
+          p.unmeasured.push_back(move_key(in, i));
+        }
         p.chord_excess_mm = std::max(p.chord_excess_mm, std::min(sagitta_mm, kRoughShare * tolerance_mm) - chord_mm);
       }
     }
@@ -631,6 +646,20 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
   };
   d.a = summary(a, ia, pa);
   d.b = summary(b, ib, pb);
+  // Moves the measure cannot follow, where both programs have exactly the same ones: each
+  // lies on its twin, at no distance, so they are compared (a program equals itself,
+  // whatever its numbers). Leaving them out of both paths only lengthens other distances.
+  if (!pa.unmeasured.empty()) {
+    std::sort(pa.unmeasured.begin(), pa.unmeasured.end());
+    std::sort(pb.unmeasured.begin(), pb.unmeasured.end());
+    if (pa.unmeasured == pb.unmeasured) {
+      for (ProgramSummary* sum : {&d.a, &d.b}) {
+        sum->identical_unmeasured = sum->unmeasured_arcs + sum->far_moves;
+        sum->unmeasured_arcs = sum->far_moves = 0;
+      }
+      pa.chord_excess_mm = pb.chord_excess_mm = 0;
+    }
+  }
   // Both paths' chords may lie that much off their arcs: a distance read that much short.
   d.chord_excess_mm = 2 * std::max(pa.chord_excess_mm, pb.chord_excess_mm);
   d.arc_chord_mm += d.chord_excess_mm;

@@ -91,6 +91,9 @@ struct ProgramSummary {
   /// measure needs: not measured. The first one's line.
   size_t far_moves = 0;
   uint32_t first_far_line = 0;
+  /// Moves of those two kinds (arcs too big, moves too far) that the other program has
+  /// exactly too, the same kind, ends and centre: compared as the same path, not counted above.
+  size_t identical_unmeasured = 0;
   /// Feed moves of either kind that were not compared.
   size_t not_compared() const { return unplaced_feed_moves + unmeasured_arcs + far_moves; }
 };
