@@ -674,13 +674,29 @@ TEST_CASE("a path traced again measures as it does traced once, and the worst pl
   CHECK(arcs.max_deviation_mm == Approx(arcs_once.max_deviation_mm).margin(1e-6));
 }
 
-TEST_CASE("a program compared with itself is the same in every dialect, whatever its numbers", "[diff][extreme]") {
-  std::string far_circle = "G21 G90\nG0 X1000000000000 Y0 Z0\nG1 F600\n";
+namespace {
+
+/// A circle of 400 moves, radius 10 mm, at X = 1e12 mm: too far from the origin to measure.
+std::string circle_at_1e12() {
+  std::string t = "G21 G90\nG0 X1000000000000 Y0 Z0\nG1 F600\n";
   for (int k = 1; k <= 400; ++k)
-    far_circle += fmt::format("G1 X{:.4f} Y{:.4f}\n", 1e12 + 10 * std::cos(2 * kPi * k / 400) - 10,
-                              10 * std::sin(2 * kPi * k / 400));
-  std::string huge_arcs = "G21 G90\nG0 X0 Y0 Z0\nG1 F100\n";
-  for (int k = 1; k <= 200; ++k) huge_arcs += fmt::format("G{} X{:.3f} Y0 R1000000000000000\n", 2 + k % 2, 0.05 * k);
+    t += fmt::format("G1 X{:.4f} Y{:.4f}\n", 1e12 + 10 * std::cos(2 * kPi * k / 400) - 10,
+                     10 * std::sin(2 * kPi * k / 400));
+  return t;
+}
+
+/// `n` arcs of radius 1e15 mm, each over a 0.05 mm chord, turning either way.
+std::string huge_radius_arcs(int n) {
+  std::string t = "G21 G90\nG0 X0 Y0 Z0\nG1 F100\n";
+  for (int k = 1; k <= n; ++k) t += fmt::format("G{} X{:.3f} Y0 R1000000000000000\n", 2 + k % 2, 0.05 * k);
+  return t;
+}
+
+}  // namespace
+
+TEST_CASE("a program compared with itself is the same in every dialect, whatever its numbers", "[diff][extreme]") {
+  const std::string far_circle = circle_at_1e12();
+  const std::string huge_arcs = huge_radius_arcs(200);
   const std::vector<std::string> programs = {
       // A minor arc of radius 1e15 over a chord of 136 mm: next to its chord, no full circle.
       "G0 X33.7363 Y136.29\nG3 Y0 R1000000000000000 F100\n",
@@ -704,12 +720,8 @@ TEST_CASE("a program compared with itself is the same in every dialect, whatever
 }
 
 TEST_CASE("text written back as it was passes the check, and moves too far to check are not fitted", "[diff][extreme]") {
-  std::string far_circle = "G21 G90\nG0 X1000000000000 Y0 Z0\nG1 F600\n";
-  for (int k = 1; k <= 400; ++k)
-    far_circle += fmt::format("G1 X{:.4f} Y{:.4f}\n", 1e12 + 10 * std::cos(2 * kPi * k / 400) - 10,
-                              10 * std::sin(2 * kPi * k / 400));
-  std::string huge_arcs = "G21 G90\nG0 X0 Y0 Z0\nG1 F100\n";
-  for (int k = 1; k <= 2000; ++k) huge_arcs += fmt::format("G{} X{:.3f} Y0 R1000000000000000\n", 2 + k % 2, 0.05 * k);
+  const std::string far_circle = circle_at_1e12();
+  const std::string huge_arcs = huge_radius_arcs(2000);
   for (const auto method : {FitOptions::Method::Arcs, FitOptions::Method::Keep})
     for (const std::string& p : {std::string("G0 X33.7363 Y136.29\nG3 Y0 R1000000000000000 F100\n"), huge_arcs,
                                  far_circle}) {
