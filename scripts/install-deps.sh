@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # Installs the Debian packages arcpress builds with; with --test, also the real
 # interpreters, slicer, CAM system and browser the test suite checks output against (LinuxCNC's rs274,
-# PrusaSlicer, FreeCAD, Chromium); with --fuzz, clang and its sanitizer and libFuzzer runtimes (scripts/fuzz.sh).
+# PrusaSlicer, FreeCAD, Chromium) and clang (the fuzz build's compiler, whose C++ the suite checks); with --fuzz, clang and its sanitizer and libFuzzer runtimes (scripts/fuzz.sh).
 # Idempotent: installs only what is missing. Run as root (or through sudo).
 set -euo pipefail
 packages=(g++ cmake make libeigen3-dev libcgal-dev libcli11-dev libfmt-dev catch2 libtomlplusplus-dev)
 if [ "${1:-}" = "--test" ]; then
-  packages+=(linuxcnc-uspace chromium prusa-slicer freecad)
+  packages+=(linuxcnc-uspace chromium prusa-slicer freecad clang)
 fi
 if [ "${1:-}" = "--fuzz" ]; then
   packages+=(clang libclang-rt-14-dev)
