@@ -34,11 +34,11 @@ bool is_control(unsigned char c) {
 }  // namespace
 
 std::optional<ForeignContent> foreign_content(const Program& program, bool whole) {
-  std::string_view text = program.text;
+  std::string_view text = std::string_view(program.text).substr(0, kForeignSampleBytes);
   for (const Signature& s : kSignatures)
     if (text.substr(0, s.bytes.size()) == s.bytes) return ForeignContent{{1, 1}, fmt::format("{} at its start", s.what)};
   // Padding at the end of a whole file: NULs, or a DOS end-of-file mark.
-  if (whole)
+  if (whole && text.size() == program.text.size())
     while (!text.empty() && (text.back() == '\0' || text.back() == '\x1a')) text.remove_suffix(1);
 
   // Control bytes outside comments, counted line by line (a '(' comment ends at its line).
@@ -80,6 +80,7 @@ std::optional<ForeignContent> foreign_content(const Program& program, bool whole
   size_t unreadable = 0, readable = 0;
   const Block* first_unreadable = nullptr;
   for (const Block& b : program.blocks) {
+    if (b.begin >= kForeignSampleBytes) break;
     if (b.kind == BlockKind::Empty) continue;
     if (b.kind != BlockKind::Opaque) {
       ++readable;

@@ -3,8 +3,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <unordered_set>
-#include <cstring>
 #include <array>
 #include <atomic>
 #include <cctype>
@@ -77,40 +75,28 @@ struct Path {
   /// The segments that repeat no earlier one exactly (same ends, and the same arc or none),
   /// ascending: a path traced again adds none.
   std::vector<uint32_t> distinct_segments() const {
-    struct Key {
-      std::array<double, 12> v;
-      bool operator==(const Key&) const = default;
-    };
-    struct Hash {
-      size_t operator()(const Key& k) const {
-        uint64_t h = 14695981039346656037ull;
-        for (double d : k.v) {
-          uint64_t bits = 0;
-          std::memcpy(&bits, &d, sizeof bits);
-          h = (h ^ bits) * 1099511628211ull;
-        }
-        return size_t(h);
-      }
-    };
-    std::unordered_set<Key, Hash> seen;
-    seen.reserve(size());
-    std::vector<uint32_t> out;
-    out.reserve(size());
+    // Each segment's key; sorted, equal keys stand together, the earliest first.
+    std::vector<std::array<double, 12>> keys(size());
     for (size_t s = 0; s < size(); ++s) {
-      Key k{};
       const Vec3 pa = a(s), pb = b(s);
-      k.v = {pa.x(), pa.y(), pa.z(), pb.x(), pb.y(), pb.z(), 0, 0, 0, 0, 0, 0};
+      keys[s] = {pa.x(), pa.y(), pa.z(), pb.x(), pb.y(), pb.z(), 0, 0, 0, 0, 0, 0};
       if (curved(s)) {
         const FlatArc& c = arc(s);
-        k.v[6] = 1;
-        k.v[7] = double(int(c.plane));
-        k.v[8] = c.center.x();
-        k.v[9] = c.center.y();
-        k.v[10] = c.center.z();
-        k.v[11] = c.ccw ? c.radius_mm : -c.radius_mm;
+        keys[s][6] = 1 + double(int(c.plane));
+        keys[s][7] = c.center.x();
+        keys[s][8] = c.center.y();
+        keys[s][9] = c.center.z();
+        keys[s][10] = c.ccw ? c.radius_mm : -c.radius_mm;
       }
-      if (seen.insert(k).second) out.push_back(uint32_t(s));
     }
+    std::vector<uint32_t> order(size());
+    for (size_t s = 0; s < size(); ++s) order[s] = uint32_t(s);
+    std::sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) { return std::tie(keys[x], x) < std::tie(keys[y], y); });
+    std::vector<uint32_t> out;
+    out.reserve(size());
+    for (size_t k = 0; k < order.size(); ++k)
+      if (k == 0 || keys[order[k]] != keys[order[k - 1]]) out.push_back(order[k]);
+    std::sort(out.begin(), out.end());
     return out;
   }
 };
@@ -350,14 +336,16 @@ class Directed {
 
   /// `visit(from_segment, nearest, point)` for every evaluated point; `nearest` is exact
   /// when its distance exceeds the floor at the time of the visit.
-  /// ... for `from`'s segments [begin, end).
+  /// ... for `from`'s segments [begin, end), but those `repeats` marks: each is an earlier
+  /// segment of `from` again, whose points lie exactly as far from `to`.
   template <class Visit>
-  void run(size_t begin, size_t end, Visit&& visit) {
+  void run(size_t begin, size_t end, const std::vector<bool>& repeats, Visit&& visit) {
     if (index_.empty()) return;
     points_left_ = kPointsPerSegment * (end - begin) + kPointsBase;
     SegmentIndex::Nearest n0{};
     Vec3 last(NAN, NAN, NAN);
     for (size_t s = begin; s < end; ++s) {
+      if (repeats[s]) continue;
       Vec3 p0 = from_.a(s), p1 = from_.b(s);
       if (!(p0 == last)) {
         n0 = locate(p0, n0.segment);
@@ -676,8 +664,16 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
     return p.arcs.empty() ? SegmentIndex::NearestOnPiece{}
                           : SegmentIndex::NearestOnPiece([&p](const Vec3& q, uint32_t s) { return p.nearest(s, q); });
   };
-  SegmentIndex index_a(pa.points, pa.first, pieces(pa), pa.max_sagitta_mm, pa.distinct_segments()),
-      index_b(pb.points, pb.first, pieces(pb), pb.max_sagitta_mm, pb.distinct_segments());
+  // A path traced again adds nothing: its repeated segments are neither searched nor measured.
+  const std::vector<uint32_t> distinct_a = pa.distinct_segments(), distinct_b = pb.distinct_segments();
+  auto repeats = [](const Path& p, const std::vector<uint32_t>& distinct) {
+    std::vector<bool> r(p.size(), true);
+    for (uint32_t s : distinct) r[s] = false;
+    return r;
+  };
+  const std::vector<bool> repeats_a = repeats(pa, distinct_a), repeats_b = repeats(pb, distinct_b);
+  SegmentIndex index_a(pa.points, pa.first, pieces(pa), pa.max_sagitta_mm, distinct_a),
+      index_b(pb.points, pb.first, pieces(pb), pb.max_sagitta_mm, distinct_b);
   bool spindle_differs = false;
   if (pa.size() > 0 && pb.size() > 0) {
     const size_t share_count = (std::max(pa.size(), pb.size()) + kShareSegments - 1) / kShareSegments;
@@ -694,12 +690,12 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
             top.offer({dist, at, a.blocks[ia.moves[move_a].block].line, b.blocks[ib.moves[move_b].block].line});
         };
         Directed(pa, pb, index_b, precision_mm, top)
-            .run(pa.size() * k / share_count, pa.size() * (k + 1) / share_count,
+            .run(pa.size() * k / share_count, pa.size() * (k + 1) / share_count, repeats_a,
                  [&](size_t s, const SegmentIndex::Nearest& n, const Vec3& p) {
                    note(pa.move_of[s], pb.move_of[n.segment], n.distance_mm, p);
                  });
         Directed(pb, pa, index_a, precision_mm, top)
-            .run(pb.size() * k / share_count, pb.size() * (k + 1) / share_count,
+            .run(pb.size() * k / share_count, pb.size() * (k + 1) / share_count, repeats_b,
                  [&](size_t s, const SegmentIndex::Nearest& n, const Vec3& p) {
                    note(pa.move_of[n.segment], pb.move_of[s], n.distance_mm, p);
                  });
