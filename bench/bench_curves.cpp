@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Xu 2021's test curves (Table 2), sampled as the paper does, fitted at three tolerances:
 // segments out, measured deviation, largest tangent change at smooth joints, time per curve.
 // Then contours of the kind CAM writes, against the lines and arcs that drew them, and the

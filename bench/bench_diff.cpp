@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // arcpress diff speed: a synthetic program of N feed moves (a long spiral of short G1
 // moves, 1 million by default) against its compressed version, and each corpus file
 // against its compressed version. Prints moves compared per second by the path measure

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The compression of every corpus file by one method, the pipeline without verification as
 // bench_curves times it, in one process: for timing one change against another, and for
 // counting instructions under callgrind (one repeat), where a figure does not move.

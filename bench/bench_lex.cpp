@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Lexer + interpreter throughput over the corpus, printed beside a plain read of the same bytes.
 // Usage: bench_lex [REPEATS] [FILES...]   (default: every corpus file, best of 5)
 #include <fmt/format.h>

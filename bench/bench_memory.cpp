@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Peak memory of the arcpress command: each corpus file of 1 MB or more, then the bunny
 // printer program once, 8 times over and repeated to 520 MB (or the megabytes the argument
 // gives), and one zigzag path of a million moves that no piece can end at a chain's end, each run as a child process whose peak resident set the kernel reports (wait4).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Work on small or simple programs that once grew without bound: each case generated at 1x,
 // 2x and 4x its size (moves, length, radius or turns), compressed with verification and
 // compared with its output by `arcpress diff` on one thread, each run as a child process. Prints seconds and

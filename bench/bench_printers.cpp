@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Printer programs against ArcWelder: per printer corpus file and band (±0.025 and ±0.01 mm),
 // arcpress with the marlin dialect (the band held on the chords Marlin moves along, the
 // default) beside ArcWelder 2.0's figures measured on the same files (a fixed reference:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Throughput of the streaming engine as ratios to a bare tokenizer on the same files in the
 // same run: ../shared/tools/parse_ceiling.cpp, which only splits words and parses numbers,
 // built beside this bench. Per file (bunny, FreeCAD, ps271 and bunny x 8): the tokenizer's

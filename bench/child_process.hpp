@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Runs a command as a child process, its standard output and error thrown away, and reports
 // what the kernel measured of it: wall seconds, peak resident set and page faults (wait4).

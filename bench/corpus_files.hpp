@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The corpus files the benches run on: every file under ARCPRESS_CORPUS_DIR but its
 // MANIFEST (.md), in path order; none when the folder is absent.

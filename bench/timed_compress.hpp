@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // One corpus file read whole, and the best of several compressions of it: the figures the
 // throughput benches print.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Installs what is missing, configures and builds arcpress (Release) into ./build: the
 # command-line program alone, or with --test also the test suite and the benchmarks, and
 # what the tests check output against (see install-deps.sh).

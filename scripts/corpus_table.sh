@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Prints, for every file of the development corpus, how many G1 moves it has, how many were
 # fitted (in runs), the blocks written for them, and the measured deviation: one Markdown
 # table, by `arcpress --stats` at the given tolerance.

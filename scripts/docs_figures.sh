@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Rewrites the tables of figures in the README and docs/ from the program and the benches,
 # so that none goes stale: each table sits between `<!-- figures: NAME -->` and
 # `<!-- /figures -->` and is replaced whole by what its command prints now.

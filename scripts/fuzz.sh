@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Fuzzes the whole pipeline with clang's libFuzzer and the address and undefined-behaviour
 # sanitizers, built into ./build-fuzz, each target for SECONDS (default 300):
 #   compress_fuzz  a program and options made from the bytes (tests/random_program.cpp),

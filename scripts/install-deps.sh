@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Installs the Debian packages arcpress builds with; with --test, also the real
 # interpreters, slicer, CAM system and browser the test suite checks output against (LinuxCNC's rs274,
 # PrusaSlicer, FreeCAD, Chromium) and clang (the fuzz build's compiler, whose C++ the suite checks); with --fuzz, clang and its sanitizer and libFuzzer runtimes (scripts/fuzz.sh).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Programs and options made from arbitrary bytes, and the promises every compression of
 // them must keep: shared by the property test (bytes from a seeded generator) and the

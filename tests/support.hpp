@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Helpers shared by the tests: corpus discovery and running the arcpress executable.
 #include <filesystem>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Compresses a G-code file with arcpress's C library, reading and writing in pieces:
  * compress_c INPUT OUTPUT [DIALECT]. Exit 0 written, else the arcpress_status. */
 #include <arcpress/arcpress.h>

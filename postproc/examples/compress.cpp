@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Compresses a G-code file for a controller with arcpress's C++ library, as a CAM
 // post-processor would: compress INPUT OUTPUT [DIALECT]. Exit 0 written, 1 refused, 2 bad input.
 #include <arcpress/arcpress.hpp>

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # FreeCAD Path post-processor: LinuxCNC G-code, compressed by arcpress.
 #
 # Posts with FreeCAD's own linuxcnc_post, then runs arcpress on the result: runs of small

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Installs arcpress_post.py into FreeCAD's user macro folder, where FreeCAD finds post
 # processors: the folder FreeCAD itself names (freecadcmd), else ~/.local/share/FreeCAD/Macro.
 #   bash postproc/freecad/install.sh [FOLDER]

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Compresses a G-code file through arcpress's C library (libarcpress.so) with ctypes.
 
     arcpress_compress.py INPUT OUTPUT [--dialect NAME] [--tolerance MM] [--library PATH]

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* arcpress's C library: opaque handles, a status from every call, no exception crosses it and
  * no state is shared between handles (two compressors may run on two threads at once).
  *

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // arcpress's C++ library: the one header an embedding program includes.
 //

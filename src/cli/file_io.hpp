@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Input read in chunks and all-or-nothing output for the command line.
 #include <cstddef>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The program's allocation function, replaced (as C++ allows an executable to) so that its
 // memory lies on huge pages.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // arcpress command line: the only place that catches exceptions and picks exit codes.
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -27,6 +28,7 @@
 #include "arcpress/model/interpreter.hpp"
 #include "arcpress/verify/diff_plot.hpp"
 #include "arcpress/verify/executed_path.hpp"
+#include "arcpress_commit.hpp"
 #include "file_io.hpp"
 #include "progress.hpp"
 
@@ -446,7 +448,8 @@ int main(int argc, char** argv) {
       "  cat in.gcode | arcpress > out.gcode\n",
       "arcpress"};
   app.footer(kExitCodesHelp);
-  app.set_version_flag("--version", std::string("arcpress ") + kVersion);
+  app.set_version_flag("--version", std::string("arcpress ") + kVersion + " (commit " + ARCPRESS_COMMIT +
+                                        ")\nLicense GPL-3.0-or-later: this is free software; there is NO WARRANTY.");
 
   CompressArgs a;
   app.add_option("input", a.input, "Input program; '-' or absent: standard input");

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Progress of a long run on a terminal: bytes read, share of the input, rate and time left,
 // on one line of standard error rewritten a few times a second and erased at the end.

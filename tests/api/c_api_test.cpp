@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The C library (arcpress.h): statuses and messages instead of exceptions, no state shared
 // between handles, and the same text as the C++ engine.
 #include <catch2/catch.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Extrusion along fitted arcs: E per mm stays the replaced moves' within the variance, the
 // E at every written end is the input's, and extrusion never joins a travel.
 #include <catch2/catch.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The library refuses numbers no search is bounded for, as the command line does.
 #include <catch2/catch.hpp>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Every program, every axis: 2-D laser, plasma and router programs that never write Z,
 // lathe programs that never write Y, laser programs that carry S on every move, and what
 // arcpress says about the G1 moves it leaves as they are.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Relaxing a constraint never costs blocks: a wider G1 angle, the band on the programmed
 // circles rather than the firmware's chords, a wider extrusion variance, smaller radii or
 // longer sweeps allow every chain the defaults allow, so none writes more forced kinks, or

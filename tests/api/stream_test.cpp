@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The streaming engine (Compressor): the text does not depend on how the bytes arrive or on
 // the threads, output comes before the input ends, and pieces cut inside a path still keep
 // every promise.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Whatever bytes a program holds, arcpress passes it through unchanged, compresses it inside
 // the band or refuses it with diagnostics, and never finds it different from itself.
 #include <catch2/catch.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 
@@ -5,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <random>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <tuple>
@@ -35,6 +37,9 @@ TEST_CASE("help and version succeed and help documents the exit codes", "[cli]")
   auto v = run_arcpress("--version");
   CHECK(v.exit_code == 0);
   CHECK(v.out.find("arcpress ") == 0);
+  // The commit it was built from, as git names it (or "unknown" outside a checkout), and its license.
+  CHECK(std::regex_search(v.out, std::regex("^arcpress [0-9.]+ \\(commit ([0-9a-f]{12}(-dirty)?|unknown)\\)\n")));
+  CHECK(v.out.find("GPL-3.0-or-later") != std::string::npos);
 }
 
 TEST_CASE("every fitting method named in --help is accepted and writes a verified arc for a sampled arc", "[cli]") {

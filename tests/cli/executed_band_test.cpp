@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // --band executed and `diff --executed`: the band held on the chords the firmware moves along.
 #include <catch2/catch.hpp>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Never lose or corrupt a byte: every destination written as it is meant to be, every write
 // checked, nothing partial left behind, whatever the destination, the disk or a signal does.
 #include <catch2/catch.hpp>

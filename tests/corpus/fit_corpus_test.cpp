@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The fitter's guarantees on every run of every corpus file, measured by reading the
 // output back: inside the band, ending on the input path, non-motion lines untouched.
 #include <catch2/catch.hpp>

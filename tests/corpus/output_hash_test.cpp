@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The bytes every fitting method writes for every corpus file, at two bands, pinned by their
 // hashes (tests/corpus/output_hashes.txt): a change meant to move code without changing
 // what it does (the fitter's methods into files of their own) must keep every one. A change

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The firmware rules for cutting arcs into chords, each against cases worked out by hand
 // from the firmware's formula (dialects/README.md names the source of each).
 #include <catch2/catch.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Dialects as data: every shipped file loads, mistakes in a file are reported with their
 // place, and every dialect writes arcs its controller reads back inside the band and its
 // own rules. Outputs are checked by re-reading them (interpreter + verifier), not by text

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Small programs that exercise arc output: each is a circle (or part of one, or a helix)
 // sampled finely enough that one or two arcs replace it within 0.01 mm.

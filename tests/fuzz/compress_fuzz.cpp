@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // libFuzzer target: a program and options made from the fuzzer's bytes (random_case()), run
 // through the whole pipeline with verification; any broken promise aborts with the program
 // on standard error, so the fuzzer keeps the input that found it. Built with

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // libFuzzer target: the fuzzer's bytes taken as a program text, whatever they are, through
 // pass-through, compression with verification and `arcpress diff` against itself
 // (text_promise()); a broken promise aborts with the text on standard error, so the fuzzer

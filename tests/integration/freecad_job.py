@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Run by freecadcmd (tests/integration/freecad_job.sh): a small Path job, a stock box and a
 # custom operation cutting a circle of radius 20 mm as 180 G1 moves, posted once with FreeCAD's
 # own linuxcnc_post and once with arcpress_post. Paths come from the environment; the

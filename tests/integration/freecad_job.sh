@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # postproc/freecad/arcpress_post.py inside Debian's FreeCAD (freecadcmd): a small Path job
 # posted with it (freecad_job.py) holds arcs and `arcpress diff` finds it the same as the
 # job posted by linuxcnc_post alone. Skipped (exit 77) where freecadcmd is not installed.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # postproc/freecad/arcpress_post.py called as FreeCAD calls a post processor,
 # export(objectslist, filename, argstring), with linuxcnc_post stood in for by a stub that
 # posts a CNC program (FreeCAD itself is not installed here): the file it leaves holds arcs

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # PrusaSlicer runs arcpress as its post-processing script, as postproc/README.md tells users
 # to set it up: a cylinder is sliced for a Marlin 2 printer with two scripts, the first
 # keeping a copy of the G-code as the slicer wrote it, the second `arcpress --in-place`. The

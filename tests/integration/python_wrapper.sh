@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The Python example's failures: a file error is exit 3 with a message (never a traceback,
 # never 1, which means the check failed), and it leaves nothing behind and overwrites nothing.
 #   python_wrapper.sh LIBRARY SOURCE_DIR PROGRAM

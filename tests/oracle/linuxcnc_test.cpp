@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // LinuxCNC's own interpreter as an independent judge of what arcpress writes for the
 // linuxcnc dialect: `rs274 -i strict.ini -g` (the tightest arc-radius tolerance LinuxCNC
 // allows, 0.001 mm) must read every compressed CNC corpus program exactly as far as it

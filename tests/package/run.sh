@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The library as a user gets it. `installed`: installs the build tree into a temporary prefix
 # (cmake --install), builds postproc/examples against it with find_package(arcpress) (C++ on
 # the shared and the static library, C on the shared) and runs them. `subdirectory`: builds

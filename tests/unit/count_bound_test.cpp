@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Specifications of the lower bound on primitive counts (fit/count_bound), and of the fitter
 // against it: no fit of a polyline has fewer primitives than the bound in the same band.
 #include <catch2/catch.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Specifications of the fitter, checked through the whole pipeline: each program is
 // compressed, read back and measured by the verifier.
 #include <catch2/catch.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `arcpress diff` as a specification: what it measures for known differences.
 #include <catch2/catch.hpp>
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The nearest-segment index the diff asks when a walk along the other path cannot find the
 // nearest point: its answers are the nearest of all segments (or pieces), whatever the hint,
 // and whether any lies within a distance, whether its linear scans answer or, after enough

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The C library (arcpress.h) over the C++ one: every call catches what the C++ side throws
 // and turns it into a status and a message kept in the handle.
 #include "arcpress/arcpress.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The streaming engine: a program compressed as it arrives, in bounded memory.
 //

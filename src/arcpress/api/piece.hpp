@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // A piece of a program, compressed and checked on its own: the unit of the streaming engine
 // (see compressor.hpp). A piece is a stretch of whole lines read from a known modal state

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Powers of ten for reading and printing decimal numbers: 10^0 to 10^22, each exact as a
 // double, so a number of up to 15 significant digits read as integer / 10^d, or rounded as

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Exact-enough two-sided distance between a polyline and one line or arc: every input
 // vertex and every point of every input segment to the primitive, and every point of the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Diagnostics: every input problem is collected here with its place, a stable code and
 // the actual text or numbers. Nothing in the pipeline throws for bad input.

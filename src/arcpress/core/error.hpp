@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The few exceptions arcpress throws: I/O failures and usage errors. They are caught in
 // exactly one place per entry point (the CLI's main, the C API) and mapped to exit codes.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Small geometry vocabulary shared by all stages. Lengths are millimetres unless a name
 // says otherwise; angles are radians unless a name ends in _deg.

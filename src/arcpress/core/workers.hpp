@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Work shared among threads: the number of workers to use, and running one function per
 // worker with the first failure passed on to the caller.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // How a controller cuts an arc into the chords it really moves along. Printer firmwares and
 // Grbl never move on the circle: they split each G2/G3 into straight segments, and the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // What a target controller reads and refuses. A Dialect is data: it is loaded from a TOML
 // file under dialects/ (see dialect_loader.hpp and dialects/README.md for every field), and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "arcpress/dialect/dialect_loader.hpp"
 
 #include <fmt/format.h>

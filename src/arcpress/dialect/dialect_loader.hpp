@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Reading dialect files: TOML (toml++), one controller per file, every field optional and
 // defaulting to generic RS274 (Dialect{}). Unknown keys and wrong types are errors, so a

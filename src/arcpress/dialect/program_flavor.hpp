@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The controller a program names for itself: slicers write the firmware flavor they sliced
 // for into the program (PrusaSlicer, SuperSlicer, OrcaSlicer and Slic3r `; gcode_flavor =

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Emission stage: the program text again, with each run replaced by its primitives.
 // Blocks outside runs, and single-move lines the fitter kept, are copied byte for byte;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Explicit number output for G-code: fixed point, never exponent notation, no "-0".
 #include <string>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Run extraction stage: maximal stretches of consecutive plain G1 feed blocks that a fitter
 // may rewrite. A run never crosses a block that is anything else (comments, M-codes, feed or

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The default method (--method arcs): a beam search over chains of tangent primitives,
 // layer k holding the best chains of k primitives, guided by the greedy chain.
 #include "arcpress/fit/run_fitter.hpp"

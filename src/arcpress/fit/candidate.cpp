@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Building a line or arc between two vertices and checking it exactly against the band,
 // the plane's normal axis and the extra axes.
 #include "arcpress/fit/run_fitter.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // A lower bound on the primitives a fit can need, for judging the fitter's counts: the fewest
 // lines and arcs (any radius, any sweep, tangent at their joints or not) whose joints are

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The angles the fitter turns by and the cones it tests tangents against, worked out once
 // from the options' angles (private to fit/).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Fitting stage: a run of G1 moves becomes the fewest lines and arcs inside the band.
 // Never fails and never throws: where no arc fits, the input's own lines are the answer.

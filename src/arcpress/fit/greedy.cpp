@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The greedy method (--method greedy), and the guide of the searches: one primitive at a
 // time, the best-scoring of a few checked candidates, with a two-step look-ahead.
 #include "arcpress/fit/run_fitter.hpp"

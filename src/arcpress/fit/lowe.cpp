@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Seed 000 (--method lowe): Lowe's 1987 line detection splits the stretch at its
 // breakpoints, then arcs are fitted over runs of the lines.
 #include "arcpress/fit/run_fitter.hpp"

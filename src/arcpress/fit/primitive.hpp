@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The fitter's vocabulary: a run is replaced by primitives (lines and arcs) whose end points
 // are vertices of the run, so positions, E and extra axes at every joint are the input's own.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // RunFitter's run: its vertices (past moves that go nowhere), the corner rule and the
 // vertices where a primitive must end, the stretches between corners, and the method each
 // stretch is fitted with (fit_kept()).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The fitter's shared machinery, private to fit/: the limits and shares it works to, the
 // angles it turns by, and RunFitter, which fits one stretch of a run. Its members are

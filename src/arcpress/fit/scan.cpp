@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The curvature-interval scan: for a start and a tangent, every end a line or arc can
 // reach inside the band, in one linear pass; and the candidates the methods take from it.
 #include "arcpress/fit/scan_ends.hpp"

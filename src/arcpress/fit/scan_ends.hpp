@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The curvature-interval scan's loop, a template over what receives each end, for the
 // files that scan (private to fit/; scan.cpp explains it).

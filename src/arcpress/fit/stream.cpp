@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Seeds 001 and 003 (--method stream): each primitive grows one vertex at a time through a
 // window of moves, as a controller would buffer them, the arc through both ends whose
 // centre best fits the points between.

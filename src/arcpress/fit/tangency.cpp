@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tangency repair: seed 000's G1 adjustment of a chain fitted without regard to its joints,
 // local merging of neighbouring primitives (tighten()), and breaking the tangent where a
 // chain can only follow the path in S-bends (untangle()).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The input's own directions at a vertex (circles through its neighbours), and the start
 // tangents the searches try where the tangent is free.
 #include "arcpress/fit/run_fitter.hpp"

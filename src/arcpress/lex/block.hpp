@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Blocks: one per input line, holding the parsed words and the exact raw bytes so that a
 // block that is not rewritten is written back byte for byte.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Input that is not a G-code program at all: an archive, an image, a binary G-code file,
 // random bytes, prose. Compressing such a file would "succeed" with a copy and a page of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Lexer stage: bytes -> blocks. Never drops a byte: every line becomes a Block whose raw
 // text is kept; what is not understood is marked Opaque and reported once per code.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "arcpress/lex/refusal_scan.hpp"
 
 #include <fmt/format.h>

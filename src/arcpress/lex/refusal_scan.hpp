@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // What in a program the target controller will not read: words its dialect refuses ("%",
 // "O", "G90.1") and comments in a form it does not treat as comments. arcpress passes such

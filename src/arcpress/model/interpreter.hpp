@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Modal interpreter stage: blocks -> moves in absolute millimetres, tracking every modal
 // group that changes how words are read. What it cannot evaluate (expressions, flow

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The interpreter's output: the machine state ("frame") under which words are read, and
 // one Move per block that changes position.

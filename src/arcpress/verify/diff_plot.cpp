@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "arcpress/verify/diff_plot.hpp"
 
 #include <fmt/format.h>

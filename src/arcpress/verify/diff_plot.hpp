@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // `arcpress diff --plot FILE.svg`: both feed paths projected on one plane, A thin and grey,
 // B coloured by its local deviation from A, arcs drawn as SVG arcs, the worst place marked

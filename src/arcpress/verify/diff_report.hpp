@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // `arcpress diff` output: a text report for people and a JSON document for programs
 // (field names are stable and documented in README.md).

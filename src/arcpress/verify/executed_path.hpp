@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The path a firmware really moves along: each arc of an interpreted program replaced by the
 // chords its rule cuts it into (dialect/arc_segmentation.hpp). `arcpress diff --executed`

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The path of one interpreted move, shared by the verifiers and the plot: an arc as an
 // ArcGeom in its plane, any move as points along it, and a flat arc as pieces whose

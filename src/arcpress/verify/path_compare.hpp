@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Verification stage: reads two interpreted programs and measures how far the second's
 // path is from the first's. The output of arcpress ends every move on a vertex of the input

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Comparison of any two interpreted programs (`arcpress diff`): the feed path section by
 // section (a section is the feed moves between two rapids), the rapids by their end points,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Nearest-segment queries over a path: a linear scan over boxes of consecutive segments for
 // the first queries, then CGAL's AABB tree over 3D segments once the scans have cost what

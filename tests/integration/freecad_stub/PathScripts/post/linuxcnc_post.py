@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # A stand-in for FreeCAD's linuxcnc_post, for testing arcpress_post.py without FreeCAD: its
 # export() writes (and returns) the program named by $STUB_PROGRAM, as the real one writes
 # the posted job, unless the file name is "-".
