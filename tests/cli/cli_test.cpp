@@ -154,6 +154,16 @@ TEST_CASE("the stats flag reports counts on standard error", "[cli]") {
   CHECK(c.exit_code == 0);
   CHECK(c.out == kProgram);
   CHECK(c.err.find("G1 moves       4 in the input, 4 in 1 runs") != std::string::npos);
+  // Every line of the stats ends, so what comes next on standard error starts a line.
+  CHECK(c.err.back() == '\n');
+  const std::string forced = fmt::format("G21 G90\nG0 X0 Y0 Z0\nG1 F300\n{}M2\n", [] {
+    std::string zig;  // sharp turns in a run of short moves: many joints named
+    for (int k = 1; k <= 40; ++k) zig += fmt::format("G1 X{:.3f} Y{:.3f}\n", 0.3 * k, (k % 2) * 0.004);
+    return zig;
+  }());
+  auto many = run_arcpress("--stats", forced);
+  REQUIRE(many.exit_code == 0);
+  CHECK(many.err.back() == '\n');
 }
 
 TEST_CASE("the stats name the input lines where the band forced the tangent to break", "[cli]") {
