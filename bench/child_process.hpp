@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Runs a command as a child process, its standard output and error thrown away, and reports
-// what the kernel measured of it: wall seconds, peak resident set and page faults (wait4).
+// what the kernel measured of it: wall and CPU seconds, peak resident set and page faults
+// (wait4).
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/resource.h>
@@ -20,6 +21,7 @@ namespace arcpress::bench {
 struct ChildRun {
   int exit_code = -1;       ///< -1: it could not start, or a signal ended it
   double seconds = 0;       ///< wall time
+  double cpu_seconds = 0;   ///< user and system time of all its threads
   double peak_mib = 0;      ///< peak resident set, MiB
   long minor_faults = 0;    ///< pages the kernel mapped in for it (no disk read)
 };
@@ -43,6 +45,8 @@ inline ChildRun run_child(std::vector<std::string> words) {
   struct rusage use {};
   if (wait4(pid, &status, 0, &use) != pid) return r;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.cpu_seconds = double(use.ru_utime.tv_sec + use.ru_stime.tv_sec) +
+                  1e-6 * double(use.ru_utime.tv_usec + use.ru_stime.tv_usec);
   r.peak_mib = double(use.ru_maxrss) / 1024.0;  // kilobytes on Linux
   r.minor_faults = use.ru_minflt;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

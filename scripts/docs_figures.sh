@@ -8,7 +8,9 @@
 # (docs/streaming.md: bench_throughput, bench_throughput --stages), memory (docs/streaming.md: bench_memory, about a minute), and the
 # benches' own output in docs/benchmarks.md: curves (bench_curves 1, about a minute), diff
 # (bench_diff), pathological (bench_pathological); printers and printer-causes in
-# docs/printers.md (bench_printers, about a minute).
+# docs/printers.md (bench_printers, about a minute); vs-arcwelder in docs/benchmarks.md
+# (bench_vs_arcwelder, with ARCWELDER set to the path of ArcWelder's console program, built
+# from its source in a folder of your own; not among the defaults).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 [ -x build/bench/bench_throughput ] || { echo "docs_figures: build with 'bash scripts/build.sh --test' first" >&2; exit 2; }
@@ -47,6 +49,9 @@ for name in "${wanted[@]}"; do
     pathological) ./build/bench/bench_pathological | as_text | replace docs/benchmarks.md pathological ;;
     printers) ./build/bench/bench_printers --markdown | replace docs/printers.md printers ;;
     printer-causes) ./build/bench/bench_printers --causes | replace docs/printers.md printer-causes ;;
-    *) echo "docs_figures: no table '$name' (corpus, throughput, stages, memory, curves, diff, pathological, printers, printer-causes)" >&2; exit 2 ;;
+    vs-arcwelder)
+      [ -x "${ARCWELDER:-}" ] || { echo "docs_figures: set ARCWELDER to ArcWelder's console program" >&2; exit 2; }
+      ./build/bench/bench_vs_arcwelder "$ARCWELDER" 3 | replace docs/benchmarks.md vs-arcwelder ;;
+    *) echo "docs_figures: no table '$name' (corpus, throughput, stages, memory, curves, diff, pathological, printers, printer-causes, vs-arcwelder)" >&2; exit 2 ;;
   esac
 done

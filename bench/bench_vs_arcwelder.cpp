@@ -1,0 +1,101 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// arcpress against ArcWelder, the tool printer users pick instead, side by side on this
+// machine: every corpus file of at least 100 KB at ±0.025 and ±0.01 mm. arcpress runs its
+// default (check on, every hardware thread, the dialect the file names); ArcWelder its
+// console's default at the same band (-r twice the tolerance: its resolution is the band's
+// width). The two take turns, PAIRS pairs per file and band, and the median of each is
+// printed: CPU seconds (user and system, all threads), wall seconds, MB/s, their ratios
+// arcpress / ArcWelder, and the motion blocks each wrote (G0-G3 blocks and blocks of bare
+// axis words, one counter for both tools' files).
+//   bench_vs_arcwelder ARCWELDER [PAIRS]   ARCWELDER: the path of ArcWelder's console program
+// ArcWelder is no Debian package: build it from its source (FormerLurker/ArcWelderLib,
+// target ArcWelderConsole) in a folder of your own.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "child_process.hpp"
+#include "corpus_files.hpp"
+
+namespace fs = std::filesystem;
+using arcpress::bench::ChildRun;
+using arcpress::bench::run_child;
+
+namespace {
+
+/// Motion blocks in a program: lines that begin with G0..G3 (not G38, G30, ...) or with an
+/// axis, E or F word.
+size_t motion_blocks(const fs::path& file) {
+  std::ifstream in(file);
+  size_t n = 0;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty()) continue;
+    const char c = char(std::toupper(static_cast<unsigned char>(line[0])));
+    if (c == 'X' || c == 'Y' || c == 'Z' || c == 'E' || c == 'F') {
+      ++n;
+    } else if (c == 'G' && line.size() >= 2 && line[1] >= '0' && line[1] <= '3' &&
+               (line.size() == 2 || !std::isdigit(static_cast<unsigned char>(line[2])))) {
+      ++n;
+    }
+  }
+  return n;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    fmt::print(stderr, "usage: bench_vs_arcwelder ARCWELDER [PAIRS]\n");
+    return 2;
+  }
+  const std::string arcwelder = argv[1];
+  const int pairs = argc > 2 ? std::max(1, std::atoi(argv[2])) : 3;
+  if (!fs::exists(arcwelder)) {
+    fmt::print(stderr, "bench_vs_arcwelder: no ArcWelder at '{}'\n", arcwelder);
+    return 2;
+  }
+  const fs::path dir = fs::temp_directory_path() / fmt::format("arcpress-vs-arcwelder-{}", ::getpid());
+  fs::create_directories(dir);
+  const fs::path out_a = dir / "arcpress.gcode", out_b = dir / "arcwelder.gcode";
+  fmt::print("| file | MB | band mm | arcpress CPU s | ArcWelder CPU s | CPU A/B | wall A/B | arcpress MB/s | "
+             "ArcWelder MB/s | arcpress blocks | ArcWelder blocks |\n");
+  fmt::print("|---|---|---|---|---|---|---|---|---|---|---|\n");
+  bool failed = false;
+  for (const fs::path& f : corpus_files()) {
+    const double mb = double(fs::file_size(f)) / 1e6;
+    if (mb < 0.1) continue;
+    for (const double band : {0.025, 0.01}) {
+      std::vector<double> cpu_a, cpu_b, wall_a, wall_b;
+      for (int k = 0; k < pairs; ++k) {
+        const ChildRun a = run_child({ARCPRESS_BINARY, f.string(), "-o", out_a.string(), "--tolerance",
+                                      fmt::format("{}", band), "-q"});
+        const ChildRun b = run_child({arcwelder, f.string(), out_b.string(), fmt::format("-r={}", 2 * band)});
+        if (a.exit_code != 0 || b.exit_code != 0) {
+          fmt::print(stderr, "bench_vs_arcwelder: {} at {} mm: arcpress exit {}, ArcWelder exit {}\n", f.filename().string(),
+                     band, a.exit_code, b.exit_code);
+          failed = true;
+        }
+        cpu_a.push_back(a.cpu_seconds);
+        cpu_b.push_back(b.cpu_seconds);
+        wall_a.push_back(a.seconds);
+        wall_b.push_back(b.seconds);
+      }
+      const double ca = median(cpu_a), cb = median(cpu_b), wa = median(wall_a), wb = median(wall_b);
+      fmt::print("| {} | {:.2f} | {} | {:.3f} | {:.3f} | {:.2f} | {:.2f} | {:.1f} | {:.1f} | {} | {} |\n",
+                 f.filename().string(), mb, band, ca, cb, cb > 0 ? ca / cb : 0.0, wb > 0 ? wa / wb : 0.0, mb / wa,
+                 mb / wb, motion_blocks(out_a), motion_blocks(out_b));
+    }
+  }
+  fs::remove_all(dir);
+  return failed ? 1 : 0;
+}
