@@ -6,7 +6,7 @@
 set -uo pipefail
 lib=$(realpath "$1") source=$(realpath "$2") program=$(realpath "$3")
 work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+trap 'umount "$work/small" 2>/dev/null; rm -rf "$work"' EXIT
 py() { python3 "$source/postproc/python/arcpress_compress.py" "$@" --library "$lib"; }
 fail=0
 expect() {  # expected-exit what command...
@@ -32,5 +32,17 @@ head -c 4000 /dev/urandom > "$work/noise.bin"
 expect 2 "a file that is not G-code" py "$work/noise.bin" "$work/keep.nc"
 [ "$(cat "$work/keep.nc")" = kept ] || { echo "FAIL: the output was clobbered"; fail=1; }
 [ "$(ls "$work" | grep -c partial)" = 1 ] || { echo "FAIL: a temporary was left: $(ls "$work")"; fail=1; }
+# A full disk: a 16 KiB file system (where this machine lets us mount one), and an output
+# larger than it.
+if mkdir "$work/small" && mount -t tmpfs -o size=16k tmpfs "$work/small" 2>/dev/null; then
+  python3 -c "print('G21 G90\nG0 X0 Y0\nG1 F100\n' + ''.join('G1 X%d Y%d ; step %d\n' % (k, k % 2, k) for k in range(3000)))" \
+    > "$work/long.nc"
+  expect 3 "a full disk" py "$work/long.nc" "$work/small/out.nc"
+  grep -q "No space left" "$work/err.txt" || { echo "FAIL: the full disk is not said"; fail=1; }
+  [ -z "$(ls -A "$work/small")" ] || { echo "FAIL: the full disk kept $(ls -A "$work/small")"; fail=1; }
+  umount "$work/small"
+else
+  echo "python wrapper: no small file system could be mounted here: the full disk is not tried"
+fi
 [ $fail = 0 ] && echo "python wrapper: every failure said, nothing left behind"
 exit $fail
