@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cctype>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <tuple>
@@ -74,30 +75,49 @@ struct Path {
   /// How far piece s lies from its chord (0 for a segment).
   double sagitta(size_t s) const { return curved(s) ? piece_sagitta_mm(arc(s), a(s), b(s)) : 0.0; }
   /// The segments that repeat no earlier one exactly (same ends, and the same arc or none),
-  /// ascending: a path traced again adds none.
+  /// ascending: a path traced again adds none. One pass over an open-addressed table of the
+  /// segments kept so far, by a hash of their key.
   std::vector<uint32_t> distinct_segments() const {
-    // Each segment's key; sorted, equal keys stand together, the earliest first.
-    std::vector<std::array<double, 12>> keys(size());
-    for (size_t s = 0; s < size(); ++s) {
+    auto key_of = [&](size_t s) {
       const Vec3 pa = a(s), pb = b(s);
-      keys[s] = {pa.x(), pa.y(), pa.z(), pb.x(), pb.y(), pb.z(), 0, 0, 0, 0, 0, 0};
+      std::array<double, 12> k{pa.x(), pa.y(), pa.z(), pb.x(), pb.y(), pb.z(), 0, 0, 0, 0, 0, 0};
       if (curved(s)) {
         const FlatArc& c = arc(s);
-        keys[s][6] = 1 + double(int(c.plane));
-        keys[s][7] = c.center.x();
-        keys[s][8] = c.center.y();
-        keys[s][9] = c.center.z();
-        keys[s][10] = c.ccw ? c.radius_mm : -c.radius_mm;
+        k[6] = 1 + double(int(c.plane));
+        k[7] = c.center.x();
+        k[8] = c.center.y();
+        k[9] = c.center.z();
+        k[10] = c.ccw ? c.radius_mm : -c.radius_mm;
       }
-    }
-    std::vector<uint32_t> order(size());
-    for (size_t s = 0; s < size(); ++s) order[s] = uint32_t(s);
-    std::sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) { return std::tie(keys[x], x) < std::tie(keys[y], y); });
+      return k;
+    };
+    auto hash_of = [](const std::array<double, 12>& k) {
+      uint64_t h = 0x9e3779b97f4a7c15ull;
+      for (double d : k) {
+        uint64_t bits = 0;
+        std::memcpy(&bits, &d, sizeof bits);
+        h = (h ^ bits) * 0xbf58476d1ce4e5b9ull;  // splitmix64's steps
+        h ^= h >> 31;
+      }
+      return h;
+    };
+    size_t slots = 16;
+    while (slots < 2 * size()) slots *= 2;
+    constexpr uint32_t kEmpty = UINT32_MAX;
+    std::vector<uint32_t> table(slots, kEmpty);
     std::vector<uint32_t> out;
     out.reserve(size());
-    for (size_t k = 0; k < order.size(); ++k)
-      if (k == 0 || keys[order[k]] != keys[order[k - 1]]) out.push_back(order[k]);
-    std::sort(out.begin(), out.end());
+    for (size_t s = 0; s < size(); ++s) {
+      const std::array<double, 12> k = key_of(s);
+      for (size_t at = hash_of(k) & (slots - 1);; at = (at + 1) & (slots - 1)) {
+        if (table[at] == kEmpty) {
+          table[at] = uint32_t(s);
+          out.push_back(uint32_t(s));
+          break;
+        }
+        if (key_of(table[at]) == k) break;  // a repeat of an earlier segment
+      }
+    }
     return out;
   }
 };
