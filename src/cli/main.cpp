@@ -2,16 +2,15 @@
 // arcpress command line: the only place that catches exceptions and picks exit codes.
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
-#include <limits.h>
 #include <malloc.h>
 #include <unistd.h>
-#include <stdlib.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <iterator>
 #include <string>
@@ -26,6 +25,7 @@
 #include "arcpress/lex/foreign_content.hpp"
 #include "arcpress/lex/lexer.hpp"
 #include "arcpress/model/interpreter.hpp"
+#include "arcpress/platform/platform.hpp"
 #include "arcpress/verify/diff_plot.hpp"
 #include "arcpress/verify/executed_path.hpp"
 #include "arcpress_commit.hpp"
@@ -135,16 +135,14 @@ std::string diagnostics_text(std::initializer_list<const DiagnosticSink*> sinks)
   return out;
 }
 
+/// `p` with its links resolved, or empty where it does not exist.
 std::string real_path(const std::string& p) {
-  char buf[PATH_MAX];
-  return ::realpath(p.c_str(), buf) ? std::string(buf) : std::string();
+  std::error_code ec;
+  const std::filesystem::path resolved = std::filesystem::canonical(p, ec);
+  return ec ? std::string() : resolved.string();
 }
 
-std::string exe_dir() {
-  std::string self = real_path("/proc/self/exe");
-  size_t slash = self.rfind('/');
-  return slash == std::string::npos ? std::string() : self.substr(0, slash);
-}
+std::string exe_dir() { return platform::program_folder(); }
 
 /// The dialect to read `program` with: the one the command line names (`--dialect-file`,
 /// `--dialect` where `name_given`), or else the one the program names for itself (a

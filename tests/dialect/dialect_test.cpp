@@ -6,15 +6,17 @@
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 
+#include <cstdlib>
 #include <regex>
 #include <sstream>
 
-#include "arcpress/api/arcpress.hpp"
+#include "arcpress/arcpress.hpp"
 #include "arcpress/core/error.hpp"
 #include "arcpress/dialect/dialect_loader.hpp"
 #include "arcpress/dialect/program_flavor.hpp"
 #include "arcpress/lex/lexer.hpp"
 #include "arcpress/model/interpreter.hpp"
+#include "arcpress/platform/platform.hpp"
 #include "dialect/snippets.hpp"
 #include "support.hpp"
 
@@ -362,4 +364,23 @@ TEST_CASE("a program names its own dialect by its slicer's flavor, where the fla
                            "; gcode_flavor = reprapfirmware\n", "; gcode_flavor = smoothie\n"})
     CHECK(shipped(flavor(text)->dialect).name == flavor(text)->dialect);
   for (const std::string& name : flavor_dialects()) CHECK(shipped(name).name == name);
+}
+
+TEST_CASE("ARCPRESS_DIALECT_PATH is a list of folders split as the system splits path lists, searched in order",
+          "[dialect][platform]") {
+  auto dir = test::temp_dir("dialect-path");
+  test::write_file(dir / "mine.toml", "name = \"mine\"\ndescription = \"a user's own\"\n");
+  const std::string list = std::string("/nonexistent") + platform::path_list_separator() + dir.string();
+  const char* before = std::getenv("ARCPRESS_DIALECT_PATH");
+  const std::string saved = before ? before : "";
+  ::setenv("ARCPRESS_DIALECT_PATH", list.c_str(), 1);
+  const Dialect d = dialect_named("mine");
+  if (before) ::setenv("ARCPRESS_DIALECT_PATH", saved.c_str(), 1);
+  else ::unsetenv("ARCPRESS_DIALECT_PATH");
+  CHECK(d.name == "mine");
+  CHECK(d.description == "a user's own");
+  // The library finds the shipped dialects from where it was loaded (here, the test program
+  // it is linked into, in the build tree), and the program's folder is that same folder.
+  CHECK_FALSE(platform::own_folder().empty());
+  CHECK(platform::own_folder() == platform::program_folder());
 }

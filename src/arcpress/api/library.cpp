@@ -1,34 +1,19 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "arcpress/arcpress.hpp"
 
-#include <dlfcn.h>
-
 #include <cstdlib>
-#include <filesystem>
 
 #include <fmt/format.h>
 
+#include "arcpress/platform/platform.hpp"
+
 namespace arcpress {
-
-namespace {
-
-/// The folder of the file this code was loaded from (libarcpress.so, or the program it is
-/// linked into), or empty.
-std::string own_folder() {
-  Dl_info info{};
-  if (::dladdr(reinterpret_cast<void*>(&dialect_named), &info) == 0 || !info.dli_fname) return {};
-  std::error_code ec;
-  const std::filesystem::path file = std::filesystem::canonical(info.dli_fname, ec);
-  return ec ? std::string() : file.parent_path().string();
-}
-
-}  // namespace
 
 Dialect dialect_named(const std::string& name) {
   // $ARCPRESS_DIALECT_PATH, then beside the library as installed (PREFIX/lib ->
   // PREFIX/share/arcpress/dialects) or built, then the prefix it was configured for, then
   // the source tree.
-  std::vector<std::string> path = dialect_search_path(own_folder());
+  std::vector<std::string> path = dialect_search_path(platform::own_folder());
   path.insert(path.end() - (*ARCPRESS_SOURCE_DIALECT_DIR ? 1 : 0), ARCPRESS_INSTALL_DIALECT_DIR);
   return find_dialect(name, path);
 }

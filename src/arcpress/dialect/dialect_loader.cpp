@@ -15,6 +15,7 @@
 #include <toml++/toml.h>
 
 #include "arcpress/core/error.hpp"
+#include "arcpress/platform/platform.hpp"
 
 #ifndef ARCPRESS_SOURCE_DIALECT_DIR
 #define ARCPRESS_SOURCE_DIALECT_DIR ""
@@ -268,7 +269,7 @@ std::vector<std::string> dialect_search_path(const std::string& exe_dir) {
     std::string s(env);
     size_t a = 0;
     while (a <= s.size()) {
-      size_t b = s.find(':', a);
+      size_t b = s.find(platform::path_list_separator(), a);
       if (b == std::string::npos) b = s.size();
       if (b > a) dirs.push_back(s.substr(a, b - a));
       a = b + 1;
