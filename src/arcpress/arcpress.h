@@ -42,7 +42,7 @@ typedef struct arcpress_stats {
   size_t lines_out;       /* G1 blocks written for runs */
   size_t arcs_out;        /* G2/G3 blocks written */
   double max_deviation_mm;
-  int verified;           /* 1: the output was read back and measured */
+  int verified;           /* 1: the output was read back and measured (only after arcpress_finish) */
 } arcpress_stats;
 
 const char* arcpress_version(void);
@@ -58,7 +58,10 @@ arcpress_status arcpress_options_set_corner_angle(arcpress_options* options, dou
 arcpress_status arcpress_options_set_method(arcpress_options* options, const char* method);
 /* A shipped dialect by name ("fanuc", "marlin", ...) or a dialect TOML file of one's own. */
 arcpress_status arcpress_options_set_dialect(arcpress_options* options, const char* name);
+/* ARCPRESS_IO_ERROR where the file cannot be read; ARCPRESS_BAD_INPUT where it is no dialect
+ * (an empty file names none). */
 arcpress_status arcpress_options_set_dialect_file(arcpress_options* options, const char* path);
+/* 0 (one per hardware thread) to 1024; more is ARCPRESS_BAD_INPUT. */
 arcpress_status arcpress_options_set_threads(arcpress_options* options, unsigned threads);
 arcpress_status arcpress_options_set_verify(arcpress_options* options, int verify);
 arcpress_status arcpress_options_set_strict(arcpress_options* options, int strict);
@@ -72,10 +75,15 @@ arcpress_status arcpress_options_set_extrusion_variance(arcpress_options* option
  * line is a comment, as a slicer's is). */
 arcpress_status arcpress_options_set_header(arcpress_options* options, int header);
 
-/* `name` names the program in diagnostics. On failure *out is NULL and the message is
- * arcpress_options_last_error(options). */
+/* `name` names the program in diagnostics. The compressor keeps its own copy of `options`:
+ * they may be changed or freed at once. On failure *out is NULL and the message is
+ * arcpress_options_last_error(options) (ARCPRESS_BAD_INPUT for the executed band on a
+ * dialect that names no firmware rule). */
 arcpress_status arcpress_compressor_new(arcpress_options* options, const char* name, arcpress_compressor** out);
 void arcpress_compressor_free(arcpress_compressor* compressor);
+/* After any call on a compressor fails, every later call on it fails too. Input that is not
+ * G-code at all (an archive, an image, binary bytes) is refused: ARCPRESS_BAD_INPUT, with an
+ * E-INPUT-NOT-GCODE diagnostic, and nothing is given out. */
 arcpress_status arcpress_push(arcpress_compressor* compressor, const char* bytes, size_t length);
 /* The output finished since the last take, in order; *text is not NUL-terminated. */
 arcpress_status arcpress_take(arcpress_compressor* compressor, const char** text, size_t* length);
