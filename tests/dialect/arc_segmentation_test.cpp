@@ -124,11 +124,15 @@ struct Point {
 };
 
 // Marlin 2.1 Marlin/src/gcode/motion/G2_G3.cpp, plan_arc().
-std::vector<Point> marlin_plan_arc(float px, float py, float i, float j, float travel, int segments, int n_arc_correction) {
+std::vector<Point> marlin_plan_arc(float px, float py, float i, float j, float tx, float ty, bool clockwise, int segments,
+                                   int n_arc_correction) {
   std::vector<Point> out;
   float rvec_a = -i, rvec_b = -j;
-  const float center_P = px - rvec_a, center_Q = py - rvec_b;
-  const float theta_per_segment = travel / segments, sq_theta_per_segment = theta_per_segment * theta_per_segment,
+  const float center_P = px - rvec_a, center_Q = py - rvec_b, rt_X = tx - center_P, rt_Y = ty - center_Q;
+  float angular_travel = std::atan2(rvec_a * rt_Y - rvec_b * rt_X, rvec_a * rt_X + rvec_b * rt_Y);
+  if (angular_travel < 0) angular_travel += float(2 * M_PI);
+  if (clockwise) angular_travel -= float(2 * M_PI);
+  const float theta_per_segment = angular_travel / segments, sq_theta_per_segment = theta_per_segment * theta_per_segment,
               sin_T = theta_per_segment - sq_theta_per_segment * theta_per_segment / 6,
               cos_T = 1 - 0.5f * sq_theta_per_segment;
   int arc_recalc_count = n_arc_correction;
@@ -149,10 +153,18 @@ std::vector<Point> marlin_plan_arc(float px, float py, float i, float j, float t
 }
 
 // Grbl 1.1 grbl/motion_control.c, mc_arc() (float, as on the AVR where double is float).
-std::vector<Point> grbl_mc_arc(float px, float py, float i, float j, float angular_travel, int segments, int n_arc_correction) {
+std::vector<Point> grbl_mc_arc(float px, float py, float i, float j, float tx, float ty, bool is_clockwise_arc,
+                               int segments, int n_arc_correction) {
   std::vector<Point> out;
   const float center_axis0 = px + i, center_axis1 = py + j;
   float r_axis0 = -i, r_axis1 = -j;
+  const float rt_axis0 = tx - center_axis0, rt_axis1 = ty - center_axis1;
+  float angular_travel = std::atan2(r_axis0 * rt_axis1 - r_axis1 * rt_axis0, r_axis0 * rt_axis0 + r_axis1 * rt_axis1);
+  if (is_clockwise_arc) {
+    if (angular_travel >= -5E-7f) angular_travel -= float(2 * M_PI);
+  } else {
+    if (angular_travel <= 5E-7f) angular_travel += float(2 * M_PI);
+  }
   const float theta_per_segment = angular_travel / segments;
   float cos_T = 2.0f - theta_per_segment * theta_per_segment;
   const float sin_T = theta_per_segment * 0.16666667f * (cos_T + 4.0f);
@@ -176,10 +188,17 @@ std::vector<Point> grbl_mc_arc(float px, float py, float i, float j, float angul
 }
 
 // grblHAL core motion_control.c, mc_arc(): the radius vector and centre in double.
-std::vector<Point> grblhal_mc_arc(float px, float py, float i, float j, float angular_travel, int segments) {
+std::vector<Point> grblhal_mc_arc(float px, float py, float i, float j, float tx, float ty, bool clockwise, int segments) {
   std::vector<Point> out;
   double rv_x = -(double)i, rv_y = -(double)j;
   const double center_x = (double)px - rv_x, center_y = (double)py - rv_y;
+  const double rt_x = (double)tx - center_x, rt_y = (double)ty - center_y;
+  float angular_travel = (float)atan2(rv_x * rt_y - rv_y * rt_x, rv_x * rt_x + rv_y * rt_y);
+  if (!clockwise) {
+    if (angular_travel <= 5E-7f) angular_travel += 2.0f * float(M_PI);
+  } else if (angular_travel >= -5E-7f) {
+    angular_travel -= 2.0f * float(M_PI);
+  }
   const float theta_per_segment = angular_travel / segments;
   float cos_T = 2.0f - theta_per_segment * theta_per_segment;
   const float sin_T = theta_per_segment * 0.16666667f * (cos_T + 4.0f);
@@ -203,11 +222,18 @@ std::vector<Point> grblhal_mc_arc(float px, float py, float i, float j, float an
 }
 
 // Smoothieware src/modules/robot/Robot.cpp, append_arc().
-std::vector<Point> smoothie_append_arc(float px, float py, float i, float j, float angular_travel, int segments,
-                                       int arc_correction) {
+std::vector<Point> smoothie_append_arc(float px, float py, float i, float j, float tx, float ty, bool is_clockwise,
+                                       int segments, int arc_correction) {
   std::vector<Point> out;
   const float center_axis0 = px + i, center_axis1 = py + j;
   float r_axis0 = -i, r_axis1 = -j;
+  const float rt_axis0 = tx - center_axis0, rt_axis1 = ty - center_axis1;
+  float angular_travel = atan2f(r_axis0 * rt_axis1 - r_axis1 * rt_axis0, r_axis0 * rt_axis0 + r_axis1 * rt_axis1);
+  if (is_clockwise) {
+    if (angular_travel > 0) angular_travel -= float(2 * M_PI);
+  } else {
+    if (angular_travel < 0) angular_travel += float(2 * M_PI);
+  }
   const float theta_per_segment = angular_travel / segments;
   const float cos_T = 1 - 0.5F * theta_per_segment * theta_per_segment, sin_T = theta_per_segment;
   int count = 0;
@@ -229,13 +255,17 @@ std::vector<Point> smoothie_append_arc(float px, float py, float i, float j, flo
 }
 
 // RepRapFirmware 3 src/GCodes/GCodes.cpp, DoArcMove() and ReadMove().
-std::vector<Point> rrf_read_move(float px, float py, float iParam, float jParam, float totalArc, int totalSegments,
-                                 int segmentsPerFullArcCalculation) {
+std::vector<Point> rrf_read_move(float px, float py, float iParam, float jParam, float tx, float ty, bool clockwise,
+                                 int totalSegments, int segmentsPerFullArcCalculation) {
   std::vector<Point> out;
   const float arcCentre0 = px + iParam, arcCentre1 = py + jParam;
+  const float finalTheta = atan2f(ty - arcCentre1, tx - arcCentre0);
   const float arcRadius = sqrtf(iParam * iParam + jParam * jParam);
   float arcCurrentAngle = atan2f(-jParam, -iParam);
-  const float arcAngleIncrement = totalArc / totalSegments;
+  float totalArc = clockwise ? arcCurrentAngle - finalTheta : finalTheta - arcCurrentAngle;
+  if (totalArc < 0.0f) totalArc += float(2 * M_PI);
+  float arcAngleIncrement = totalArc / totalSegments;
+  if (clockwise) arcAngleIncrement = -arcAngleIncrement;
   const float angleIncrementSine = sinf(arcAngleIncrement), angleIncrementCosine = cosf(arcAngleIncrement);
   int segmentsTillNextFullCalc = 0;
   float currentAngleCosine = 0, currentAngleSine = 0;
@@ -280,13 +310,18 @@ TEST_CASE("golden: every rule's chord ends are the ones its firmware computes, d
     INFO("start " << c.px << ", " << c.py << " offset " << c.i << ", " << c.j << " turn " << c.travel_rad << " in "
                   << c.segments);
     const Vec2 start(c.px, c.py), centre(c.px + c.i, c.py + c.j);
-    const float px = float(c.px), py = float(c.py), fi = float(c.i), fj = float(c.j), travel = float(c.travel_rad);
+    // The end point the program names: the start turned about the centre.
+    const double ct = std::cos(c.travel_rad), st = std::sin(c.travel_rad);
+    const Vec2 end(centre.x() - c.i * ct + c.j * st, centre.y() - c.i * st - c.j * ct);
+    const float px = float(c.px), py = float(c.py), fi = float(c.i), fj = float(c.j), tx = float(end.x()),
+                ty = float(end.y());
+    const bool cw = c.travel_rad < 0;
     auto ends = [&](Rule r, int period) {
       ArcSegmentation s;
       s.rule = r;
       s.correction_period = period;
       std::vector<Vec2> out;
-      executed_chord_ends(s, start, centre, c.travel_rad, uint32_t(c.segments), out);
+      executed_chord_ends(s, start, centre, end, c.travel_rad, uint32_t(c.segments), out);
       return out;
     };
     // Every end on the circle at equal turns, as the firmware would draw them in exact arithmetic.
@@ -296,12 +331,12 @@ TEST_CASE("golden: every rule's chord ends are the ones its firmware computes, d
       const double r = std::hypot(c.i, c.j);
       on_circle.push_back({centre.x() + r * std::cos(a), centre.y() + r * std::sin(a)});
     }
-    CHECK(farthest(ends(Rule::Marlin, 0), marlin_plan_arc(px, py, fi, fj, travel, c.segments, 25)) < 1e-6);
-    CHECK(farthest(ends(Rule::Marlin, 5), marlin_plan_arc(px, py, fi, fj, travel, c.segments, 5)) < 1e-6);
-    CHECK(farthest(ends(Rule::Grbl, 0), grbl_mc_arc(px, py, fi, fj, travel, c.segments, 12)) < 1e-6);
-    CHECK(farthest(ends(Rule::GrblHAL, 0), grblhal_mc_arc(px, py, fi, fj, travel, c.segments)) < 1e-6);
-    CHECK(farthest(ends(Rule::Smoothieware, 0), smoothie_append_arc(px, py, fi, fj, travel, c.segments, 5)) < 1e-6);
-    CHECK(farthest(ends(Rule::RepRapFirmware, 0), rrf_read_move(px, py, fi, fj, travel, c.segments, 8)) < 1e-6);
+    CHECK(farthest(ends(Rule::Marlin, 0), marlin_plan_arc(px, py, fi, fj, tx, ty, cw, c.segments, 25)) < 1e-6);
+    CHECK(farthest(ends(Rule::Marlin, 5), marlin_plan_arc(px, py, fi, fj, tx, ty, cw, c.segments, 5)) < 1e-6);
+    CHECK(farthest(ends(Rule::Grbl, 0), grbl_mc_arc(px, py, fi, fj, tx, ty, cw, c.segments, 12)) < 1e-6);
+    CHECK(farthest(ends(Rule::GrblHAL, 0), grblhal_mc_arc(px, py, fi, fj, tx, ty, cw, c.segments)) < 1e-6);
+    CHECK(farthest(ends(Rule::Smoothieware, 0), smoothie_append_arc(px, py, fi, fj, tx, ty, cw, c.segments, 5)) < 1e-6);
+    CHECK(farthest(ends(Rule::RepRapFirmware, 0), rrf_read_move(px, py, fi, fj, tx, ty, cw, c.segments, 8)) < 1e-6);
     CHECK(farthest(ends(Rule::Klipper, 0), on_circle) < 1e-9);
     // The small-angle rotations do pull the ends off the circle: a model that put them on it
     // would miss what these firmwares move along.

@@ -91,11 +91,10 @@ namespace {
 /// says, for the index i of a chord end (from 1), whether that end is computed exactly, and
 /// `Real` is the radius vector's number type (grblHAL keeps it in double).
 template <class Real, class ExactAt>
-void rotated_ends(const Vec2& start, const Vec2& centre, double sweep_rad, uint32_t segments, float sin_t, float cos_t,
-                  float theta, ExactAt exact_at, bool centre_in_real, std::vector<Vec2>& out) {
+void rotated_ends(const Vec2& start, const Vec2& centre, uint32_t segments, float sin_t, float cos_t, float theta,
+                  ExactAt exact_at, bool centre_in_real, std::vector<Vec2>& out) {
   const float px = float(start.x()), py = float(start.y());
   const float ox = float(centre.x() - start.x()), oy = float(centre.y() - start.y());  // I, J as the firmware reads them
-  (void)sweep_rad;
   Real cx, cy;
   if (centre_in_real) {
     cx = Real(px) + Real(ox);
@@ -121,10 +120,25 @@ void rotated_ends(const Vec2& start, const Vec2& centre, double sweep_rad, uint3
   }
 }
 
+/// The turn as Marlin, Grbl and Smoothieware compute it from the numbers they read: the
+/// angle between the radius vectors to the start and to the end, by atan2 in `Real` (the
+/// centre the start plus the offset), taken the way and as many whole turns as `sweep_rad`.
+template <class Real>
+float firmware_travel(const Vec2& start, const Vec2& centre, const Vec2& end, double sweep_rad) {
+  const float ox = float(centre.x() - start.x()), oy = float(centre.y() - start.y());
+  const Real cx = Real(float(start.x())) + Real(ox), cy = Real(float(start.y())) + Real(oy);
+  const Real r0 = -Real(ox), r1 = -Real(oy), t0 = Real(float(end.x())) - cx, t1 = Real(float(end.y())) - cy;
+  float travel = float(std::atan2(r0 * t1 - r1 * t0, r0 * t0 + r1 * t1));
+  constexpr float kTurn = float(2 * std::numbers::pi), kHalf = float(std::numbers::pi);
+  while (double(travel) - sweep_rad > kHalf) travel -= kTurn;
+  while (sweep_rad - double(travel) > kHalf) travel += kTurn;
+  return travel;
+}
+
 }  // namespace
 
-void executed_chord_ends(const ArcSegmentation& s, const Vec2& start, const Vec2& centre, double sweep_rad,
-                         uint32_t segments, std::vector<Vec2>& out) {
+void executed_chord_ends(const ArcSegmentation& s, const Vec2& start, const Vec2& centre, const Vec2& end,
+                         double sweep_rad, uint32_t segments, std::vector<Vec2>& out) {
   if (segments < 2) return;
   const int period = s.correction_period_or_default();
   switch (s.rule) {
@@ -142,10 +156,10 @@ void executed_chord_ends(const ArcSegmentation& s, const Vec2& start, const Vec2
     case Rule::Marlin: {
       // plan_arc(): sin θ ≈ θ − θ³/6, cos θ ≈ 1 − θ²/2; `if (--arc_recalc_count)` turns, so
       // every period-th end (i = period, 2·period, ...) is exact.
-      const float theta = float(sweep_rad) / float(segments);
+      const float theta = firmware_travel<float>(start, centre, end, sweep_rad) / float(segments);
       const float sq = theta * theta;
       const float sin_t = theta - sq * theta / 6, cos_t = 1 - 0.5f * sq;
-      rotated_ends<float>(start, centre, sweep_rad, segments, sin_t, cos_t, theta,
+      rotated_ends<float>(start, centre, segments, sin_t, cos_t, theta,
                           [&](uint32_t i) { return i % uint32_t(period) == 0; }, false, out);
       return;
     }
@@ -153,20 +167,22 @@ void executed_chord_ends(const ArcSegmentation& s, const Vec2& start, const Vec2
     case Rule::GrblHAL: {
       // mc_arc(): cos_T = (2 − θ²)/2, sin_T = θ (cos_T' + 4)/6 with cos_T' = 2 − θ²; it
       // turns while `count < N_ARC_CORRECTION`, so every (period + 1)-th end is exact.
-      const float theta = float(sweep_rad) / float(segments);
+      const float travel = s.rule == Rule::Grbl ? firmware_travel<float>(start, centre, end, sweep_rad)
+                                                : firmware_travel<double>(start, centre, end, sweep_rad);
+      const float theta = travel / float(segments);
       float cos_t = 2.0f - theta * theta;
       const float sin_t = theta * 0.16666667f * (cos_t + 4.0f);
       cos_t *= 0.5f;
       auto exact = [&](uint32_t i) { return i % uint32_t(period + 1) == 0; };
-      if (s.rule == Rule::Grbl) rotated_ends<float>(start, centre, sweep_rad, segments, sin_t, cos_t, theta, exact, false, out);
-      else rotated_ends<double>(start, centre, sweep_rad, segments, sin_t, cos_t, theta, exact, true, out);
+      if (s.rule == Rule::Grbl) rotated_ends<float>(start, centre, segments, sin_t, cos_t, theta, exact, false, out);
+      else rotated_ends<double>(start, centre, segments, sin_t, cos_t, theta, exact, true, out);
       return;
     }
     case Rule::Smoothieware: {
       // append_arc(): sin_T = θ, cos_T = 1 − θ²/2; it turns while `count < arc_correction`.
-      const float theta = float(sweep_rad) / float(segments);
+      const float theta = firmware_travel<float>(start, centre, end, sweep_rad) / float(segments);
       const float cos_t = 1 - 0.5f * theta * theta, sin_t = theta;
-      rotated_ends<float>(start, centre, sweep_rad, segments, sin_t, cos_t, theta,
+      rotated_ends<float>(start, centre, segments, sin_t, cos_t, theta,
                           [&](uint32_t i) { return i % uint32_t(period + 1) == 0; }, false, out);
       return;
     }
@@ -179,7 +195,14 @@ void executed_chord_ends(const ArcSegmentation& s, const Vec2& start, const Vec2
       const float cx = float(start.x()) + ox, cy = float(start.y()) + oy;
       const float radius = std::sqrt(ox * ox + oy * oy);
       float angle = std::atan2(-oy, -ox);
-      const float increment = float(sweep_rad) / float(segments);
+      // totalArc: from the start's angle to the end's, the way the arc turns, whole turns
+      // as the sweep has them.
+      const float final_angle = std::atan2(float(end.y()) - cy, float(end.x()) - cx);
+      float total = sweep_rad >= 0 ? final_angle - angle : angle - final_angle;
+      constexpr float kTurn = float(2 * std::numbers::pi), kHalf = float(std::numbers::pi);
+      while (double(total) - std::abs(sweep_rad) > kHalf) total -= kTurn;
+      while (std::abs(sweep_rad) - double(total) > kHalf) total += kTurn;
+      const float increment = (sweep_rad >= 0 ? total : -total) / float(segments);
       const float inc_sin = std::sin(increment), inc_cos = std::cos(increment);
       float cur_cos = 0, cur_sin = 0;
       int till_full = 0;

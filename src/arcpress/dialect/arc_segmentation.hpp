@@ -67,14 +67,15 @@ inline std::optional<ArcSegmentation::Rule> rule_named(std::string_view name) {
 uint32_t executed_segments(const ArcSegmentation& s, double radius_mm, double sweep_rad, double normal_travel_mm = 0);
 
 /// Where the firmware of `s` ends one chord and begins the next on an arc from `start` about
-/// `centre` (the plane's coordinates, mm) turning by `sweep_rad` (> 0 counter-clockwise) in
-/// `segments` chords (executed_segments()): the segments - 1 points between start and end,
-/// appended to `out`, computed as that firmware computes them: its number type (single
+/// `centre` to `end` (the plane's coordinates, mm) turning by `sweep_rad` (> 0
+/// counter-clockwise) in `segments` chords (executed_segments()): the segments - 1 points
+/// between start and end, appended to `out`, computed as that firmware computes them from
+/// the numbers it reads: its turn from the end point (atan2), its number type (single
 /// precision but for Klipper's, and grblHAL's radius vector), its small-angle rotation
 /// between exact ends and its correction period. The last chord ends at the arc's end.
 /// Sources: dialects/README.md.
-void executed_chord_ends(const ArcSegmentation& s, const Vec2& start, const Vec2& centre, double sweep_rad,
-                         uint32_t segments, std::vector<Vec2>& out);
+void executed_chord_ends(const ArcSegmentation& s, const Vec2& start, const Vec2& centre, const Vec2& end,
+                         double sweep_rad, uint32_t segments, std::vector<Vec2>& out);
 
 /// How far (mm) `segments` equal chords of an arc of `radius_mm` turning by `sweep_rad` lie
 /// inside the circle at most: the sagitta of one segment's angle. 0 for no segments.

@@ -72,7 +72,8 @@ std::optional<Chosen> RunFitter::make_arc(uint32_t a, uint32_t e, const Vec2& ce
   std::vector<Vec2>& ends = s_.chord_ends;
   ends.clear();
   if (chords > 1) {
-    executed_chord_ends(o_.executed, Vec2(pts.front().x(), pts.front().y()), g.center, g.sweep, chords, ends);
+    executed_chord_ends(o_.executed, Vec2(pts.front().x(), pts.front().y()), g.center,
+                        Vec2(pts.back().x(), pts.back().y()), g.sweep, chords, ends);
     if (o_.executed.rule != ArcSegmentation::Rule::Klipper) {
       double drift = 0;
       for (uint32_t k = 1; k < chords; ++k) {

@@ -40,7 +40,8 @@ Interpretation executed_path(const Interpretation& in, const ArcSegmentation& ru
       // The chord ends as the firmware computes them, in the plane's coordinates; the other
       // axes (the normal axis, E) advance evenly.
       ends.clear();
-      executed_chord_ends(rule, Vec2(from[ax.first], from[ax.second]), g.center, g.sweep, n, ends);
+      executed_chord_ends(rule, Vec2(from[ax.first], from[ax.second]), g.center, Vec2(m.to[ax.first], m.to[ax.second]),
+                          g.sweep, n, ends);
       for (uint32_t k = 1; k < n; ++k) {
         const double t = double(k) / n;
         Move c = m;
