@@ -17,234 +17,23 @@
 #include "arcpress/core/error.hpp"
 #include "arcpress/core/workers.hpp"
 #include "arcpress/lex/lexer.hpp"
+#include "arcpress/verify/feed_path.hpp"
 #include "arcpress/verify/segment_index.hpp"
 
 namespace arcpress {
 namespace {
 
+using Path = FeedPath;
 
 Vec3 xyz(const AxisValues& v) { return {v[kX], v[kY], v[kZ]}; }
 
-/// One program's feed path as segments: segment s runs from points[first[s]] to the point
-/// after it, belongs to move move_of[s] and section section_of[s]; within a section the
-/// segments follow each other along the path, each starting where the one before ends. A
-/// flat arc is kept as pieces of itself (arc_of[s] names its arc) and measured exactly; other
-/// arcs (helices, several turns) as chords.
-struct Path {
-  static constexpr int32_t kStraight = -1, kClosingStep = -2;
-  std::vector<Vec3> points;
-  std::vector<uint32_t> first, move_of, section_of;
-  /// Per segment: the arc it is a piece of, or kStraight, or kClosingStep: the step from a
-  /// flat arc's last piece to its end point as read, where rounding left that off the circle
-  /// (far shorter than the band, and of no direction of its own).
-  std::vector<int32_t> arc_of;
-  std::vector<FlatArc> arcs;
-  double max_sagitta_mm = 0;    ///< the farthest any piece lies from its chord
-  std::vector<double> section_length_mm, section_e;  ///< per section
-  /// Per section, how far floating rounding can carry its E sum (mm): E is a running
-  /// position, so each move's E is the difference of two numbers as large as that.
-  std::vector<double> section_e_rounding_mm;
-  /// Arcs whose chords lie farther than kRoughShare of the band from them (too big to follow
-  /// within the measure's precision): not measured. The first one's move.
-  size_t rough_arcs = 0;
-  uint32_t first_rough_move = 0;
-  /// Feed moves too far from the origin to measure (farthest_measurable_mm()): not measured. The first one.
-  size_t far_moves = 0;
-  uint32_t first_far_move = 0;
-  /// How much farther than the measure's precision the chords of any other arc lie, mm.
-  double chord_excess_mm = 0;
-  /// The moves not measured (far from the origin, or arcs too big), as exact keys: where the
-  /// other program has the very same moves, they are the same path and need no measure.
-  std::vector<std::array<double, 12>> unmeasured;
-  std::vector<uint32_t> rapids;                      ///< move indices of rapids whose end is known
-  /// Move indices of feed moves from an unknown position to a known one.
-  std::vector<uint32_t> entries;
-  size_t feed_moves = 0;
-
-  size_t size() const { return move_of.size(); }
-  Vec3 a(size_t s) const { return points[first[s]]; }
-  Vec3 b(size_t s) const { return points[first[s] + 1]; }
-  bool curved(size_t s) const { return arc_of[s] >= 0; }
-  const FlatArc& arc(size_t s) const { return arcs[size_t(arc_of[s])]; }
-  /// The point of segment (or piece) s nearest p.
-  Vec3 nearest(size_t s, const Vec3& p) const {
-    return curved(s) ? nearest_on_piece(arc(s), a(s), b(s), p) : nearest_on_segment(p, a(s), b(s));
-  }
-  /// The middle of segment (or piece) s.
-  Vec3 middle(size_t s) const { return curved(s) ? point_on_piece(arc(s), a(s), b(s), 0.5) : Vec3((a(s) + b(s)) / 2); }
-  /// How far piece s lies from its chord (0 for a segment).
-  double sagitta(size_t s) const { return curved(s) ? piece_sagitta_mm(arc(s), a(s), b(s)) : 0.0; }
-  /// The segments that repeat no earlier one exactly (same ends, and the same arc or none),
-  /// ascending: a path traced again adds none. One pass over an open-addressed table of the
-  /// segments kept so far, by a hash of their key.
-  std::vector<uint32_t> distinct_segments() const {
-    auto key_of = [&](size_t s) {
-      const Vec3 pa = a(s), pb = b(s);
-      std::array<double, 12> k{pa.x(), pa.y(), pa.z(), pb.x(), pb.y(), pb.z(), 0, 0, 0, 0, 0, 0};
-      if (curved(s)) {
-        const FlatArc& c = arc(s);
-        k[6] = 1 + double(int(c.plane));
-        k[7] = c.center.x();
-        k[8] = c.center.y();
-        k[9] = c.center.z();
-        k[10] = c.ccw ? c.radius_mm : -c.radius_mm;
-      }
-      return k;
-    };
-    auto hash_of = [](const std::array<double, 12>& k) {
-      uint64_t h = 0x9e3779b97f4a7c15ull;
-      for (double d : k) {
-        uint64_t bits = 0;
-        std::memcpy(&bits, &d, sizeof bits);
-        h = (h ^ bits) * 0xbf58476d1ce4e5b9ull;  // splitmix64's steps
-        h ^= h >> 31;
-      }
-      return h;
-    };
-    size_t slots = 16;
-    while (slots < 2 * size()) slots *= 2;
-    constexpr uint32_t kEmpty = UINT32_MAX;
-    std::vector<uint32_t> table(slots, kEmpty);
-    std::vector<uint32_t> out;
-    out.reserve(size());
-    for (size_t s = 0; s < size(); ++s) {
-      const std::array<double, 12> k = key_of(s);
-      for (size_t at = hash_of(k) & (slots - 1);; at = (at + 1) & (slots - 1)) {
-        if (table[at] == kEmpty) {
-          table[at] = uint32_t(s);
-          out.push_back(uint32_t(s));
-          break;
-        }
-        if (key_of(table[at]) == k) break;  // a repeat of an earlier segment
-      }
-    }
-    return out;
-  }
-};
-
-/// An arc whose chords (kMaxChordsPerMove of them) lie farther than this share of the band
-/// from it is not measured: its own distance could not be told within the band.
-constexpr double kRoughShare = 0.1;
 /// Two arcs' centres this close (a share of the radius, and of 1 mm) are one centre: the
 /// floating noise of reading the same numbers two ways, a floating-point epsilon.
 constexpr double kSameCentreShare = 1e-12;
-/// Longest piece of a path put into the index, mm.
-constexpr double kPieceMm = 10.0;
-/// Most pieces one straight segment is cut into: past this a segment's pieces grow longer
-/// than kPieceMm, so that its length never sets how much there is to measure.
-constexpr int kMaxPiecesPerSegment = 64;
-/// Most pieces (beyond those its sweep needs) one flat arc is cut into: past this its pieces
-/// lie farther from their chords than the sagitta share, and the index reaches as much further.
-constexpr size_t kMaxPiecesPerArc = 4096;
-/// Largest sweep of a flat arc's piece: its chord runs within half of it of the arc's
-/// direction, as the feed pairing's direction tests read it.
-constexpr double kPieceSweepRad = 5 * kPi / 180;
-/// How far a piece may lie from its chord, as a share of the band: the spatial index finds
-/// pieces by their chords, so its searches reach this much further.
-constexpr double kPieceSagittaShare = 0.5;
 /// Segments of the longer path in each share of the path measure (see diff_programs()):
 /// enough that the few points each share measures before its own maximum has grown cost
 /// little, few enough that two or more threads have shares to take.
 constexpr size_t kShareSegments = 65536;
-
-/// Move i exactly: kind, plane, turns, start, end and centre.
-std::array<double, 12> move_key(const Interpretation& in, size_t i) {
-  const Move& m = in.moves[i];
-  const AxisValues& f = in.from(i);
-  const bool arc = is_arc(m.kind);
-  return {double(int(m.kind)) * 1000 + double(int(m.plane)) * 100 + double(m.turns), f[kX], f[kY], f[kZ], m.to[kX],
-          m.to[kY], m.to[kZ], arc ? m.center.x() : 0.0, arc ? m.center.y() : 0.0, arc ? m.center.z() : 0.0, 0, 0};
-}
-
-Path path_of(const Interpretation& in, double chord_mm, double tolerance_mm) {
-  Path p;
-  // Room for a segment and a half per move (most moves are one segment; arcs and long
-  // travels are several), so the vectors are seldom grown step by step.
-  const size_t room = in.moves.size() + in.moves.size() / 2 + 1;
-  p.points.reserve(room);
-  for (auto* v : {&p.first, &p.move_of, &p.section_of}) v->reserve(room);
-  p.arc_of.reserve(room);
-  std::vector<Vec3> pts;
-  bool in_section = false;
-  for (size_t i = 0; i < in.moves.size(); ++i) {
-    const Move& m = in.moves[i];
-    if (!is_feed(m.kind) || !m.known) {
-      if (m.kind == MoveKind::Rapid && m.end_known) p.rapids.push_back(uint32_t(i));
-      if (enters_from_unknown(m)) p.entries.push_back(uint32_t(i));
-      in_section = false;
-      continue;
-    }
-    // So far from the origin that a double holds its points more coarsely than the measure
-    // needs: not measured (a program would differ from itself by its rounding). An arc's
-    // points are placed from its centre, unless it is flat enough to be its chord.
-    double farthest = std::max(xyz(in.from(i)).cwiseAbs().maxCoeff(), xyz(m.to).cwiseAbs().maxCoeff());
-    if (is_arc(m.kind) && !(flat_arc_sagitta_mm(arc_of_move(in, i)) <= kFlatArcMm))
-      farthest = std::max(farthest, m.center.cwiseAbs().maxCoeff());
-    if (!(farthest <= farthest_measurable_mm(tolerance_mm))) {
-      if (p.far_moves++ == 0) p.first_far_move = uint32_t(i);
-      p.unmeasured.push_back(move_key(in, i));
-      in_section = false;
-      continue;
-    }
-    if (!in_section) {
-      p.section_length_mm.push_back(0);
-      p.section_e.push_back(0);
-      p.section_e_rounding_mm.push_back(0);
-      in_section = true;
-    }
-    ++p.feed_moves;
-    uint32_t sec = uint32_t(p.section_length_mm.size() - 1);
-    p.section_e[sec] += m.to[kE] - in.from(i)[kE];
-    p.section_e_rounding_mm[sec] +=
-        4 * std::numeric_limits<double>::epsilon() * std::max(std::abs(m.to[kE]), std::abs(in.from(i)[kE]));
-    Vec3 prev = xyz(in.from(i));
-    // A section's first segment starts a polyline of its own.
-    if (p.section_of.empty() || p.section_of.back() != sec) p.points.push_back(prev);
-    pts.clear();
-    bool straight_end = false;
-    const std::optional<FlatArc> arc =
-        arc_pieces(in, i, tolerance_mm * kPieceSagittaShare, kPieceSweepRad, kPieceMm, kMaxPiecesPerArc, pts,
-                   straight_end);
-    if (arc) p.arcs.push_back(*arc);
-    if (!arc) {
-      const double sagitta_mm = move_path(in, i, chord_mm, pts);
-      if (sagitta_mm > chord_mm) {
-        // An arc too big (its radius, its turns) to follow within the measure's precision:
-        // within a tenth of the band, its chords' distance is counted against the verdict;
-        // beyond, it is not measured at all.
-        if (sagitta_mm > kRoughShare * tolerance_mm) {
-          if (p.rough_arcs++ == 0) p.first_rough_move = uint32_t(i);
-          p.unmeasured.push_back(move_key(in, i));
-        }
-        p.chord_excess_mm = std::max(p.chord_excess_mm, std::min(sagitta_mm, kRoughShare * tolerance_mm) - chord_mm);
-      }
-    }
-    for (size_t k = 0; k < pts.size(); ++k) {
-      const Vec3& q = pts[k];
-      const bool piece = arc && !(straight_end && k + 1 == pts.size());
-      double len = (q - prev).norm();
-      if (piece) {
-        p.max_sagitta_mm = std::max(p.max_sagitta_mm, piece_sagitta_mm(*arc, prev, q));
-        len = 2 * arc->radius_mm * std::asin(std::min(1.0, len / (2 * arc->radius_mm)));  // along the arc
-      }
-      // Long segments are cut into pieces: an AABB over a long diagonal box is hit by
-      // nearly every query (travel moves across a printed layer). (An arc's pieces are cut
-      // short enough already.)
-      int pieces = piece ? 1 : int(std::clamp(std::ceil(len / kPieceMm), 1.0, double(kMaxPiecesPerSegment)));
-      for (int c = 1; c <= pieces; ++c) {
-        Vec3 r = c == pieces ? q : Vec3(prev + (q - prev) * (double(c) / pieces));
-        p.first.push_back(uint32_t(p.points.size() - 1));
-        p.points.push_back(r);
-        p.move_of.push_back(uint32_t(i));
-        p.section_of.push_back(sec);
-        p.arc_of.push_back(piece ? int32_t(p.arcs.size() - 1) : arc ? Path::kClosingStep : Path::kStraight);
-      }
-      p.section_length_mm[sec] += len;
-      prev = q;
-    }
-  }
-  return p;
-}
 
 /// The key by which non-motion blocks are compared: their M, T, S words, a dwell, and
 /// their comment, so that units, spacing and modal G-codes do not count; for blocks that
@@ -628,7 +417,7 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
   ProgramDiff d;
   d.arc_chord_mm = std::max(opt.tolerance_mm * kReadingShare / 2, 1e-7);
   const double precision_mm = opt.tolerance_mm * kReadingShare / 2;
-  Path pa = path_of(ia, d.arc_chord_mm, opt.tolerance_mm), pb = path_of(ib, d.arc_chord_mm, opt.tolerance_mm);
+  Path pa = feed_path(ia, d.arc_chord_mm, opt.tolerance_mm), pb = feed_path(ib, d.arc_chord_mm, opt.tolerance_mm);
   auto summary = [](const Program& p, const Interpretation& in, const Path& path) {
     ProgramSummary s;
     s.unmeasured_arcs = path.rough_arcs;
