@@ -88,8 +88,8 @@ FeedPath feed_path(const Interpretation& in, double chord_mm, double tolerance_m
     // needs: not measured (a program would differ from itself by its rounding). An arc's
     // points are placed from its centre, unless it is flat enough to be its chord.
     double farthest = std::max(xyz(in.from(i)).cwiseAbs().maxCoeff(), xyz(m.to).cwiseAbs().maxCoeff());
-    if (is_arc(m.kind) && !(flat_arc_sagitta_mm(arc_of_move(in, i)) <= kFlatArcMm))
-      farthest = std::max(farthest, m.center.cwiseAbs().maxCoeff());
+    const double centre_mm = is_arc(m.kind) ? m.center.cwiseAbs().maxCoeff() : 0.0;
+    if (centre_mm > farthest && !(flat_arc_sagitta_mm(arc_of_move(in, i)) <= kFlatArcMm)) farthest = centre_mm;
     if (!(farthest <= farthest_measurable_mm(tolerance_mm))) {
       if (p.far_moves++ == 0) p.first_far_move = uint32_t(i);
       p.unmeasured.push_back(move_key(in, i));
