@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-// Input read in chunks and all-or-nothing output for the command line.
+// Input read in chunks and all-or-nothing output for the command line. One file per system
+// implements it (src/cli/platform/posix.cpp, windows.cpp); what differs is said there.
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
-
-struct stat;
 
 namespace arcpress::cli {
 
@@ -29,7 +29,7 @@ class InputFile {
 
  private:
   std::string name_;
-  int fd_ = -1;
+  std::intptr_t handle_ = -1;  // the system's descriptor or handle
   bool owned_ = false;
   std::optional<size_t> size_;
   long long start_ = 0;
@@ -65,12 +65,11 @@ class OutputFile {
   size_t written() const { return written_; }
 
  private:
-  void note_start();
-  void open_temporary(const std::string& target, const struct stat* old);
+  friend struct OutputFileSystem;  // the system's half, in the platform file
   [[noreturn]] void fail(const std::string& what, int err);
 
   std::string path_, temporary_, target_;
-  int fd_ = -1;
+  std::intptr_t handle_ = -1;  // the system's descriptor or handle
   bool owned_ = false;      // opened here (closed by commit)
   bool is_stdout_ = false;
   bool done_ = false;
@@ -94,10 +93,11 @@ void write_output(const std::string& path, std::string_view data);
 /// written there.
 void write_stdout(std::string_view data);
 
-/// Removes the temporary file of a write in progress when SIGINT, SIGTERM or SIGHUP arrives,
-/// then dies of the signal as the program would have (exit status 128 + signal); and ignores
-/// SIGPIPE, so that a reader closing a pipe is an I/O error ("standard output closed after N
-/// bytes", exit 3). Call once at start.
+/// Removes the temporary file of a write in progress when the program is interrupted (SIGINT,
+/// SIGTERM or SIGHUP; on Windows Ctrl-C, Ctrl-Break or the console closing), then ends as
+/// it would have (on POSIX dying of the signal, exit status 128 + signal); and on POSIX
+/// ignores SIGPIPE, so that a reader closing a pipe is an I/O error ("standard output closed
+/// after N bytes", exit 3). Call once at start.
 void remove_temporary_files_on_signals();
 
 }  // namespace arcpress::cli

@@ -2,8 +2,6 @@
 // arcpress command line: the only place that catches exceptions and picks exit codes.
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
-#include <malloc.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -20,6 +18,7 @@
 #include "arcpress/api/compressor.hpp"
 #include "arcpress/api/piece.hpp"
 #include "arcpress/core/error.hpp"
+#include "arcpress/core/utf8_path.hpp"
 #include "arcpress/dialect/dialect_loader.hpp"
 #include "arcpress/dialect/program_flavor.hpp"
 #include "arcpress/lex/foreign_content.hpp"
@@ -29,6 +28,7 @@
 #include "arcpress/verify/diff_plot.hpp"
 #include "arcpress/verify/executed_path.hpp"
 #include "arcpress_commit.hpp"
+#include "console.hpp"
 #include "file_io.hpp"
 #include "progress.hpp"
 
@@ -138,8 +138,8 @@ std::string diagnostics_text(std::initializer_list<const DiagnosticSink*> sinks)
 /// `p` with its links resolved, or empty where it does not exist.
 std::string real_path(const std::string& p) {
   std::error_code ec;
-  const std::filesystem::path resolved = std::filesystem::canonical(p, ec);
-  return ec ? std::string() : resolved.string();
+  const std::filesystem::path resolved = std::filesystem::canonical(utf8_path(p), ec);
+  return ec ? std::string() : utf8_string(resolved);
 }
 
 std::string exe_dir() { return platform::program_folder(); }
@@ -432,11 +432,7 @@ int run_diff(const DiffArgs& d) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  // Each piece of a program allocates and frees about the same memory as the last: keep
-  // what is freed for the next rather than give it back and fault it in again.
-  ::mallopt(M_MMAP_THRESHOLD, 64 << 20);
-  ::mallopt(M_TRIM_THRESHOLD, 128 << 20);
-  ::mallopt(M_TOP_PAD, 32 << 20);
+  std::vector<std::string> args = cli::start_process(argc, argv);
   cli::remove_temporary_files_on_signals();
   CLI::App app{
       "arcpress: replaces runs of short G1 moves in a G-code program with the fewest\n"
@@ -446,6 +442,8 @@ int main(int argc, char** argv) {
       "  cat in.gcode | arcpress > out.gcode\n",
       "arcpress"};
   app.footer(kExitCodesHelp);
+  // An argument such as C:\parts or /tmp/x.nc is a file, never an option, on every system.
+  app.allow_windows_style_options(false);
   app.set_version_flag("--version", std::string("arcpress ") + kVersion + " (commit " + ARCPRESS_COMMIT +
                                         ")\nLicense GPL-3.0-or-later: this is free software; there is NO WARRANTY.");
 
@@ -557,7 +555,9 @@ int main(int argc, char** argv) {
     return int(kExitIo);
   };
   try {
-    app.parse(argc, argv);
+    std::reverse(args.begin(), args.end());  // (CLI11 takes them last first)
+    args.pop_back();                          // the program's own name
+    app.parse(args);
   } catch (const CLI::CallForHelp& e) {
     return printed(app.exit(e));
   } catch (const CLI::CallForAllHelp& e) {
@@ -590,7 +590,7 @@ int main(int argc, char** argv) {
       return kExitOk;
     }
     // Nothing to read but a terminal: say how to use it rather than wait for typing.
-    if (a.input == "-" && ::isatty(STDIN_FILENO)) {
+    if (a.input == "-" && cli::is_terminal(0)) {
       std::fputs(app.help().c_str(), stderr);
       std::fputs("arcpress: no input: give a program file, or pipe one into standard input\n", stderr);
       return kExitInput;

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "progress.hpp"
 
-#include <unistd.h>
+#include "console.hpp"
 
 #include <cstdio>
 #include <string>
@@ -19,7 +19,7 @@ std::string megabytes(size_t bytes) { return fmt::format("{:.1f} MB", double(byt
 }  // namespace
 
 Progress::Progress(std::optional<size_t> total, bool quiet, bool forced)
-    : total_(total), enabled_(forced || (!quiet && ::isatty(STDERR_FILENO))), start_(Clock::now()),
+    : total_(total), enabled_(forced || (!quiet && is_terminal(2))), start_(Clock::now()),
       last_(start_ - kRedraw) {}  // the first line is drawn as soon as the input is big enough
 
 Progress::~Progress() { clear(); }

@@ -390,7 +390,7 @@ struct Compressor::Impl {
   std::deque<Slot*> todo;       // ... not yet taken by a worker
   std::exception_ptr failure;
   bool stopping = false;
-  std::vector<std::thread> workers;
+  std::vector<PooledThread> workers;
 };
 
 Compressor::Compressor(std::string name, const CompressOptions& opt, DiagnosticSink& sink) {

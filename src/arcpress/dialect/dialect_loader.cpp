@@ -15,6 +15,7 @@
 #include <toml++/toml.h>
 
 #include "arcpress/core/error.hpp"
+#include "arcpress/core/utf8_path.hpp"
 #include "arcpress/platform/platform.hpp"
 
 #ifndef ARCPRESS_SOURCE_DIALECT_DIR
@@ -252,9 +253,9 @@ Dialect parse_dialect(const std::string& text, const std::string& path) {
 
 Dialect load_dialect_file(const std::string& path) {
   std::error_code ec;
-  if (fs::is_directory(path, ec)) throw Error(kExitIo, fmt::format("cannot read dialect file '{}': it is a folder", path));
+  if (fs::is_directory(utf8_path(path), ec)) throw Error(kExitIo, fmt::format("cannot read dialect file '{}': it is a folder", path));
   errno = 0;
-  std::ifstream f(path, std::ios::binary);
+  std::ifstream f(utf8_path(path), std::ios::binary);
   if (!f)
     throw Error(kExitIo, fmt::format("cannot read dialect file '{}': {}", path,
                                      errno ? std::strerror(errno) : ec ? ec.message() : "cannot open it"));
@@ -265,8 +266,8 @@ Dialect load_dialect_file(const std::string& path) {
 
 std::vector<std::string> dialect_search_path(const std::string& exe_dir) {
   std::vector<std::string> dirs;
-  if (const char* env = std::getenv("ARCPRESS_DIALECT_PATH")) {
-    std::string s(env);
+  if (const std::optional<std::string> env = platform::environment("ARCPRESS_DIALECT_PATH")) {
+    const std::string& s = *env;
     size_t a = 0;
     while (a <= s.size()) {
       size_t b = s.find(platform::path_list_separator(), a);
@@ -276,8 +277,9 @@ std::vector<std::string> dialect_search_path(const std::string& exe_dir) {
     }
   }
   if (!exe_dir.empty()) {
-    dirs.push_back((fs::path(exe_dir) / ".." / "share" / "arcpress" / "dialects").lexically_normal().string());
-    dirs.push_back((fs::path(exe_dir) / ".." / "dialects").lexically_normal().string());
+    dirs.push_back(utf8_string((utf8_path(exe_dir) / ".." / "share" / "arcpress" / "dialects").lexically_normal()));
+    dirs.push_back(utf8_string((utf8_path(exe_dir) / ".." / "dialects").lexically_normal()));
+    dirs.push_back(utf8_string(utf8_path(exe_dir) / "dialects"));  // beside the program (as unpacked from a zip)
   }
   if (*ARCPRESS_SOURCE_DIALECT_DIR) dirs.push_back(ARCPRESS_SOURCE_DIALECT_DIR);
   return dirs;
@@ -289,13 +291,13 @@ std::vector<Dialect> list_dialects(const std::vector<std::string>& search_path) 
   for (const auto& dir : search_path) {
     std::error_code ec;
     std::vector<fs::path> files;
-    for (const auto& e : fs::directory_iterator(dir, ec))
+    for (const auto& e : fs::directory_iterator(utf8_path(dir), ec))
       if (e.path().extension() == ".toml") files.push_back(e.path());
     std::sort(files.begin(), files.end());
     for (const auto& p : files) {
-      if (names.count(p.stem().string())) continue;
-      names.insert(p.stem().string());
-      out.push_back(load_dialect_file(p.string()));
+      if (names.count(utf8_string(p.stem()))) continue;
+      names.insert(utf8_string(p.stem()));
+      out.push_back(load_dialect_file(utf8_string(p)));
     }
   }
   std::sort(out.begin(), out.end(), [](const Dialect& a, const Dialect& b) { return a.name < b.name; });
@@ -304,12 +306,12 @@ std::vector<Dialect> list_dialects(const std::vector<std::string>& search_path) 
 
 Dialect find_dialect(const std::string& name, const std::vector<std::string>& search_path) {
   for (const auto& dir : search_path) {
-    fs::path p = fs::path(dir) / (name + ".toml");
+    fs::path p = utf8_path(dir) / utf8_path(name + ".toml");
     std::error_code ec;
     if (fs::is_regular_file(p, ec)) {
-      Dialect d = load_dialect_file(p.string());
+      Dialect d = load_dialect_file(utf8_string(p));
       if (d.name != name)
-        throw Error(kExitInput, fmt::format("{}: declares name = \"{}\", expected \"{}\"", p.string(), d.name, name));
+        throw Error(kExitInput, fmt::format("{}: declares name = \"{}\", expected \"{}\"", utf8_string(p), d.name, name));
       return d;
     }
   }

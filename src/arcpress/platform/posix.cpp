@@ -2,6 +2,7 @@
 // The platform layer on Linux and other POSIX systems.
 #include <dlfcn.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <system_error>
 
@@ -25,6 +26,11 @@ std::string own_folder() {
 }
 
 std::string program_folder() { return folder_of("/proc/self/exe"); }
+
+std::optional<std::string> environment(const char* name) {
+  const char* value = std::getenv(name);
+  return value ? std::optional<std::string>(value) : std::nullopt;
+}
 
 char path_list_separator() { return ':'; }
 

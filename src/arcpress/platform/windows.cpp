@@ -2,10 +2,12 @@
 // The platform layer on Windows: paths come from the wide API and are given out in UTF-8.
 #include <windows.h>
 
+#include <cstring>
 #include <filesystem>
 #include <string>
 #include <system_error>
 
+#include "arcpress/core/utf8_path.hpp"
 #include "arcpress/platform/platform.hpp"
 
 namespace arcpress::platform {
@@ -25,8 +27,7 @@ std::string folder_of_module(HMODULE module) {
   }
   std::error_code ec;
   const std::filesystem::path resolved = std::filesystem::weakly_canonical(std::filesystem::path(name), ec);
-  const std::u8string folder = (ec ? std::filesystem::path(name) : resolved).parent_path().u8string();
-  return std::string(folder.begin(), folder.end());
+  return utf8_string((ec ? std::filesystem::path(name) : resolved).parent_path());
 }
 
 }  // namespace
@@ -40,6 +41,16 @@ std::string own_folder() {
 }
 
 std::string program_folder() { return folder_of_module(nullptr); }
+
+std::optional<std::string> environment(const char* name) {
+  const std::wstring wide_name(name, name + std::strlen(name));  // (names are ASCII)
+  const DWORD n = ::GetEnvironmentVariableW(wide_name.c_str(), nullptr, 0);
+  if (n == 0) return std::nullopt;
+  std::wstring value(n, L'\0');
+  const DWORD got = ::GetEnvironmentVariableW(wide_name.c_str(), value.data(), n);
+  value.resize(got < n ? got : 0);
+  return utf8_string(std::filesystem::path(value));
+}
 
 char path_list_separator() { return ';'; }
 
