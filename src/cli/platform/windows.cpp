@@ -70,16 +70,22 @@ bool g_interrupted = false;
 /// Whether standard output has failed: nothing more is written there.
 bool g_stdout_failed = false;
 
+/// STATUS_CONTROL_C_EXIT: the exit status of a program Ctrl-C ended.
+constexpr UINT kInterruptedExit = 0xC000013A;
+
 BOOL WINAPI on_console_event(DWORD event) {
-  if (event == CTRL_C_EVENT || event == CTRL_BREAK_EVENT || event == CTRL_CLOSE_EVENT ||
-      event == CTRL_LOGOFF_EVENT || event == CTRL_SHUTDOWN_EVENT) {
+  if (event != CTRL_C_EVENT && event != CTRL_BREAK_EVENT && event != CTRL_CLOSE_EVENT &&
+      event != CTRL_LOGOFF_EVENT && event != CTRL_SHUTDOWN_EVENT)
+    return FALSE;
+  {
     std::lock_guard<std::mutex> hold(g_temporary_lock);
     g_interrupted = true;
     // Opened with FILE_SHARE_DELETE: the name goes now, the file with the process's handle.
     if (!g_temporary.empty()) ::DeleteFileW(g_temporary.c_str());
     g_temporary.clear();
   }
-  return FALSE;  // the default handler ends the process
+  // Ended as Windows ends a program on Ctrl-C, with STATUS_CONTROL_C_EXIT, whatever the event.
+  ::ExitProcess(kInterruptedExit);
 }
 
 /// Writes all of `data` to `h`; returns 0 or the error of the failure, and adds the bytes
@@ -361,6 +367,10 @@ void OutputFile::commit() {
     if (!moved) {
       const DWORD err = ::GetLastError();
       ::DeleteFileW(temporary.c_str());
+      // Windows replaces no read-only file (POSIX systems do, keeping its mode): said so.
+      const DWORD attributes = ::GetFileAttributesW(target.c_str());
+      if (attributes != INVALID_FILE_ATTRIBUTES && (attributes & FILE_ATTRIBUTE_READONLY))
+        throw Error(kExitIo, fmt::format("cannot replace '{}': it is read-only", path_));
       throw Error(kExitIo, fmt::format("cannot rename the output into '{}': {}", path_, error_text(err)));
     }
   } else if (owned_) {
