@@ -40,6 +40,11 @@ TEST_CASE("help and version succeed and help documents the exit codes", "[cli]")
   // The commit it was built from, as git names it (or "unknown" outside a checkout), and its license.
   CHECK(std::regex_search(v.out, std::regex("^arcpress [0-9.]+ \\(commit ([0-9a-f]{12}(-dirty)?|unknown)\\)\n")));
   CHECK(v.out.find("GPL-3.0-or-later") != std::string::npos);
+  // The header of what it writes names the same version and commit.
+  std::smatch named;
+  REQUIRE(std::regex_search(v.out, named, std::regex("^arcpress ([0-9.]+) \\(commit ([^)]+)\\)")));
+  auto out = run_arcpress("--dialect marlin", "; a slicer's first line\nG1 X1 Y1 F600\n");
+  CHECK(out.out.find("; arcpress " + named[1].str() + " commit " + named[2].str() + " --tolerance ") != std::string::npos);
 }
 
 TEST_CASE("every fitting method named in --help is accepted and writes a verified arc for a sampled arc", "[cli]") {

@@ -6,6 +6,7 @@
 #include "arcpress/dialect/dialect_loader.hpp"
 #include "arcpress/dialect/program_flavor.hpp"
 #include "arcpress/lex/lexer.hpp"
+#include "arcpress_commit.hpp"
 #include "support.hpp"
 
 using namespace arcpress;
@@ -71,7 +72,8 @@ TEST_CASE("the header comment naming arcpress goes after a first line that is a 
     const std::string header = r.output.substr(eol + 1, header_end - eol - 1);
     CHECK(is_arcpress_header(header));
     CHECK(header[0] == lead);
-    CHECK(header.find(std::string("arcpress ") + kVersion + " --tolerance 0.01 --dialect ") != std::string::npos);
+    CHECK(header.find(std::string("arcpress ") + kVersion + " commit " + ARCPRESS_COMMIT + " --tolerance 0.01 --dialect ") !=
+          std::string::npos);
     CHECK(r.output.substr(0, eol + 1) + r.output.substr(header_end + 1) == text);
     // Run again, it is not repeated.
     auto again = compress(f.string(), r.output, opt, sink);

@@ -15,6 +15,7 @@
 #include "arcpress/api/piece.hpp"
 #include "arcpress/core/error.hpp"
 #include "arcpress/core/workers.hpp"
+#include "arcpress_commit.hpp"
 #include "arcpress/extract/run.hpp"
 #include "arcpress/lex/foreign_content.hpp"
 #include "arcpress/lex/lexer.hpp"
@@ -38,10 +39,12 @@ namespace {
 bool ends_chains(const Move& m) { return !m.fittable() && !(is_arc(m.kind) && m.known); }
 
 /// The header comment (CompressOptions::header) without its end of line, in the form of the
-/// comment `like` (';' or '('): "; arcpress 0.1.0 --tolerance 0.01 --dialect marlin ...".
+/// comment `like` (';' or '('): "; arcpress 0.1.0 commit 1b62caa0e2f3 --tolerance 0.01
+/// --dialect marlin ...", naming the version and the commit as `arcpress --version` does.
 std::string header_comment(const CompressOptions& o, char like) {
   const std::string text = fmt::format(
-      "arcpress {} --tolerance {} --dialect {} --band {} --g1-angle {} --corner-angle {} --method {}", kVersion,
+      "arcpress {} commit {} --tolerance {} --dialect {} --band {} --g1-angle {} --corner-angle {} --method {}",
+      kVersion, ARCPRESS_COMMIT,
       o.fit.tolerance_mm, o.dialect.name,
       kBandNames[size_t(o.executed_rule().moves_on_chords() ? CompressOptions::Band::Executed : CompressOptions::Band::Program)],
       o.fit.g1_angle_deg, o.fit.corner_angle_deg, method_name(o.fit.method));
