@@ -19,6 +19,12 @@ sample="$source/samples/contour.nc"
 fail() { echo "FAIL: $*"; exit 1; }
 # The Windows path of a file here (wine maps the root of the Linux file system to Z:).
 winpath() { printf 'Z:%s' "$(realpath "$1" | tr / '\\')"; }
+# Both builds write the commit they were built from into the output's header: they must be
+# built from the same one for their bytes to be compared.
+if [ "$check" != prefix ]; then
+  lv=$("$linux/arcpress" --version | head -1) wv=$(wine "$exe" --version | head -1)
+  [ "$lv" = "$wv" ] || fail "the builds differ ('$lv' on Linux, '$wv' on Windows): build both again (scripts/build.sh --test)"
+fi
 no_temporaries() { ! ls -a "$1" | grep -q 'arcpress-' || fail "a temporary file was left in $1: $(ls -a "$1")"; }
 
 case $check in
@@ -144,6 +150,16 @@ case $check in
     wine "$dir/arcpress.exe" "$sample" --dialect fanuc -o "$work/zip.nc"
     "$linux/arcpress" "$sample" --dialect fanuc -o "$work/linux.nc"
     cmp "$work/zip.nc" "$work/linux.nc" || fail "the unpacked program writes other bytes"
+    # More dialect folders in ARCPRESS_DIALECT_PATH, separated by ';' as on Windows.
+    mkdir -p "$work/my dialects/one" "$work/my dialects/two"
+    sed 's/^name = "fanuc"/name = "mine"/' "$dir/dialects/fanuc.toml" > "$work/my dialects/two/mine.toml"
+    ARCPRESS_DIALECT_PATH="$(winpath "$work/my dialects/one");$(winpath "$work/my dialects/two")" \
+      wine "$dir/arcpress.exe" dialects | grep -q '^mine' || fail "ARCPRESS_DIALECT_PATH split at ';' finds no 'mine'"
+    # The progress line (for inputs over 4 MB), asked for where standard error is no console.
+    big="$corpus/printer/prusaslicer-2.5_bunny_marlin.gcode"
+    [ -f "$big" ] || { for _ in $(seq 800); do cat "$sample"; done > "$work/big.nc"; big="$work/big.nc"; }
+    wine "$dir/arcpress.exe" "$big" --progress -o "$work/p.nc" 2>"$work/progress.txt"
+    grep -q 'MB/s' "$work/progress.txt" || fail "no progress line: $(cat "$work/progress.txt")"
     echo "$(basename "$zip"): $(unzip -l "$zip" | tail -1 | awk '{print $2}') files; runs unpacked"
     ;;
   recipes)  # postproc/README.md's Windows recipes, as the slicer and a CAM system run them
