@@ -94,7 +94,12 @@ case $check in
     grep -q 'M2' "$work/windows.nc" || fail "the program was cut at Ctrl-Z"
     wine "$exe" --passthrough < "$work/in.nc" > "$work/same.nc"
     cmp "$work/in.nc" "$work/same.nc" || fail "--passthrough changed bytes"
-    echo "standard input to standard output is binary-safe"
+    # A reader that closes the pipe early: exit 3, and how much it took.
+    for _ in $(seq 800); do cat "$sample"; done > "$work/big.nc"
+    { rc=0; wine "$exe" "$work/big.nc" 2>"$work/err" || rc=$?; echo "$rc" > "$work/rc"; } | head -c 1000 > /dev/null
+    [ "$(cat "$work/rc")" = 3 ] || fail "a closed pipe: exit $(cat "$work/rc")"
+    grep -q 'standard output closed after' "$work/err" || fail "a closed pipe: $(cat "$work/err")"
+    echo "standard input to standard output is binary-safe; a closed pipe is exit 3, '$(cat "$work/err")'"
     ;;
   interrupt)  # Ctrl-C (wine turns SIGINT into the console's Ctrl-C) while the output is being written
     mkdir "$work/out"

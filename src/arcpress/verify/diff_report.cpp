@@ -4,7 +4,6 @@
 #include <fmt/format.h>
 
 namespace arcpress {
-namespace {
 
 std::string json_string(const std::string& s) {
   std::string out = "\"";
@@ -21,6 +20,8 @@ std::string json_string(const std::string& s) {
   }
   return out + "\"";
 }
+
+namespace {
 
 std::string place_json(const DiffPlace& p) {
   return fmt::format("{{\"deviation_mm\": {:.9f}, \"x\": {:.6f}, \"y\": {:.6f}, \"z\": {:.6f}, \"line_a\": {}, \"line_b\": {}}}",

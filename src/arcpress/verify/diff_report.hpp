@@ -15,4 +15,7 @@ struct DiffNames {
 std::string diff_text(const ProgramDiff& d, const DiffNames& names, double tolerance_mm);
 std::string diff_json(const ProgramDiff& d, const DiffNames& names, double tolerance_mm);
 
+/// `s` as a JSON string, quoted, with quotes, backslashes and control characters escaped.
+std::string json_string(const std::string& s);
+
 }  // namespace arcpress

@@ -329,7 +329,7 @@ void OutputFile::fail(const std::string& what, int err) {
 void OutputFile::write(std::string_view data) {
   if (done_) throw Error(kExitIo, fmt::format("cannot write '{}': already closed", path_));
   const DWORD err = write_all(as_handle(handle_), data, written_);
-  if (err == ERROR_BROKEN_PIPE || err == ERROR_NO_DATA) {
+  if (err == ERROR_BROKEN_PIPE || err == ERROR_NO_DATA || err == ERROR_PIPE_NOT_CONNECTED) {
     // The reader went away: said as such, with how much it took.
     const size_t taken = written_;
     discard();
