@@ -130,6 +130,7 @@ int compress_file(const CompressArgs& a, FileReport& report, std::atomic<size_t>
   opt.dialect = dialect_for(a.dialect, a.dialect_given, a.dialect_file, chunk,
                             head == 0 || chunk.size() < head ? std::string() : input.tail(kFlavorBytes), &why_dialect);
   if (opt.band == CompressOptions::Band::Executed) require_executed_rule(opt.dialect, "--band executed");
+  opt.block_rate = a.stats;
   DiagnosticSink sink(name);
   Compressor compressor(name, opt, sink);
   cli::OutputFile out(out_path);
@@ -216,6 +217,12 @@ int compress_file(const CompressArgs& a, FileReport& report, std::atomic<size_t>
                st.moves_in ? 100.0 * double(st.lines_out + st.arcs_out) / double(st.moves_in) : 100.0,
                st.arcs_unprintable, st.long_lines_kept, r.runs_kept_as_input, st.plane_words_added,
                compressor.pieces(), compressor.forced_cuts(), s);
+    if (r.rate_in && r.rate_out)
+      fmt::format_to(std::back_inserter(log),
+                     "  block rate     at the programmed feeds, acceleration ignored, over any 1 s of cutting:\n"
+                     "                 in:  {}\n"
+                     "                 out: {}\n",
+                     block_rate_text(*r.rate_in), block_rate_text(*r.rate_out));
     // The G1 moves left as they are, by reason, with the first place of each.
     for (const NotFitted& n : r.not_fitted)
       fmt::format_to(std::back_inserter(log), "  not fitted     {} G1 move{}: {}{} (first at line {})\n", n.moves, n.moves == 1 ? "" : "s",

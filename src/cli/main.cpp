@@ -173,12 +173,17 @@ int run_diff(const DiffArgs& d) {
   opt.tolerance_mm = d.tolerance_mm;
   opt.top = d.top;
   opt.threads = d.threads;
+  // The block rate each demands, as written (before any arc is cut into chords).
+  const BlockRate rate_a = block_rate(pa, ia, dialect.max_blocks_per_s, dialect.link_bytes_per_s);
+  const BlockRate rate_b = block_rate(pb, ib, dialect.max_blocks_per_s, dialect.link_bytes_per_s);
   if (d.executed) {
     cli::require_executed_rule(dialect, "--executed");
     if (has_executed_chords(ia, dialect.executed)) ia = executed_path(ia, dialect.executed);
     if (has_executed_chords(ib, dialect.executed)) ib = executed_path(ib, dialect.executed);
   }
   ProgramDiff r = diff_programs(pa, ia, pb, ib, opt);
+  r.a.rate = rate_a;
+  r.b.rate = rate_b;
   DiffNames names{d.a, d.b};
   // The report first: a plot that cannot be written (exit 3) never costs the verdict.
   cli::write_stdout(d.json ? diff_json(r, names, d.tolerance_mm) : diff_text(r, names, d.tolerance_mm));

@@ -62,7 +62,7 @@ for rel in "a contour.nc" "sub dir/deeper/lower case.ngc"; do
   "$arcpress" "$work/pristine/$rel" -o "$work/one.out"
   cmp "$work/one.out" "$in/$rel" || fail "$rel in place: not the bytes of a run of its own"
 done
-! ls -aR "$in" | grep -q 'arcpress-' || fail "a temporary file was left"
+[ -z "$(find "$in" -name '*.arcpress-*')" ] || fail "a temporary file was left"
 
 # --glob picks a folder's files by name; a file for -o with several programs is refused.
 "$arcpress" "$work/pristine" --glob '*case*' -o "$work/globbed" > "$work/summary.txt"

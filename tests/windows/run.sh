@@ -25,7 +25,9 @@ if [ "$check" != prefix ]; then
   lv=$("$linux/arcpress" --version | head -1) wv=$(wine "$exe" --version | head -1)
   [ "$lv" = "$wv" ] || fail "the builds differ ('$lv' on Linux, '$wv' on Windows): build both again (scripts/build.sh --test)"
 fi
-no_temporaries() { ! ls -a "$1" | grep -q 'arcpress-' || fail "a temporary file was left in $1: $(ls -a "$1")"; }
+# (Not `ls | grep -q`: under pipefail, grep leaving early can fail the pipe.)
+has_temporary() { [ -n "$(find "$1" -maxdepth 1 -name '*.arcpress-*')" ]; }
+no_temporaries() { ! has_temporary "$1" || fail "a temporary file was left in $1: $(ls -a "$1")"; }
 
 case $check in
   prefix)  # made once, before the others (a ctest fixture)
@@ -106,16 +108,17 @@ case $check in
     echo "the program as it was" > "$work/out/dest.nc"
     mkfifo "$work/fifo"
     # Three MB, then the input stalls with the temporary file open and half written.
-    { head -c 3000000 "$corpus/printer/ps271_benchy.gcode" 2>/dev/null || yes "G1 X1 Y2 F100" | head -c 3000000; exec sleep 30; } > "$work/fifo" 2>/dev/null &
+    big="$corpus/printer/ps271_benchy.gcode"
+    [ -f "$big" ] || { for _ in $(seq 500); do cat "$sample"; done > "$work/big.nc"; big="$work/big.nc"; }
+    { head -c 3000000 "$big"; exec sleep 30; } > "$work/fifo" 2>/dev/null &
     feeder=$!
     wine "$exe" - -o "$work/out/dest.nc" < "$work/fifo" 2>"$work/err" &
     runner=$!
-    for _ in $(seq 100); do ls -a "$work/out" | grep -q 'arcpress-' && break; sleep 0.2; done
-    ls -a "$work/out" | grep -q 'arcpress-' || fail "no temporary file appeared"
+    for _ in $(seq 100); do has_temporary "$work/out" && break; sleep 0.2; done
+    has_temporary "$work/out" || fail "no temporary file appeared"
     sleep 1
-    pid=$(pgrep -f "arcpress.exe - -o $work/out/dest.nc" | head -1)
-    [ -n "$pid" ] || fail "arcpress.exe is not running"
-    kill -INT "$pid"
+    kill -0 "$runner" 2>/dev/null || fail "arcpress.exe is not running: $(cat "$work/err")"
+    kill -INT "$runner"  # (wine runs the program in the process it started as)
     rc=0; wait "$runner" || rc=$?
     kill "$feeder" 2>/dev/null || true
     [ "$rc" != 0 ] || fail "exit 0 after an interrupt"
@@ -152,7 +155,8 @@ case $check in
              dialects/marlin.toml README.md LICENSE; do
       [ -f "$dir/$f" ] || fail "the zip has no $f"
     done
-    wine "$dir/arcpress.exe" dialects | grep -q '^marlin' || fail "the unpacked program finds no dialects"
+    wine "$dir/arcpress.exe" dialects > "$work/dialects.txt"
+    grep -q '^marlin' "$work/dialects.txt" || fail "the unpacked program finds no dialects"
     wine "$dir/arcpress.exe" "$sample" --dialect fanuc -o "$work/zip.nc"
     "$linux/arcpress" "$sample" --dialect fanuc -o "$work/linux.nc"
     cmp "$work/zip.nc" "$work/linux.nc" || fail "the unpacked program writes other bytes"
@@ -160,7 +164,8 @@ case $check in
     mkdir -p "$work/my dialects/one" "$work/my dialects/two"
     sed 's/^name = "fanuc"/name = "mine"/' "$dir/dialects/fanuc.toml" > "$work/my dialects/two/mine.toml"
     ARCPRESS_DIALECT_PATH="$(winpath "$work/my dialects/one");$(winpath "$work/my dialects/two")" \
-      wine "$dir/arcpress.exe" dialects | grep -q '^mine' || fail "ARCPRESS_DIALECT_PATH split at ';' finds no 'mine'"
+      wine "$dir/arcpress.exe" dialects > "$work/dialects.txt"
+    grep -q '^mine' "$work/dialects.txt" || fail "ARCPRESS_DIALECT_PATH split at ';' finds no 'mine'"
     # The progress line (for inputs over 4 MB), asked for where standard error is no console.
     big="$corpus/printer/prusaslicer-2.5_bunny_marlin.gcode"
     [ -f "$big" ] || { for _ in $(seq 800); do cat "$sample"; done > "$work/big.nc"; big="$work/big.nc"; }

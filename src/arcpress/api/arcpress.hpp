@@ -17,6 +17,7 @@
 #include "arcpress/emit/emitter.hpp"
 #include "arcpress/extract/run.hpp"
 #include "arcpress/fit/primitive.hpp"
+#include "arcpress/verify/block_rate.hpp"
 #include "arcpress/verify/path_compare.hpp"
 #include "arcpress/verify/program_diff.hpp"
 
@@ -35,6 +36,9 @@ struct CompressOptions {
   /// Re-read the output and compare it with the input as `arcpress diff` does (path both
   /// ways, rapids, non-motion blocks, feed, extrusion) before it is used.
   bool verify = true;
+  /// Measure the block rate the input and the output demand (CompressResult::rate_in,
+  /// rate_out; verify/block_rate.hpp), against the dialect's [throughput] limits.
+  bool block_rate = false;
   /// Threads that fit runs at once, at most kMaxThreads; 0: one per hardware thread. Runs
   /// are independent, so the output is the same for any count.
   unsigned threads = 0;
@@ -75,6 +79,8 @@ struct NotFitted {
 
 struct CompressResult {
   bool ok = false;        ///< false: input errors (see the sink); `output` is then empty
+  /// With CompressOptions::block_rate: the block rate the input and the output demand.
+  std::optional<BlockRate> rate_in, rate_out;
   std::string output;
   size_t blocks_in = 0;
   size_t bytes_in = 0;

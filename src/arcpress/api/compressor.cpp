@@ -68,6 +68,10 @@ struct Compressor::Impl {
     total.unplaced_kept = true;
     total.band_mm = opt.fit.tolerance_mm;
     pool_size = threads > 1 ? threads : 0;
+    if (opt.block_rate) {
+      meter_in.emplace(opt.dialect.max_blocks_per_s, opt.dialect.link_bytes_per_s);
+      meter_out.emplace(opt.dialect.max_blocks_per_s, opt.dialect.link_bytes_per_s);
+    }
   }
 
   ~Impl() {
@@ -115,6 +119,10 @@ struct Compressor::Impl {
       close_piece(true);
     }
     release(true);
+    if (!failed && meter_in && meter_out) {
+      total.rate_in = meter_in->finish();
+      total.rate_out = meter_out->finish();
+    }
     // A program with G1 moves of which none could be fitted is told why, where something
     // kept them from it (not where each is alone already, as in a program fitted before).
     const auto& nf = total.not_fitted;
@@ -318,6 +326,16 @@ struct Compressor::Impl {
       const size_t header_lines = slot.piece->index == 0 ? insert_header(slot.piece->result.output) : 0;
       add_piece(total, *slot.piece, lines_out + header_lines);
       lines_out += header_lines;
+      // The block rate runs on across pieces: their timed blocks in program order.
+      if (meter_in && meter_out) {
+        Piece& p = *slot.piece;
+        for (const TimedBlock& b : p.timed_in) meter_in->add(b);
+        for (const TimedBlock& b : p.timed_out) meter_out->add(b);
+        meter_in->add_untimed(p.untimed_in);
+        meter_out->add_untimed(p.untimed_out);
+        std::vector<TimedBlock>().swap(p.timed_in);
+        std::vector<TimedBlock>().swap(p.timed_out);
+      }
       // The joint across the cut, which neither piece's check saw whole.
       if (slot.piece->index > 0 && total.verified) {
         if (const auto turn = joint_turn_deg(prev_tail, slot.piece->head, opt.fit.tolerance_mm, opt.fit.corner_angle_deg)) {
@@ -394,6 +412,7 @@ struct Compressor::Impl {
   std::exception_ptr failure;
   bool stopping = false;
   std::vector<PooledThread> workers;
+  std::optional<BlockRateMeter> meter_in, meter_out;  ///< with opt.block_rate
 };
 
 Compressor::Compressor(std::string name, const CompressOptions& opt, DiagnosticSink& sink) {

@@ -363,6 +363,13 @@ void compress_piece(Piece& piece, const CompressOptions& options) {
   forced.erase(std::unique(forced.begin(), forced.end()), forced.end());
   r.forced_kinks = forced.size();
   piece.output_lines = count_lines(r.output);
+  if (opt.block_rate && r.ok) {
+    piece.untimed_in = timed_blocks(prog, in, piece.timed_in);
+    DiagnosticSink out_sink(prog.name + " (output)");
+    const Program out_prog = lex(out_sink.file(), r.output, out_sink);
+    ModalState out_state = piece.start;
+    piece.untimed_out = timed_blocks(out_prog, interpret(out_prog, out_sink, opt.dialect, &out_state), piece.timed_out);
+  }
 }
 
 namespace {

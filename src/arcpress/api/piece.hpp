@@ -62,6 +62,10 @@ struct Piece {
   CompressResult result;   ///< its text, counts and checks; output lines (line_b) counted from the piece's first
   PieceEnd head, tail;     ///< the ends of its path as checked (where it was)
   size_t output_lines = 0; ///< lines in result.output
+  /// With CompressOptions::block_rate: the timed blocks of the input and the output, in
+  /// order, and the feed moves of each that could not be timed.
+  std::vector<TimedBlock> timed_in, timed_out;
+  size_t untimed_in = 0, untimed_out = 0;
 };
 
 /// Fits, emits and (with opt.verify) checks the piece: the output is read back from

@@ -86,6 +86,13 @@ struct Dialect {
 
   // --- lines ------------------------------------------------------------------------
   size_t max_line_length = 255;       ///< characters, end of line excluded
+
+  // --- throughput ([throughput]) ---------------------------------------------------
+  /// Blocks per second the controller takes at most (its planner and parser); 0: not set.
+  double max_blocks_per_s = 0;
+  /// Bytes per second the link to the controller carries (a serial line at B baud with 8N1
+  /// framing: B / 10); 0: not set (a host-resident or USB controller).
+  double link_bytes_per_s = 0;
   bool paren_comments = true;         ///< "( ... )" is a comment
   bool semicolon_comments = true;     ///< ";" starts a comment to the end of the line
   /// Words the controller refuses in a program: a letter ("O"), a code ("G90.1") or "%".

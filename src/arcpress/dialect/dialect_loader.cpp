@@ -247,6 +247,12 @@ Dialect parse_dialect(const std::string& text, const std::string& path) {
     r.strings("refused", d.refused);
     r.finish();
   }
+  if (const toml::table* t = top.table("throughput")) {
+    TableReader r(*t, path, "throughput.");
+    r.number("max_blocks_per_s", d.max_blocks_per_s, 0, 1e9);
+    r.number("link_bytes_per_s", d.link_bytes_per_s, 0, 1e12);
+    r.finish();
+  }
   top.finish();
   return d;
 }

@@ -33,11 +33,11 @@ std::string summary_json(const ProgramSummary& s, const std::string& name) {
       "{{\"file\": {}, \"blocks\": {}, \"bytes\": {}, \"feed_moves\": {}, \"rapids\": {}, \"sections\": {}, "
       "\"non_motion_blocks\": {}, \"path_mm\": {:.6f}, \"unplaced_feed_moves\": {}, \"first_unplaced_line\": {}, "
       "\"unplaced_reason\": {}, \"entry_moves\": {}, \"first_entry_line\": {}, \"entry_reason\": {}, "
-      "\"unmeasured_arcs\": {}, \"first_unmeasured_line\": {}, \"far_moves\": {}, \"first_far_line\": {}}}",
+      "\"unmeasured_arcs\": {}, \"first_unmeasured_line\": {}, \"far_moves\": {}, \"first_far_line\": {}{}}}",
       json_string(name), s.blocks, s.bytes, s.feed_moves, s.rapids, s.sections, s.non_motion, s.path_mm,
       s.unplaced_feed_moves, s.first_unplaced_line, json_string(s.unplaced_reason), s.entry_moves,
       s.first_entry_line, json_string(s.entry_reason), s.unmeasured_arcs, s.first_unmeasured_line, s.far_moves,
-      s.first_far_line);
+      s.first_far_line, s.rate ? ", \"block_rate\": " + block_rate_json(*s.rate) : std::string());
 }
 
 const char* verdict_word(ProgramDiff::Verdict v, bool upper) {
@@ -56,6 +56,7 @@ std::string diff_text(const ProgramDiff& d, const DiffNames& n, double tol) {
   for (auto [name, s] : {std::pair{n.a, d.a}, std::pair{n.b, d.b}}) {
     t += fmt::format("{}: {} blocks, {} bytes, {} feed moves in {} sections, {} rapids, {:.3f} mm of feed path\n", name,
                      s.blocks, s.bytes, s.feed_moves, s.sections, s.rapids, s.path_mm);
+    if (s.rate) t += fmt::format("{}: block rate at the programmed feeds: {}\n", name, block_rate_text(*s.rate));
     if (s.entry_moves > 0)
       t += fmt::format("{}: {} feed move(s) from an unknown position, compared by their end points (first at line {}: {})\n",
                        name, s.entry_moves, s.first_entry_line, s.entry_reason);

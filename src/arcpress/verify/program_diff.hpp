@@ -34,6 +34,7 @@
 
 #include "arcpress/lex/block.hpp"
 #include "arcpress/model/move.hpp"
+#include "arcpress/verify/block_rate.hpp"
 #include "arcpress/verify/move_geometry.hpp"
 
 namespace arcpress {
@@ -72,6 +73,8 @@ struct DiffPlace {
 
 struct ProgramSummary {
   size_t blocks = 0, bytes = 0, feed_moves = 0, rapids = 0, sections = 0;
+  /// The block rate it demands, where the caller measured it (arcpress diff does).
+  std::optional<BlockRate> rate;
   size_t non_motion = 0;     ///< M/T/S/dwell/comment and other non-word blocks compared
   double path_mm = 0;        ///< length of the feed path
   /// Feed moves (G1/G2/G3) that could not be placed: an axis they move has no known
