@@ -161,6 +161,11 @@ bool is_batch(const std::vector<std::string>& inputs) {
 }
 
 int run_batch(const CompressArgs& a, const BatchArgs& b) {
+  // `arcpress in.nc out.nc`: a second name that is no program was meant for -o. (Elsewhere a
+  // program that cannot be opened fails on its own, as any other.)
+  std::error_code ec;
+  if (b.inputs.size() == 2 && a.output.empty() && !a.in_place && !fs::exists(utf8_path(b.inputs[1]), ec))
+    throw Error(kExitInput, fmt::format("no program '{}' to read; to write a file, use -o {}", b.inputs[1], b.inputs[1]));
   if (!a.in_place && a.output.empty())
     throw Error(kExitInput, "several programs, or a folder, are written with --in-place or -o FOLDER");
   if (a.in_place && !a.output.empty()) throw Error(kExitInput, "--in-place and -o cannot be used together");

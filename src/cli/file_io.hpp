@@ -70,6 +70,7 @@ class OutputFile {
 
   std::string path_, temporary_, target_;
   std::intptr_t handle_ = -1;  // the system's descriptor or handle
+  int slot_ = -1;           // the temporary file's place in the interrupt handler's table
   bool owned_ = false;      // opened here (closed by commit)
   bool is_stdout_ = false;
   bool done_ = false;

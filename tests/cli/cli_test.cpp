@@ -90,10 +90,10 @@ TEST_CASE("usage errors exit with 2", "[cli]") {
 
 TEST_CASE("a usage error says what to type instead", "[cli]") {
   const std::string sample = "'" ARCPRESS_SOURCE_DIR "/samples/contour.nc'";
-  // A second file name: the output is written with -o.
+  // A second file name that does not exist: the output is written with -o.
   auto two = run_arcpress(sample + " out.nc");
   CHECK(two.exit_code == 2);
-  CHECK(two.err == "arcpress: unexpected argument 'out.nc': arcpress reads one program; to write a file, use -o out.nc\n");
+  CHECK(two.err == "arcpress: no program 'out.nc' to read; to write a file, use -o out.nc\n");
   // A mistyped option: the nearest real one, and its value is not taken for a file name.
   auto typo = run_arcpress(sample + " --tolerence 0.01");
   CHECK(typo.exit_code == 2);

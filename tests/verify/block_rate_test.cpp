@@ -81,7 +81,7 @@ TEST_CASE("a program that cuts for less than a second is one window", "[block_ra
   CHECK(r.over_blocks_share == 1);
 }
 
-TEST_CASE("arcs last their length at the feed; moves without a feed or in inverse time are counted apart",
+TEST_CASE("arcs last their length at the feed, and moves without a feed or in inverse time are counted apart",
           "[block_rate]") {
   // A half circle of radius 10 at F600: 31.4 mm, 3.14 s.
   const BlockRate arc = rate_of("G21 G90 G17\nG0 X10 Y0\nG3 X-10 Y0 I-10 J0 F600\n");

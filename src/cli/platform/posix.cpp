@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 #include <limits.h>
+#include <pthread.h>
 #include <signal.h>
 #include <stdlib.h>
 #include <sys/stat.h>
@@ -36,15 +37,34 @@
 namespace arcpress::cli {
 namespace {
 
-/// The temporary file being written, for the signal handler: set before the file exists,
-/// cleared once it is renamed or removed. A fixed buffer, as a handler may only read memory.
-char g_temporary[PATH_MAX + 32] = {};
-std::atomic<bool> g_temporary_set{false};
+/// The temporary files being written (one per program a batch writes at once), for the
+/// signal handler: a slot's name is set before its file exists, and the slot freed once the
+/// file is renamed or removed. Fixed buffers, as a handler may only read memory.
+constexpr size_t kTemporarySlots = 1024;  // programs written at once: at most kMaxThreads
+struct TemporarySlot {
+  std::atomic<int> state{0};  // 0 free, 1 taken, 2 its file may exist
+  char name[PATH_MAX + 32] = {};
+};
+TemporarySlot g_temporaries[kTemporarySlots];
+
+int take_slot() {
+  for (size_t k = 0; k < kTemporarySlots; ++k) {
+    int free = 0;
+    if (g_temporaries[k].state.compare_exchange_strong(free, 1)) return int(k);
+  }
+  return -1;
+}
+
+void free_slot(int& slot) {
+  if (slot >= 0) g_temporaries[slot].state = 0;
+  slot = -1;
+}
 /// Whether standard output has failed: nothing more is written there.
 bool g_stdout_failed = false;
 
 extern "C" void on_fatal_signal(int sig) {
-  if (g_temporary_set.load()) ::unlink(g_temporary);
+  for (TemporarySlot& t : g_temporaries)
+    if (t.state.load() == 2) ::unlink(t.name);
   ::signal(sig, SIG_DFL);
   ::raise(sig);
 }
@@ -138,20 +158,6 @@ std::string InputFile::tail(size_t n) const {
   return out;
 }
 
-std::string read_input(const std::string& path) {
-  InputFile in(path);
-  std::string data;
-  constexpr size_t kChunk = size_t(1) << 16;
-  // Room for the whole file and for the chunk each read asks room for, so that the last
-  // reads do not move it all to a larger buffer.
-  if (in.size()) data.reserve(*in.size() + kChunk);
-  while (in.read(data, kChunk) > 0) {
-  }
-  return data;
-}
-
-void write_stdout(std::string_view data) { write_output("-", data); }
-
 /// The descriptor a path names outright: /dev/stdout, /dev/stderr, /dev/fd/N,
 /// /proc/self/fd/N; -1 for any other path. Written through that descriptor, the output
 /// keeps the offset and append mode the shell gave it.
@@ -230,20 +236,28 @@ void OutputFileSystem::note_start(OutputFile& f) {
 void OutputFileSystem::open_temporary(OutputFile& f, const std::string& target, const struct stat* old) {
   auto& handle_ = f.handle_;
   std::string tmpl = target + ".arcpress-XXXXXX";
-  if (tmpl.size() >= sizeof g_temporary) throw Error(kExitIo, fmt::format("output path too long: '{}'", target));
+  if (tmpl.size() >= sizeof g_temporaries[0].name)
+    throw Error(kExitIo, fmt::format("output path too long: '{}'", target));
+  int slot = take_slot();
+  if (slot < 0) throw Error(kExitIo, fmt::format("cannot write '{}': too many outputs at once", target));
+  TemporarySlot& t = g_temporaries[slot];
   // The handler may remove the file from the moment it exists: its name is set first.
-  std::memcpy(g_temporary, tmpl.c_str(), tmpl.size() + 1);
+  std::memcpy(t.name, tmpl.c_str(), tmpl.size() + 1);
   sigset_t block, saved;
   sigemptyset(&block);
-  for (int s : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&block, s);
-  ::sigprocmask(SIG_BLOCK, &block, &saved);
-  handle_ = ::mkstemp(g_temporary);
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&block, sig);
+  ::pthread_sigmask(SIG_BLOCK, &block, &saved);
+  handle_ = ::mkstemp(t.name);
   const int made = errno;
-  if (handle_ >= 0) g_temporary_set = true;
-  ::sigprocmask(SIG_SETMASK, &saved, nullptr);
-  if (handle_ < 0) throw Error(kExitIo, fmt::format("cannot create a temporary file beside '{}': {}", target, error_text(made)));
+  if (handle_ >= 0) t.state = 2;
+  ::pthread_sigmask(SIG_SETMASK, &saved, nullptr);
+  if (handle_ < 0) {
+    free_slot(slot);
+    throw Error(kExitIo, fmt::format("cannot create a temporary file beside '{}': {}", target, error_text(made)));
+  }
   f.owned_ = true;
-  f.temporary_ = g_temporary;
+  f.temporary_ = t.name;
+  f.slot_ = slot;
   f.target_ = target;
   // The mode, owner and group an existing file had; a new file gets 0666 less the umask.
   mode_t mode = 0666;
@@ -290,18 +304,18 @@ void OutputFile::commit() {
     if (::close(fd) != 0) {
       const int err = errno;
       ::unlink(temporary_.c_str());
-      g_temporary_set = false;
+      free_slot(slot_);
       done_ = true;
       throw Error(kExitIo, fmt::format("cannot finish writing '{}': {}", path_, error_text(err)));
     }
     if (::rename(temporary_.c_str(), target_.c_str()) != 0) {
       const int err = errno;
       ::unlink(temporary_.c_str());
-      g_temporary_set = false;
+      free_slot(slot_);
       done_ = true;
       throw Error(kExitIo, fmt::format("cannot rename the output into '{}': {}", path_, error_text(err)));
     }
-    g_temporary_set = false;
+    free_slot(slot_);
   } else if (owned_) {
     const int fd = int(handle_);
     handle_ = -1;
@@ -320,7 +334,7 @@ size_t OutputFile::discard() {
   if (!temporary_.empty()) {
     ::close(int(handle_));
     ::unlink(temporary_.c_str());
-    g_temporary_set = false;
+    free_slot(slot_);
   } else {
     // A file the shell opened is cut back to where it began; a pipe or terminal keeps what
     // it has been given.
@@ -330,12 +344,6 @@ size_t OutputFile::discard() {
   }
   handle_ = -1;
   return left;
-}
-
-void write_output(const std::string& path, std::string_view data) {
-  OutputFile out(path);
-  out.write(data);
-  out.commit();
 }
 
 void remove_temporary_files_on_signals() {

@@ -16,6 +16,7 @@
 #include <atomic>
 #include <cstdio>
 #include <mutex>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -61,11 +62,12 @@ HANDLE as_handle(std::intptr_t h) { return reinterpret_cast<HANDLE>(h); }
 std::intptr_t from_handle(HANDLE h) { return reinterpret_cast<std::intptr_t>(h); }
 constexpr std::intptr_t kNoHandle = -1;  // INVALID_HANDLE_VALUE
 
-/// The temporary file being written, for the console handler, which runs on a thread of its
-/// own: it takes the lock, removes the file and marks the process interrupted; commit()
-/// renames under the same lock and never after an interrupt.
+/// The temporary files being written (one per program a batch writes at once), for the
+/// console handler, which runs on a thread of its own: it takes the lock, removes them and
+/// marks the process interrupted; commit() renames under the same lock and never after an
+/// interrupt.
 std::mutex g_temporary_lock;
-std::wstring g_temporary;
+std::set<std::wstring> g_temporaries;
 bool g_interrupted = false;
 /// Whether standard output has failed: nothing more is written there.
 bool g_stdout_failed = false;
@@ -81,8 +83,8 @@ BOOL WINAPI on_console_event(DWORD event) {
     std::lock_guard<std::mutex> hold(g_temporary_lock);
     g_interrupted = true;
     // Opened with FILE_SHARE_DELETE: the name goes now, the file with the process's handle.
-    if (!g_temporary.empty()) ::DeleteFileW(g_temporary.c_str());
-    g_temporary.clear();
+    for (const std::wstring& t : g_temporaries) ::DeleteFileW(t.c_str());
+    g_temporaries.clear();
   }
   // Ended as Windows ends a program on Ctrl-C, with STATUS_CONTROL_C_EXIT, whatever the event.
   ::ExitProcess(kInterruptedExit);
@@ -223,18 +225,6 @@ std::string InputFile::tail(size_t n) const {
   return out;
 }
 
-std::string read_input(const std::string& path) {
-  InputFile in(path);
-  std::string data;
-  constexpr size_t kChunk = size_t(1) << 16;
-  if (in.size()) data.reserve(*in.size() + kChunk);
-  while (in.read(data, kChunk) > 0) {
-  }
-  return data;
-}
-
-void write_stdout(std::string_view data) { write_output("-", data); }
-
 OutputFile::OutputFile(const std::string& path) : path_(path) {
   if (path == "-") {
     if (g_stdout_failed) throw Error(kExitIo, "cannot write standard output");
@@ -310,7 +300,7 @@ void OutputFileSystem::open_temporary(OutputFile& f, const std::string& target) 
       if ((err == ERROR_FILE_EXISTS || err == ERROR_ALREADY_EXISTS) && attempt < 100) continue;
       throw Error(kExitIo, fmt::format("cannot create a temporary file beside '{}': {}", target, error_text(err)));
     }
-    g_temporary = w;
+    g_temporaries.insert(w);
     f.handle_ = from_handle(h);
     f.owned_ = true;
     f.temporary_ = name;
@@ -351,7 +341,7 @@ void OutputFile::commit() {
     std::lock_guard<std::mutex> hold(g_temporary_lock);
     const std::wstring temporary = full_path(wide(temporary_)), target = full_path(wide(target_));
     done_ = true;
-    g_temporary.clear();
+    g_temporaries.erase(wide(temporary_));
     if (!closed || g_interrupted) {
       ::DeleteFileW(temporary.c_str());
       throw Error(kExitIo, g_interrupted ? std::string("interrupted")
@@ -392,7 +382,7 @@ size_t OutputFile::discard() {
     std::lock_guard<std::mutex> hold(g_temporary_lock);
     ::CloseHandle(h);
     ::DeleteFileW(wide(temporary_).c_str());
-    g_temporary.clear();
+    g_temporaries.erase(wide(temporary_));
   } else {
     // A file the shell opened is cut back to where it began; a pipe or console keeps what
     // it has been given.
@@ -401,12 +391,6 @@ size_t OutputFile::discard() {
   }
   handle_ = kNoHandle;
   return left;
-}
-
-void write_output(const std::string& path, std::string_view data) {
-  OutputFile out(path);
-  out.write(data);
-  out.commit();
 }
 
 void remove_temporary_files_on_signals() { ::SetConsoleCtrlHandler(on_console_event, TRUE); }
