@@ -5,7 +5,7 @@
 # untouched and costs only itself, names with spaces survive, and the summary says so.
 #   batch.sh ARCPRESS SOURCE_DIR CORPUS_DIR
 set -euo pipefail
-arcpress=$1 source=$2 corpus=$3
+arcpress=$(realpath "$1") source=$2 corpus=$3
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
@@ -73,4 +73,18 @@ rc=0; "$arcpress" "$work/pristine" -o "$work/pristine/a contour.nc" 2> "$work/er
 [ "$rc" = 2 ] && grep -q 'is a file' "$work/err.txt" || fail "-o naming a file for a folder: exit $rc"
 rc=0; "$arcpress" "$work/pristine" 2> "$work/err.txt" || rc=$?
 [ "$rc" = 2 ] && grep -q -- '--in-place or -o FOLDER' "$work/err.txt" || fail "a folder without -o: exit $rc"
-echo "$n programs written as runs of their own would write them; the bad one named and left as it was"
+# Interrupted while two programs are being written at once: no temporary file is left of
+# either, and the program ends as the signal ends it.
+mkdir -p "$work/big" "$work/bigout"
+big="$corpus/printer/prusaslicer-2.5_bunny_marlin.gcode"
+[ -f "$big" ] || { for _ in $(seq 1500); do cat "$source/samples/contour.nc"; done > "$work/one.nc"; big="$work/one.nc"; }
+for k in 1 2 3 4; do cp "$big" "$work/big/part $k.gcode"; done
+"$arcpress" "$work/big" -o "$work/bigout" -j 2 -q > /dev/null 2>&1 &
+runner=$!
+for _ in $(seq 200); do [ -n "$(find "$work/bigout" -name '*.arcpress-*')" ] && break; sleep 0.05; done
+[ -n "$(find "$work/bigout" -name '*.arcpress-*')" ] || fail "no temporary file appeared"
+kill -INT "$runner"
+rc=0; wait "$runner" || rc=$?
+[ "$rc" = 130 ] || fail "exit $rc after SIGINT (want 130)"
+[ -z "$(find "$work/bigout" -name '*.arcpress-*')" ] || fail "SIGINT left temporary files: $(find "$work/bigout" -name '*.arcpress-*')"
+echo "$n programs written as runs of their own would write them; the bad one named and left as it was; SIGINT left no temporary"
