@@ -209,7 +209,8 @@ int main(int argc, char** argv) {
       "tangent-continuous lines and arcs (G2/G3) that stay within --tolerance of the\n"
       "original path. Everything that is not a G1 run passes through unchanged.\n\n"
       "  arcpress in.nc -o out.nc --tolerance 0.01\n"
-      "  cat in.gcode | arcpress > out.gcode\n",
+      "  cat in.gcode | arcpress > out.gcode\n"
+      "  arcpress *.gcode --in-place        arcpress jobs/ -o compressed/\n",
       "arcpress"};
   app.footer(kExitCodesHelp);
   // An argument such as C:\parts or /tmp/x.nc is a file, never an option, on every system.
@@ -222,7 +223,7 @@ int main(int argc, char** argv) {
   app.add_option("input", batch.inputs,
                  "Input program; '-' or absent: standard input. Several programs, or a folder (searched "
                  "recursively), are compressed at once, with --in-place or -o FOLDER")
-      ->type_name("FILE|FOLDER ...");
+      ->type_name("FILE|FOLDER");
   app.add_option("-o,--output", a.output, "Output file; absent: standard output. For several programs or a "
                                           "folder: the folder they go to, under the same relative names");
   app.add_flag("--in-place", a.in_place, "Rewrite the input file(s) (atomically)");
