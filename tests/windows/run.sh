@@ -132,8 +132,10 @@ case $check in
     for pair in "$sample $work/a.nc" "$sample $work/moved.nc" "$sample $sample"; do
       set -- $pair
       rl=0; rw=0
-      lv=$("$linux/arcpress" diff "$1" "$2" --tolerance 0.01 | head -1) || rl=$?
-      wv=$(wine "$exe" diff "$1" "$2" --tolerance 0.01 | head -1) || rw=$?
+      "$linux/arcpress" diff "$1" "$2" --tolerance 0.01 > "$work/l.txt" || rl=$?
+      wine "$exe" diff "$1" "$2" --tolerance 0.01 > "$work/w.txt" || rw=$?
+      cmp "$work/l.txt" "$work/w.txt" || fail "the diff reports differ"
+      lv=$(grep -E '^(SAME|DIFFERENT|INCOMPLETE)' "$work/l.txt") wv=$(grep -E '^(SAME|DIFFERENT|INCOMPLETE)' "$work/w.txt")
       [ "$rl" = "$rw" ] || fail "diff $(basename "$1") $(basename "$2"): exit $rl on Linux, $rw on Windows"
       [ "$lv" = "$wv" ] || fail "diff verdicts differ: '$lv' / '$wv'"
       echo "diff $(basename "$1") $(basename "$2"): exit $rw, $wv"
