@@ -74,6 +74,10 @@ Dialect dialect_for(const std::string& name, bool name_given, const std::string&
   return !file.empty() ? load_dialect_file(file) : find_dialect(picked, dialect_search_path(exe_dir()));
 }
 
+BandSide band_side_named(const std::string& word) {
+  return word == "left" ? BandSide::Left : word == "right" ? BandSide::Right : BandSide::Both;
+}
+
 /// Throws Error(kExitInput), naming `option`, unless `dialect` names the arc segmentation
 /// its firmware moves along.
 void require_executed_rule(const Dialect& dialect, const char* option) {
@@ -111,6 +115,7 @@ int compress_file(const CompressArgs& a, FileReport& report, std::atomic<size_t>
   CompressOptions opt = a.opt;
   opt.fit.method = method_named(a.method).value_or(FitOptions::Method::Arcs);  // (CLI11 took only known names)
   if (!a.band.empty()) opt.band = band_named(a.band).value_or(CompressOptions::Band::Dialect);  // (CLI11 took only known names)
+  opt.fit.band_side = band_side_named(a.band_side);
   if (a.arc_format == "ijk") opt.arc_format = ArcFormat::Centre;
   if (a.arc_format == "r") opt.arc_format = ArcFormat::Radius;
 
@@ -183,6 +188,12 @@ int compress_file(const CompressArgs& a, FileReport& report, std::atomic<size_t>
                  std::max(c.max_deviation_mm, r.comparison.max_deviation_mm), r.band_mm, w.at.x(), w.at.y(), w.at.z(),
                  w.line_a, w.line_b);
     }
+    if (r.comparison.max_wrong_side_mm > r.side_allowance_mm)
+      fmt::format_to(std::back_inserter(log),
+                     "arcpress: verification failed: the output lies {:.6f} mm on the {} side of the input (allowed "
+                     "{:.6f} mm), input line {}, output line {}\n",
+                     r.comparison.max_wrong_side_mm, a.band_side == "left" ? "right" : "left", r.side_allowance_mm,
+                     r.comparison.wrong_side_line_a, r.comparison.wrong_side_line_b);
     if (c.max_rapid_mm > r.band_mm)
       fmt::format_to(std::back_inserter(log), "arcpress: verification failed: a rapid ends {:.6f} mm away, input line {}, output line {}\n",
                  c.max_rapid_mm, c.worst_rapid.line_a, c.worst_rapid.line_b);
@@ -251,6 +262,14 @@ int compress_file(const CompressArgs& a, FileReport& report, std::atomic<size_t>
                  : unforced.empty()           ? std::string(", each forced by the band or the digits")
                                               : fmt::format(", {} of them not forced (at input line {})", unforced.size(),
                                                             unforced.front()));
+      if (opt.fit.band_side != BandSide::Both)
+        fmt::format_to(std::back_inserter(log),
+                       "  band side      {}: the output lies at most {:.6f} mm on the other side of the input (allowed "
+                       "{:.6f} mm, the rounding of printed arc centres){}\n",
+                       a.band_side, c.max_wrong_side_mm, r.side_allowance_mm,
+                       c.wrong_side_line_b ? fmt::format(", input line {}, output line {}", c.wrong_side_line_a,
+                                                         c.wrong_side_line_b)
+                                           : std::string());
     } else {
       fmt::format_to(std::back_inserter(log),
                  "  deviation      not measured (--no-verify)\n"

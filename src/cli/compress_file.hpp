@@ -23,6 +23,7 @@ struct CompressArgs {
   std::string arc_format;
   std::string method = "arcs";
   std::string band;  ///< "program", "executed"; empty: the dialect's choice
+  std::string band_side = "both";  ///< "left", "right", "both"
   bool in_place = false;
   bool stats = false;
   bool quiet = false;
@@ -60,6 +61,9 @@ Dialect dialect_for(const std::string& name, bool name_given, const std::string&
 /// Throws Error(kExitInput), naming `option`, unless `dialect` names the arc segmentation
 /// its firmware moves along.
 void require_executed_rule(const Dialect& dialect, const char* option);
+
+/// The side a --band-side word names.
+BandSide band_side_named(const std::string& word);
 
 /// The folder of the running program.
 std::string exe_dir();

@@ -136,6 +136,7 @@ struct DiffArgs {
   size_t top = 5;
   unsigned threads = 0;
   bool executed = false;  ///< compare the paths the dialect's firmware moves along (arcs as its chords)
+  std::string band_side = "both";  ///< measure on which side of A the moves of B lie
 };
 
 /// `arcpress diff A B`: any two programs, read the same way, compared by path, rapids,
@@ -176,12 +177,23 @@ int run_diff(const DiffArgs& d) {
   // The block rate each demands, as written (before any arc is cut into chords).
   const BlockRate rate_a = block_rate(pa, ia, dialect.max_blocks_per_s, dialect.link_bytes_per_s);
   const BlockRate rate_b = block_rate(pb, ib, dialect.max_blocks_per_s, dialect.link_bytes_per_s);
+  // The side, as compress() checks it, on the programmed paths: each move of B against the moves of A it replaces.
+  std::optional<ProgramDiff::SideMeasure> side;
+  if (const BandSide bs = cli::band_side_named(d.band_side); bs != BandSide::Both) {
+    CompareOptions co;
+    co.tolerance_mm = d.tolerance_mm;
+    co.band_side = bs;
+    const PathComparison c = compare_paths(pa, ia, pb, ib, co);
+    side = ProgramDiff::SideMeasure{bs, c.matched, c.mismatch, c.max_wrong_side_mm,
+                                    kBandSideRoundingShare * d.tolerance_mm, c.wrong_side_line_a, c.wrong_side_line_b};
+  }
   if (d.executed) {
     cli::require_executed_rule(dialect, "--executed");
     if (has_executed_chords(ia, dialect.executed)) ia = executed_path(ia, dialect.executed);
     if (has_executed_chords(ib, dialect.executed)) ib = executed_path(ib, dialect.executed);
   }
   ProgramDiff r = diff_programs(pa, ia, pb, ib, opt);
+  r.band_side = side;
   r.a.rate = rate_a;
   r.b.rate = rate_b;
   DiffNames names{d.a, d.b};
@@ -270,6 +282,10 @@ int main(int argc, char** argv) {
                  "How much E per mm may vary between neighbouring moves inside one arc or line, as a share of the "
                  "larger rate (0.05: 5 %); extrusion starting or stopping always ends one")
       ->check(finite_in(kExtrusionVarianceRange))->capture_default_str();
+  app.add_option("--band-side", a.band_side,
+                 "left or right: every point of the output lies on that side of the input path (relative to the "
+                 "direction of travel in the plane), or on it, within --tolerance; both: either side")
+      ->check(CLI::IsMember({"left", "right", "both"}))->capture_default_str();
   app.add_option("--band", a.band,
                  "program: hold the band on the programmed path (arcs as circles); executed: on the chords the "
                  "dialect's firmware cuts each arc into (its [arcs.executed] rule); absent: executed where the "
@@ -315,6 +331,11 @@ int main(int argc, char** argv) {
   diff_cmd->add_flag("--executed", diff.executed,
                      "Compare the paths the dialect's firmware really moves along: every arc of both programs cut "
                      "into the chords of its [arcs.executed] rule");
+  diff_cmd->add_option("--band-side", diff.band_side,
+                       "left or right: also measure how far B lies on the other side of A, move by move (B's "
+                       "moves must end on A's vertices, as arcpress writes them; otherwise the verdict is "
+                       "INCOMPLETE)")
+      ->check(CLI::IsMember({"left", "right", "both"}))->capture_default_str();
   diff_cmd->add_flag("--json", diff.json, "Print one JSON document instead of text");
   diff_cmd->add_option("--plot", diff.plot, "Write an SVG picture of both paths, B coloured by deviation");
   diff_cmd->add_option("--plane", diff.plane, "Plane of the picture")->check(CLI::IsMember({"xy", "zx", "yz"}))

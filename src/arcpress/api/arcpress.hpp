@@ -122,8 +122,13 @@ struct CompressResult {
   /// True when the output may be used: read fine and, when verified, the same program as
   /// the input within the band, move by move and as a whole.
   bool within_band() const {
-    return !verified || (check.agrees(band_mm) && (check.compared_all() || unplaced_kept) && comparison.within(band_mm));
+    return !verified || (check.agrees(band_mm) && (check.compared_all() || unplaced_kept) &&
+                         comparison.within(band_mm) && comparison.max_wrong_side_mm <= side_allowance_mm);
   }
+  /// With a one-sided band (FitOptions::band_side): how far the input may lie on the wrong
+  /// side of the output, in mm: what printing the arcs' centres to their digits may move
+  /// them (kBandSideRoundingShare of the band).
+  double side_allowance_mm = 0;
   double band_mm = 0;
 };
 

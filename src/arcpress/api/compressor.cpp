@@ -67,6 +67,7 @@ struct Compressor::Impl {
     total.verified = opt.verify && !opt.passthrough;
     total.unplaced_kept = true;
     total.band_mm = opt.fit.tolerance_mm;
+    total.side_allowance_mm = opt.fit.band_side == BandSide::Both ? 0 : kBandSideRoundingShare * opt.fit.tolerance_mm;
     pool_size = threads > 1 ? threads : 0;
     if (opt.block_rate) {
       meter_in.emplace(opt.dialect.max_blocks_per_s, opt.dialect.link_bytes_per_s);
@@ -424,6 +425,11 @@ Compressor::Compressor(std::string name, const CompressOptions& opt, DiagnosticS
   if (opt.band == CompressOptions::Band::Executed && !opt.dialect.executed.moves_on_chords())
     throw Error(kExitInput, fmt::format("the executed band: dialect {} names no arc segmentation ([arcs.executed] "
                                         "rule); its controller moves on the programmed circles",
+                                        opt.dialect.name));
+  if (opt.fit.band_side != BandSide::Both && opt.executed_rule().moves_on_chords())
+    throw Error(kExitInput, fmt::format("--band-side holds the band on the programmed path, and {}'s firmware moves "
+                                        "along chords of each arc, which cut inside it: add --band program to hold "
+                                        "the side on the programmed arcs",
                                         opt.dialect.name));
   sink.set_strict(opt.strict);
   impl_ = std::make_unique<Impl>(std::move(name), opt, sink);

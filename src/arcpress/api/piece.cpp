@@ -87,6 +87,7 @@ void verify_piece_output(const Program& input, const Interpretation& in, const C
   co.tolerance_mm = opt.fit.tolerance_mm;
   co.g1_angle_deg = opt.fit.g1_angle_deg;
   co.corner_angle_deg = opt.fit.corner_angle_deg;
+  co.band_side = opt.fit.band_side;
   if (!runs.empty()) {
     co.fitted_plane.reserve(in.moves.size());
     for (const Move& m : in.moves) co.fitted_plane.push_back(m.plane);
@@ -148,6 +149,7 @@ void verify_piece_output(const Program& input, const Interpretation& in, const C
                                            r.check.b.unmeasured_arcs + r.check.b.far_moves));
   }
   r.band_mm = opt.fit.tolerance_mm;
+  r.side_allowance_mm = opt.fit.band_side == BandSide::Both ? 0 : kBandSideRoundingShare * opt.fit.tolerance_mm;
   r.verified = true;
 }
 
@@ -184,6 +186,7 @@ std::vector<uint32_t> refused_output_lines(const CompressResult& r) {
   const PathComparison& c = r.comparison;
   if (!c.matched) lines.push_back(c.mismatch_line_b);
   if (c.max_deviation_mm > r.band_mm) lines.push_back(c.worst_line_b);
+  if (c.max_wrong_side_mm > r.side_allowance_mm) lines.push_back(c.wrong_side_line_b);
   for (const DiffPlace& p : r.check.worst)
     if (p.deviation_mm > r.band_mm) lines.push_back(p.line_b);
   if (r.check.max_rapid_mm > r.band_mm) lines.push_back(r.check.worst_rapid.line_b);
@@ -444,6 +447,11 @@ void add_comparison(PathComparison& into, const PathComparison& c, size_t lines_
     into.worst_line_b = c.worst_line_b ? c.worst_line_b + uint32_t(lines_before) : 0;
     into.worst_point = c.worst_point;
   }
+  if (c.max_wrong_side_mm > into.max_wrong_side_mm) {
+    into.max_wrong_side_mm = c.max_wrong_side_mm;
+    into.wrong_side_line_a = c.wrong_side_line_a;
+    into.wrong_side_line_b = c.wrong_side_line_b ? c.wrong_side_line_b + uint32_t(lines_before) : 0;
+  }
   into.moves_a += c.moves_a;
   into.moves_b += c.moves_b;
   into.smooth_joints += c.smooth_joints;
@@ -490,6 +498,7 @@ void add_piece(CompressResult& total, const Piece& piece, size_t lines_before) {
     add_comparison(total.comparison, r.comparison, lines_before);
   }
   total.band_mm = r.band_mm;
+  total.side_allowance_mm = r.side_allowance_mm;
 }
 
 }  // namespace arcpress

@@ -494,4 +494,39 @@ std::optional<double> chords_deviation_bound(std::span<const Vec3> pts, const Ar
   return bound;
 }
 
+double wrong_side_of_line_mm(std::span<const Vec3> pts, BandSide side) {
+  if (side == BandSide::Both || pts.size() < 3) return 0;
+  const Vec2 a(pts.front().x(), pts.front().y()), b(pts.back().x(), pts.back().y());
+  const Vec2 d = b - a;
+  const double len = d.norm();
+  if (len <= 0) return 0;
+  const Vec2 dir = d / len;
+  double wrong = 0;
+  for (size_t m = 1; m + 1 < pts.size(); ++m) {
+    const double left = cross2(dir, Vec2(pts[m].x(), pts[m].y()) - a);  // the point's offset, left > 0
+    wrong = std::max(wrong, side == BandSide::Left ? left : -left);
+  }
+  return wrong;
+}
+
+double wrong_side_of_arc_mm(std::span<const Vec3> pts, const Vec2& centre, bool ccw, BandSide side) {
+  if (side == BandSide::Both || pts.size() < 2) return 0;
+  const double r = (Vec2(pts.front().x(), pts.front().y()) - centre).norm();
+  // A point's offset to the left of the arc: towards the centre of one that turns left.
+  const double turn = ccw ? 1.0 : -1.0;
+  auto left_of = [&](const Vec2& q) { return turn * (r - (q - centre).norm()); };
+  double wrong = 0;
+  auto note = [&](const Vec2& q) { wrong = std::max(wrong, side == BandSide::Left ? left_of(q) : -left_of(q)); };
+  for (size_t m = 0; m + 1 < pts.size(); ++m) {
+    const Vec2 p0(pts[m].x(), pts[m].y()), p1(pts[m + 1].x(), pts[m + 1].y());
+    if (m > 0) note(p0);
+    const Vec2 d = p1 - p0;
+    const double len2 = d.squaredNorm();
+    if (len2 <= 0) continue;
+    const double t = (centre - p0).dot(d) / len2;
+    if (t > 0 && t < 1) note(p0 + t * d);  // nearest the centre: the segment's extreme offset
+  }
+  return wrong;
+}
+
 }  // namespace arcpress

@@ -54,6 +54,22 @@ Deviation line_deviation(std::span<const Vec3> pts, double stop_above_mm = HUGE_
 /// Two-sided deviation between the polyline `pts` and `arc` (which should start at
 /// pts.front() and end at pts.back()).
 Deviation arc_deviation(std::span<const Vec3> pts, const ArcGeom& arc, double stop_above_mm = HUGE_VAL);
+
+/// Which side of the input path the output may lie on (--band-side), relative to the
+/// direction of travel in the plane (left: counter-clockwise of it, seen from the plane's
+/// normal, as G41 and G3 count). Both: either, the band's whole width.
+enum class BandSide { Both, Left, Right };
+
+/// How far the polyline `pts` (in the plane: x and y) lies on the side of a primitive that
+/// `side` forbids it, in mm; 0 where it lies on the allowed side or on the primitive. The
+/// primitive replaces the polyline, from its first point to its last: with Left the
+/// primitive must lie left of the polyline, so the polyline must lie right of it. The
+/// primitive is the line through the polyline's ends, or the circle about `centre` through
+/// them (`ccw`: the way it turns); the offset is measured from the whole line or circle,
+/// exactly: at the vertices, and at each segment's point nearest the centre, where its
+/// offset from a circle is extreme.
+double wrong_side_of_line_mm(std::span<const Vec3> pts, BandSide side);
+double wrong_side_of_arc_mm(std::span<const Vec3> pts, const Vec2& centre, bool ccw, BandSide side);
 /// The same measure by angles (atan2, sin, cos) for any arc and polyline, helices included.
 /// arc_deviation() uses it for helices and polylines off the arc's plane, and a faster
 /// trigonometry-free form of it otherwise. Off the plane, each segment and the arc's piece

@@ -37,6 +37,7 @@ std::optional<Chosen> RunFitter::make_line(uint32_t a, uint32_t e, const Vec2& f
   std::span<const Vec3> pts(p_.data() + a, e - a + 1);
   Deviation d = line_deviation(pts, eps_);
   if (!d.ordered || d.max_mm > eps_) return std::nullopt;
+  if (wrong_side_of_line_mm(pts, o_.band_side) > kLengthEpsMm) return std::nullopt;  // (rounding of doubles)
   Chosen ch;
   ch.prim.end_vertex = e;
   ch.prim.kind = Primitive::Kind::Line;
@@ -120,6 +121,7 @@ std::optional<Chosen> RunFitter::make_arc(uint32_t a, uint32_t e, const Vec2& ce
       if (std::abs(pts[m].z() - h) > eps_ * kHeightShare) return std::nullopt;
     }
   }
+  if (wrong_side_of_arc_mm(pts, center, ccw, o_.band_side) > kLengthEpsMm) return std::nullopt;
   Chosen ch;
   ch.prim.end_vertex = e;
   ch.prim.kind = Primitive::Kind::Arc;

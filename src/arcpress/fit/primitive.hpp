@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "arcpress/core/deviation.hpp"
 #include "arcpress/core/geometry.hpp"
 #include "arcpress/dialect/arc_segmentation.hpp"
 
@@ -66,9 +67,17 @@ struct FitOptions {
   /// (--band executed): an arc must keep the band with its chords' sagitta taken off it.
   /// Rule::None: the band is held on the programmed circle.
   ArcSegmentation executed;
+  /// The side of the input path the primitives may lie on (--band-side): Both, or only left
+  /// or right of it (relative to the direction of travel), within the band.
+  BandSide band_side = BandSide::Both;
 
   bool operator==(const FitOptions&) const = default;
 };
+
+/// The share of the band by which a one-sided band's check lets the input lie on the wrong
+/// side of the output: the fitter keeps the primitives on their side exactly and this share
+/// of the band for the rounding of arc centres to the printed digits (its kRoundingReserve).
+inline constexpr double kBandSideRoundingShare = 0.03;
 
 /// The methods' names as --method writes them, in the order of FitOptions::Method.
 inline constexpr std::array<std::string_view, 6> kMethodNames{"keep", "arcs", "global", "greedy", "stream", "lowe"};

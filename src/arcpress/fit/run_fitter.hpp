@@ -165,6 +165,7 @@ class RunFitter : private FitAngles {
     bool arcs, helical;
     uint32_t stretch_end;
     const Vec2* out_tangent;  // null: none
+    BandSide side;
   };
   ScanLimits scan_limits() const;
   /// scan() handing each end to `sink` in order, nothing stored.

@@ -25,7 +25,8 @@ RunFitter::ScanLimits RunFitter::scan_limits() const {
           arcs_,
           o_.helical,
           stretch_end_,
-          out_tangent_ ? &*out_tangent_ : nullptr};
+          out_tangent_ ? &*out_tangent_ : nullptr,
+          o_.band_side};
 }
 
 /// How far the chain reaches in one more step from vertex `e` along `T`: the last end

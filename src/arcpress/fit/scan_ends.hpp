@@ -29,12 +29,16 @@ void RunFitter::scan_ends_in(uint32_t a, const Vec2& T, uint32_t limit, Sink& si
   double lo = -kInf, hi = kInf;  // curvature interval (1/mm) the interior vertices allow
   // A point u from `a`, off T by b = u·N, is within ε of the circle of curvature k when
   // |k·(|u|² - ε²) - 2b| <= 2ε (exact for the full circle).
+  // On one side only (--band-side), its left offset ℓ from the circle, which satisfies
+  // k·|u|² - 2b = -2ℓ + k·ℓ² for either sign of k, lies in [-ε, 0] (the circle left of the
+  // point) or [0, ε]: k·|u|² >= 2b, or <= 2b, replaces one of the two bounds.
+  const BandSide side = lim.side;
   auto narrow_by = [&](const Vec2& u, double uu) {  // u from `a`, uu = |u|²
     const double w = uu - eps * eps;
     if (w > 0) {
       const double b = u.dot(N), inv = 1 / w;
-      lo = std::max(lo, (2 * b - 2 * eps) * inv);
-      hi = std::min(hi, (2 * b + 2 * eps) * inv);
+      lo = std::max(lo, side == BandSide::Left ? 2 * b / uu : (2 * b - 2 * eps) * inv);
+      hi = std::min(hi, side == BandSide::Right ? 2 * b / uu : (2 * b + 2 * eps) * inv);
     }
   };
   auto narrow = [&](uint32_t m) {

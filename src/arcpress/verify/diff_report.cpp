@@ -40,6 +40,15 @@ std::string summary_json(const ProgramSummary& s, const std::string& name) {
       s.first_far_line, s.rate ? ", \"block_rate\": " + block_rate_json(*s.rate) : std::string());
 }
 
+std::string side_json(const ProgramDiff& d) {
+  if (!d.band_side) return "null";
+  const auto& s = *d.band_side;
+  return fmt::format("{{\"side\": \"{}\", \"measured\": {}, \"why_not\": {}, \"max_wrong_side_mm\": {:.9f}, "
+                     "\"allowed_mm\": {:.9f}, \"line_a\": {}, \"line_b\": {}}}",
+                     s.side == BandSide::Left ? "left" : "right", s.measured, json_string(s.why_not),
+                     s.max_wrong_side_mm, s.allowance_mm, s.line_a, s.line_b);
+}
+
 const char* verdict_word(ProgramDiff::Verdict v, bool upper) {
   switch (v) {
     case ProgramDiff::Verdict::Same: return upper ? "SAME" : "same";
@@ -96,6 +105,14 @@ std::string diff_text(const ProgramDiff& d, const DiffNames& n, double tol) {
                    d.b.non_motion, d.non_motion_differences);
   for (const auto& f : d.findings) t += "difference: " + f + "\n";
   const size_t unplaced = d.a.not_compared() + d.b.not_compared();
+  if (const auto& s = d.band_side) {
+    const char* side = s->side == BandSide::Left ? "left" : "right";
+    t += s->measured ? fmt::format("band side {}: B lies at most {:.6f} mm on the other side of A (allowed {:.6f} mm, the "
+                                   "rounding of printed centres){}\n",
+                                   side, s->max_wrong_side_mm, s->allowance_mm,
+                                   s->line_b ? fmt::format(", A line {}, B line {}", s->line_a, s->line_b) : "")
+                     : fmt::format("band side {}: not measured: {}\n", side, s->why_not);
+  }
   t += fmt::format("{}: max deviation {:.6f} mm {} the {} mm band{}{}\n", verdict_word(d.verdict(tol), true),
                    d.max_deviation_mm, d.max_deviation_mm <= tol ? "within" : "outside", tol,
                    d.findings.empty() ? "" : fmt::format(", {} other difference(s)", d.findings.size()),
@@ -116,12 +133,12 @@ std::string diff_json(const ProgramDiff& d, const DiffNames& n, double tol) {
       "  \"feed\": {{\"max_difference_percent\": {:.6f}, \"line_a\": {}, \"line_b\": {}}},\n"
       "  \"extrusion\": {{\"max_section_difference_mm\": {:.9f}, \"max_per_mm_difference_percent\": {:.6f}}},\n"
       "  \"non_motion\": {{\"blocks_a\": {}, \"blocks_b\": {}, \"differences\": {}}},\n"
-      "  \"differences\": [{}]\n}}\n",
+      "  \"differences\": [{}],\n  \"band_side\": {}\n}}\n",
       verdict_word(d.verdict(tol), false), tol, summary_json(d.a, n.a), summary_json(d.b, n.b), d.max_deviation_mm,
       d.arc_chord_mm, worst, d.max_rapid_mm, place_json(d.worst_rapid), d.max_entry_mm, place_json(d.worst_entry),
       d.max_feed_difference_pct, d.worst_feed.line_a,
       d.worst_feed.line_b, d.max_extrusion_difference_mm, d.max_extrusion_per_mm_difference_pct, d.a.non_motion,
-      d.b.non_motion, d.non_motion_differences, findings);
+      d.b.non_motion, d.non_motion_differences, findings, side_json(d));
 }
 
 }  // namespace arcpress

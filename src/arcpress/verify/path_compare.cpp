@@ -135,12 +135,21 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
         move_of_point.resize(pts.size(), q);
       }
       Deviation d;
+      double wrong_side_mm = 0;
       if (input_is_same_arc) {
         d.max_mm = 0;
       } else if (is_arc(mb.kind)) {
-        d = arc_deviation(pts, arc_of_move(ib, j));
+        const ArcGeom arc = arc_of_move(ib, j);
+        d = arc_deviation(pts, arc);
+        wrong_side_mm = wrong_side_of_arc_mm(pts, arc.center, arc.sweep > 0, opt.band_side);
       } else {
         d = line_deviation(pts);
+        wrong_side_mm = wrong_side_of_line_mm(pts, opt.band_side);
+      }
+      if (wrong_side_mm > r.max_wrong_side_mm) {
+        r.max_wrong_side_mm = wrong_side_mm;
+        r.wrong_side_line_b = b.blocks[mb.block].line;
+        r.wrong_side_line_a = a.blocks[ia.moves[i].block].line;
       }
       if (!d.ordered) d.max_mm = std::max(d.max_mm, opt.tolerance_mm * 2 + 1.0);  // the path runs backwards
       // Input arcs too big for their chords to follow at the measure's precision: the

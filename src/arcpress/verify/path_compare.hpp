@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "arcpress/core/deviation.hpp"
 #include "arcpress/lex/block.hpp"
 #include "arcpress/model/move.hpp"
 
@@ -24,6 +25,9 @@ struct CompareOptions {
   /// written as lines is seen foreshortened in XY), any other in the plane the output is
   /// in there. Empty: the output's plane everywhere (`arcpress diff`).
   std::vector<Plane> fitted_plane;
+  /// Measure how far each output move lies on the side of the input it replaces that
+  /// `band_side` forbids (PathComparison::max_wrong_side_mm); Both: not measured.
+  BandSide band_side = BandSide::Both;
 };
 
 struct PathComparison {
@@ -42,6 +46,12 @@ struct PathComparison {
   size_t smooth_joints_over_g1 = 0;  ///< ... whose tangent changes by more than g1_angle_deg
   std::vector<uint32_t> kink_lines;  ///< ... where: the input line of the move starting at each
   double max_smooth_kink_deg = 0;
+
+  /// With CompareOptions::band_side: the greatest distance by which the input path lies on
+  /// the side of an output move that the band side forbids it (so the output on the wrong
+  /// side of the input), and where (1-based lines, input and output).
+  double max_wrong_side_mm = 0;
+  uint32_t wrong_side_line_a = 0, wrong_side_line_b = 0;
 
   bool within(double tolerance_mm) const { return matched && max_deviation_mm <= tolerance_mm; }
 };

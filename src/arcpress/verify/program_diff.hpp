@@ -29,9 +29,11 @@
 // number their lengths alone set, taken by the threads in turn, and the shares' worst
 // places merged: the result is the same for any number of threads.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "arcpress/core/deviation.hpp"
 #include "arcpress/lex/block.hpp"
 #include "arcpress/model/move.hpp"
 #include "arcpress/verify/block_rate.hpp"
@@ -125,14 +127,30 @@ struct ProgramDiff {
   double arc_chord_mm = 0;
 
   /// Whether every feed move of both programs was placed, and so compared.
-  bool compared_all() const { return a.not_compared() + b.not_compared() == 0; }
+  /// arcpress diff --band-side: how far B lies on the side of A the band forbids, measured
+  /// move by move as compress() measures its output (compare_paths()), where B's moves end
+  /// on A's vertices; not measured elsewhere.
+  struct SideMeasure {
+    BandSide side = BandSide::Both;
+    bool measured = false;
+    std::string why_not;           ///< where not measured
+    double max_wrong_side_mm = 0;  ///< how far A lies on the forbidden side of B's moves
+    double allowance_mm = 0;       ///< what rounding the printed digits may cost
+    uint32_t line_a = 0, line_b = 0;
+  };
+  std::optional<SideMeasure> band_side;
+
+  bool compared_all() const {
+    return a.not_compared() + b.not_compared() == 0 && (!band_side || band_side->measured);
+  }
   /// How much the measure of the paths may read short where big arcs' chords lie farther off
   /// them than its precision (0 for any ordinary program): counted against the band.
   double chord_excess_mm = 0;
   /// Whether what was compared agrees within the band.
   bool agrees(double tolerance_mm) const {
     return max_deviation_mm + chord_excess_mm <= tolerance_mm && max_rapid_mm <= tolerance_mm &&
-           max_entry_mm <= tolerance_mm && findings.empty();
+           max_entry_mm <= tolerance_mm && findings.empty() &&
+           (!band_side || !band_side->measured || band_side->max_wrong_side_mm <= band_side->allowance_mm);
   }
   /// The programs are the same: everything compared, and it agrees. A check never passes
   /// what it did not compare.
