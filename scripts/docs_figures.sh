@@ -8,7 +8,8 @@
 # (docs/streaming.md: bench_throughput, bench_throughput --stages), memory (docs/streaming.md: bench_memory, about a minute), and the
 # benches' own output in docs/benchmarks.md: curves (bench_curves 1, about a minute), diff
 # (bench_diff), pathological (bench_pathological); printers and printer-causes in
-# docs/printers.md (bench_printers, about a minute); vs-arcwelder in docs/benchmarks.md
+# docs/printers.md (bench_printers, about a minute); band-side in docs/fitting.md (the CNC corpus
+# with each one-sided band, tests/integration/band_side_corpus.sh); vs-arcwelder in docs/benchmarks.md
 # (bench_vs_arcwelder, with ARCWELDER set to the path of ArcWelder's console program, built
 # from its source in a folder of your own; not among the defaults).
 set -euo pipefail
@@ -33,7 +34,7 @@ PY
 )
 
 wanted=("$@")
-[ ${#wanted[@]} -eq 0 ] && wanted=(corpus throughput stages memory curves diff pathological printers printer-causes)
+[ ${#wanted[@]} -eq 0 ] && wanted=(corpus throughput stages memory curves diff pathological printers printer-causes band-side)
 # A bench's own output, as a block of text.
 as_text() { printf '```text\n%s\n```\n' "$(cat)"; }
 for name in "${wanted[@]}"; do
@@ -48,10 +49,11 @@ for name in "${wanted[@]}"; do
     diff) ./build/bench/bench_diff | as_text | replace docs/benchmarks.md diff ;;
     pathological) ./build/bench/bench_pathological | as_text | replace docs/benchmarks.md pathological ;;
     printers) ./build/bench/bench_printers --markdown | replace docs/printers.md printers ;;
+    band-side) bash tests/integration/band_side_corpus.sh ./build/arcpress ../shared/corpus | as_text | replace docs/fitting.md band-side ;;
     printer-causes) ./build/bench/bench_printers --causes | replace docs/printers.md printer-causes ;;
     vs-arcwelder)
       [ -x "${ARCWELDER:-}" ] || { echo "docs_figures: set ARCWELDER to ArcWelder's console program" >&2; exit 2; }
       ./build/bench/bench_vs_arcwelder "$ARCWELDER" 3 | replace docs/benchmarks.md vs-arcwelder ;;
-    *) echo "docs_figures: no table '$name' (corpus, throughput, stages, memory, curves, diff, pathological, printers, printer-causes, vs-arcwelder)" >&2; exit 2 ;;
+    *) echo "docs_figures: no table '$name' (corpus, throughput, stages, memory, curves, diff, pathological, printers, printer-causes, band-side, vs-arcwelder)" >&2; exit 2 ;;
   esac
 done

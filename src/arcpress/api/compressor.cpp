@@ -48,7 +48,9 @@ std::string header_comment(const CompressOptions& o, char like) {
       o.fit.tolerance_mm, o.dialect.name,
       kBandNames[size_t(o.executed_rule().moves_on_chords() ? CompressOptions::Band::Executed : CompressOptions::Band::Program)],
       o.fit.g1_angle_deg, o.fit.corner_angle_deg, method_name(o.fit.method));
-  return like == ';' ? "; " + text : "(" + text + ")";
+  const std::string sided = o.fit.band_side == BandSide::Both ? text
+                           : text + (o.fit.band_side == BandSide::Left ? " --band-side left" : " --band-side right");
+  return like == ';' ? "; " + sided : "(" + sided + ")";
 }
 
 }  // namespace
