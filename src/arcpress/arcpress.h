@@ -69,6 +69,11 @@ arcpress_status arcpress_options_set_strict(arcpress_options* options, int stric
  * into), "program" (on the arcs as written) or "dialect" (the default: executed where the
  * dialect names a firmware rule). */
 arcpress_status arcpress_options_set_band(arcpress_options* options, const char* band);
+/* Which side of the input path the output may lie on, relative to the direction of travel:
+ * "left", "right" or "both" (the default). One side needs the band on the programmed path
+ * ("program" above, or a dialect without a firmware rule): arcpress_compressor_new() refuses
+ * it on a firmware's chords. */
+arcpress_status arcpress_options_set_band_side(arcpress_options* options, const char* side);
 /* Share (0 .. 1) by which E per mm may vary between neighbouring moves inside one arc or line. */
 arcpress_status arcpress_options_set_extrusion_variance(arcpress_options* options, double share);
 /* 0: no comment naming arcpress after the program's first line (1, the default: where that

@@ -138,6 +138,33 @@ TEST_CASE("the C library sets the band, the extrusion variance and the header as
   CHECK(compressed("dialect", 0.05, 1) == engine(B::Executed, true));
   CHECK(compressed("program", 0.05, 1).find("; arcpress ") != std::string::npos);
   CHECK(compressed("program", 0.05, 0).find("; arcpress ") == std::string::npos);
+  // One side: the same text as the engine's; refused on the firmware's chords.
+  {
+    arcpress_options* s = arcpress_options_new();
+    REQUIRE(arcpress_options_set_band_side(s, "left") == ARCPRESS_OK);
+    REQUIRE(arcpress_options_set_band(s, "program") == ARCPRESS_OK);
+    REQUIRE(arcpress_options_set_dialect(s, "klipper") == ARCPRESS_OK);
+    arcpress_compressor* c = nullptr;
+    REQUIRE(arcpress_compressor_new(s, "c", &c) == ARCPRESS_OK);
+    REQUIRE(arcpress_push(c, program.data(), program.size()) == ARCPRESS_OK);
+    REQUIRE(arcpress_finish(c) == ARCPRESS_OK);
+    const char* text = nullptr;
+    size_t n = 0;
+    REQUIRE(arcpress_take(c, &text, &n) == ARCPRESS_OK);
+    arcpress::CompressOptions opt;
+    opt.dialect = arcpress::dialect_named("klipper");
+    opt.band = B::Program;
+    opt.fit.band_side = arcpress::BandSide::Left;
+    arcpress::DiagnosticSink sink;
+    CHECK(std::string(text, n) == arcpress::compress("c", program, opt, sink).output);
+    CHECK(std::string(text, n).find("--band-side left") != std::string::npos);
+    arcpress_compressor_free(c);
+    REQUIRE(arcpress_options_set_band(s, "executed") == ARCPRESS_OK);
+    CHECK(arcpress_compressor_new(s, "c", &c) == ARCPRESS_BAD_INPUT);
+    CHECK(std::string(arcpress_options_last_error(s)).find("--band program") != std::string::npos);
+    CHECK(arcpress_options_set_band_side(s, "inside") == ARCPRESS_BAD_INPUT);
+    arcpress_options_free(s);
+  }
   arcpress_options* o = arcpress_options_new();
   CHECK(arcpress_options_set_band(o, "chords") == ARCPRESS_BAD_INPUT);
   CHECK(std::string(arcpress_options_last_error(o)).find("unknown band") != std::string::npos);

@@ -139,6 +139,18 @@ arcpress_status arcpress_options_set_band(arcpress_options* o, const char* band)
   o->error.clear();
   return ARCPRESS_OK;
 }
+arcpress_status arcpress_options_set_band_side(arcpress_options* o, const char* side) {
+  if (!o || !side) return ARCPRESS_BAD_INPUT;
+  const std::string s = side;
+  if (s != "left" && s != "right" && s != "both") {
+    o->error = "unknown band side '" + s + "' (left, right or both)";
+    return ARCPRESS_BAD_INPUT;
+  }
+  o->options.fit.band_side = s == "left" ? arcpress::BandSide::Left : s == "right" ? arcpress::BandSide::Right
+                                                                                   : arcpress::BandSide::Both;
+  o->error.clear();
+  return ARCPRESS_OK;
+}
 arcpress_status arcpress_options_set_extrusion_variance(arcpress_options* o, double share) {
   return set_number(o, o ? o->options.fit.extrusion_variance : share, share, "the extrusion variance",
                     arcpress::kExtrusionVarianceRange);
