@@ -241,15 +241,17 @@ void OutputFileSystem::open_temporary(OutputFile& f, const std::string& target, 
   int slot = take_slot();
   if (slot < 0) throw Error(kExitIo, fmt::format("cannot write '{}': too many outputs at once", target));
   TemporarySlot& t = g_temporaries[slot];
-  // The handler may remove the file from the moment it exists: its name is set first.
+  // The handler may remove the file from the moment it exists: its name is set, and the
+  // slot marked, first. (A signal may reach another thread while mkstemp() fills in the
+  // name; at worst the handler then unlinks a name no file has.)
   std::memcpy(t.name, tmpl.c_str(), tmpl.size() + 1);
   sigset_t block, saved;
   sigemptyset(&block);
   for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&block, sig);
   ::pthread_sigmask(SIG_BLOCK, &block, &saved);
+  t.state = 2;
   handle_ = ::mkstemp(t.name);
   const int made = errno;
-  if (handle_ >= 0) t.state = 2;
   ::pthread_sigmask(SIG_SETMASK, &saved, nullptr);
   if (handle_ < 0) {
     free_slot(slot);
