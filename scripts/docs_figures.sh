@@ -8,7 +8,7 @@
 # (docs/streaming.md: bench_throughput, bench_throughput --stages), memory (docs/streaming.md: bench_memory, about a minute), and the
 # benches' own output in docs/benchmarks.md: curves (bench_curves 1, about a minute), diff
 # (bench_diff), pathological (bench_pathological); printers and printer-causes in
-# docs/printers.md (bench_printers, about a minute); band-side in docs/fitting.md (the CNC corpus
+# docs/printers.md (bench_printers, about a minute); band-side in docs/fitting.md (the corpus
 # with each one-sided band, tests/integration/band_side_corpus.sh); vs-arcwelder in docs/benchmarks.md
 # (bench_vs_arcwelder, with ARCWELDER set to the path of ArcWelder's console program, built
 # from its source in a folder of your own; not among the defaults).
