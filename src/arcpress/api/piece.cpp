@@ -77,12 +77,17 @@ std::optional<double> joint_turn_deg(const PieceEnd& tail, const PieceEnd& head,
 
 void verify_piece_output(const Program& input, const Interpretation& in, const CompressOptions& opt, CompressResult& r,
                          std::span<const Run> runs, const ModalState& start, const ModalState* end, bool with_motion,
-                         PieceEnd* head, PieceEnd* tail) {
+                         PieceEnd* head, PieceEnd* tail, std::vector<TimedBlock>* timed_out, size_t* untimed_out) {
   const std::string name = input.name + " (output)";
   DiagnosticSink out_sink(name);
   Program out_prog = lex(name, r.output, out_sink);
   ModalState out_state = start;
   Interpretation out_in = interpret(out_prog, out_sink, opt.dialect, &out_state);
+  if (timed_out) {
+    timed_out->clear();
+    const size_t untimed = timed_blocks(out_prog, out_in, *timed_out);
+    if (untimed_out) *untimed_out = untimed;
+  }
   CompareOptions co;
   co.tolerance_mm = opt.fit.tolerance_mm;
   co.g1_angle_deg = opt.fit.g1_angle_deg;
@@ -313,8 +318,9 @@ void compress_piece(Piece& piece, const CompressOptions& options) {
   r.ok = true;
   r.band_mm = opt.fit.tolerance_mm;
   auto verify = [&] {
+    // (The output as read back is timed here too, where its block rate is asked for.)
     verify_piece_output(prog, in, opt, r, runs, piece.start, piece.last ? nullptr : &piece.end, piece.clean_end,
-                        &piece.head, &piece.tail);
+                        &piece.head, &piece.tail, opt.block_rate ? &piece.timed_out : nullptr, &piece.untimed_out);
   };
   if (opt.verify && !opt.passthrough) {
     verify();
@@ -368,10 +374,13 @@ void compress_piece(Piece& piece, const CompressOptions& options) {
   piece.output_lines = count_lines(r.output);
   if (opt.block_rate && r.ok) {
     piece.untimed_in = timed_blocks(prog, in, piece.timed_in);
-    DiagnosticSink out_sink(prog.name + " (output)");
-    const Program out_prog = lex(out_sink.file(), r.output, out_sink);
-    ModalState out_state = piece.start;
-    piece.untimed_out = timed_blocks(out_prog, interpret(out_prog, out_sink, opt.dialect, &out_state), piece.timed_out);
+    if (!r.verified) {  // (else the check timed the output as it read it back)
+      DiagnosticSink out_sink(prog.name + " (output)");
+      const Program out_prog = lex(out_sink.file(), r.output, out_sink);
+      ModalState out_state = piece.start;
+      piece.timed_out.clear();
+      piece.untimed_out = timed_blocks(out_prog, interpret(out_prog, out_sink, opt.dialect, &out_state), piece.timed_out);
+    }
   }
 }
 

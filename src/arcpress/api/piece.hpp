@@ -76,10 +76,12 @@ void compress_piece(Piece& piece, const CompressOptions& opt);
 
 /// verify_output() for a piece: the output is read back from `start`, and where `end` is
 /// given it must end in a state that reads on as `end` does (with the modal motion where
-/// `with_motion`).
+/// `with_motion`). With `timed_out`, the output's timed blocks (block_rate.hpp) as read back
+/// go there, and how many feed moves could not be timed to `untimed_out`.
 void verify_piece_output(const Program& input, const Interpretation& in, const CompressOptions& opt, CompressResult& r,
                          std::span<const Run> runs, const ModalState& start, const ModalState* end, bool with_motion,
-                         PieceEnd* head = nullptr, PieceEnd* tail = nullptr);
+                         PieceEnd* head = nullptr, PieceEnd* tail = nullptr,
+                         std::vector<TimedBlock>* timed_out = nullptr, size_t* untimed_out = nullptr);
 
 /// Adds the counts and checks of `piece` (the next in order, whose output begins after
 /// `lines_before` lines of output) to `total`.
