@@ -28,7 +28,7 @@ namespace fs = std::filesystem;
 
 /// The extensions a folder's G-code files have (compared without case) where no --glob is given.
 constexpr const char* kGcodeExtensions[] = {".gcode", ".gco", ".gc", ".g", ".nc", ".ngc", ".tap", ".cnc",
-                                            ".ncc",   ".mpf", ".eia", ".iso", ".ptp", ".min", ".txt"};
+                                            ".ncc",   ".mpf", ".eia", ".iso", ".ptp", ".min"};
 
 /// Whether `name` matches `pattern`, where * stands for any run of characters and ? for one.
 bool glob_matches(std::string_view pattern, std::string_view name) {
