@@ -108,7 +108,8 @@ DWORD write_all(HANDLE h, std::string_view data, size_t& done) {
 /// as they are, never replaced.
 bool is_device(const std::string& path) {
   if (path.rfind("\\\\.\\", 0) == 0) return true;
-  std::string base = path.substr(path.find_last_of("\\/:") == std::string::npos ? 0 : path.find_last_of("\\/:") + 1);
+  const size_t slash = path.find_last_of("\\/:");
+  std::string base = path.substr(slash == std::string::npos ? 0 : slash + 1);
   base = base.substr(0, base.find('.'));
   std::transform(base.begin(), base.end(), base.begin(), [](char c) { return char(c >= 'a' && c <= 'z' ? c - 32 : c); });
   for (const char* d : {"NUL", "CON", "PRN", "AUX", "COM1", "COM2", "COM3", "COM4", "LPT1", "LPT2", "LPT3"})
