@@ -262,6 +262,10 @@ int compress_file(const CompressArgs& a, FileReport& report, std::atomic<size_t>
                  : unforced.empty()           ? std::string(", each forced by the band or the digits")
                                               : fmt::format(", {} of them not forced (at input line {})", unforced.size(),
                                                             unforced.front()));
+      fmt::format_to(std::back_inserter(log),
+                     "  check          {} piece{} move by move, {} of them also as whole paths (where the moves "
+                     "could not be paired one for one)\n",
+                     r.pieces_checked, r.pieces_checked == 1 ? "" : "s", r.pieces_measured_whole);
       if (opt.fit.band_side != BandSide::Both)
         fmt::format_to(std::back_inserter(log),
                        "  band side      {}: the output lies at most {:.6f} mm on the other side of the input (allowed "

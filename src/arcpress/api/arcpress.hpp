@@ -104,8 +104,14 @@ struct CompressResult {
   /// measure, (and so not measured) are the same moves, one for one: written back as they were.
   bool unplaced_kept = false;
   /// The output against the input by diff_programs(), the code of `arcpress diff`: the
-  /// verdict on the output and its measured deviation.
+  /// verdict on the output and its measured deviation. Where the move-by-move comparison
+  /// below covers both paths (PathComparison::covers_path) and keeps the band, the paths'
+  /// distance is its (max_deviation_mm and the worst place, on the executed path where the
+  /// firmware moves on chords) and diff_programs() compares the rest; elsewhere it measures
+  /// the whole paths too.
   ProgramDiff check;
+  /// Pieces checked, and those of them whose whole paths were measured (see `check`).
+  size_t pieces_checked = 0, pieces_measured_whole = 0;
   /// Move by move: every output move ends on an input vertex, the deviation of each
   /// replaced stretch, and the tangent change at smooth joints (fit statistics).
   PathComparison comparison;

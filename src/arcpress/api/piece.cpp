@@ -99,31 +99,51 @@ void verify_piece_output(const Program& input, const Interpretation& in, const C
     for (const Run& run : runs)
       std::fill_n(co.fitted_plane.begin() + run.first_move, run.move_count, run.plane);
   }
+  const ArcSegmentation rule = opt.executed_rule();
+  co.executed = rule;
   r.comparison = compare_paths(input, in, out_prog, out_in, co);
+  const PathComparison& c = r.comparison;
   if (head && tail) piece_ends(input, in, out_in, *head, *tail);
   DiffOptions dopt;
   dopt.tolerance_mm = opt.fit.tolerance_mm;
   dopt.top = 1;
   dopt.threads = opt.threads;
   dopt.feed = false;  // compare_paths() pairs the moves and compares their feed exactly
-  // compare_paths() measured each output move against the input it replaces, which is no
-  // nearer than the nearest input anywhere: the whole-path measure needs to be exact only
-  // near that maximum (or the band, below it), where it can confirm or refute it.
-  // Below a twentieth of the band no distance matters to the check, or to a user reading
-  // its maximum: a piece written back as it was is not measured down to nothing.
-  dopt.least_mm = std::max(kExactShare * opt.fit.tolerance_mm,
-                           std::min(r.comparison.max_deviation_mm, opt.fit.tolerance_mm) * (1 - kReadingShare));
-  // With the band on the executed path, the whole-path measure compares the chords the
-  // firmware moves along, of the input's arcs and of the output's; the move-by-move one
-  // above keeps measuring the programmed path (and its joints).
-  // (The move-by-move maximum is the programmed path's, no hint for the chords'.)
-  if (const ArcSegmentation rule = opt.executed_rule(); rule.moves_on_chords()) {
-    dopt.least_mm = kExactShare * opt.fit.tolerance_mm;
+  // One pass, where it proves the band: compare_paths() paired every output move with the
+  // input moves it replaces, one for one, and measured each pair both ways (and its
+  // executed chords within the band, where the firmware moves on chords). The pairs cover
+  // both paths, so the whole paths lie no farther apart than the largest pair, and the
+  // code of `arcpress diff` compares only the rest: rapids, sections, extrusion, non-motion
+  // blocks, what could not be compared. Where the pairing does not cover the paths (a
+  // mismatch, a move whose chords could not be bounded) or a bound exceeds the band, the
+  // whole paths are measured as `arcpress diff` measures them, which decides.
+  const double band_mm = opt.fit.tolerance_mm;
+  const bool on_chords = rule.moves_on_chords();
+  dopt.measure_path = !(c.matched && c.covers_path && c.max_deviation_mm <= band_mm &&
+                        (!on_chords || c.max_executed_mm <= band_mm));
+  if (!dopt.measure_path) {
+    r.check = diff_programs(input, in, out_prog, out_in, dopt);
+    r.check.max_deviation_mm = on_chords ? c.max_executed_mm : c.max_deviation_mm;
+    if (r.check.max_deviation_mm > 0)
+      r.check.worst.push_back(on_chords ? DiffPlace{c.max_executed_mm, c.executed_point, c.executed_line_a, c.executed_line_b}
+                                        : DiffPlace{c.max_deviation_mm, c.worst_point, c.worst_line_a, c.worst_line_b});
+    r.check.arc_chord_mm = 0;  // exact, or (on chords) an upper bound
+  } else if (on_chords) {
+    // compare_paths() measured each output move against the input it replaces, which is no
+    // nearer than the nearest input anywhere: the whole-path measure needs to be exact only
+    // near that maximum (or the band, below it), where it can confirm or refute it. On the
+    // executed path, down to a twentieth of the band (the move-by-move maximum there is the
+    // programmed path's, no hint for the chords').
+    dopt.least_mm = kExactShare * band_mm;
     Interpretation in_chords, out_chords;
     r.check = diff_programs(input, executed_path(in, rule, in_chords), out_prog, executed_path(out_in, rule, out_chords),
                             dopt);
-  } else
+  } else {
+    // Below a twentieth of the band no distance matters to the check, or to a user reading
+    // its maximum: a piece written back as it was is not measured down to nothing.
+    dopt.least_mm = std::max(kExactShare * band_mm, std::min(c.max_deviation_mm, band_mm) * (1 - kReadingShare));
     r.check = diff_programs(input, in, out_prog, out_in, dopt);
+  }
   if (out_sink.error_count() > 0)
     r.check.findings.insert(r.check.findings.begin(), "the output does not read back: " + out_sink.format_all());
   // What follows is read by the controller from the state the output leaves: it must be
@@ -153,6 +173,8 @@ void verify_piece_output(const Program& input, const Interpretation& in, const C
                                            r.check.a.unmeasured_arcs + r.check.a.far_moves,
                                            r.check.b.unmeasured_arcs + r.check.b.far_moves));
   }
+  r.pieces_checked = 1;
+  r.pieces_measured_whole = dopt.measure_path ? 1 : 0;
   r.band_mm = opt.fit.tolerance_mm;
   r.side_allowance_mm = opt.fit.band_side == BandSide::Both ? 0 : kBandSideRoundingShare * opt.fit.tolerance_mm;
   r.verified = true;
@@ -503,6 +525,8 @@ void add_piece(CompressResult& total, const Piece& piece, size_t lines_before) {
   total.verified = total.verified && r.verified;
   total.unplaced_kept = total.unplaced_kept && r.unplaced_kept;
   if (r.verified) {
+    total.pieces_checked += r.pieces_checked;
+    total.pieces_measured_whole += r.pieces_measured_whole;
     add_diff(total.check, r.check, lines_before);
     add_comparison(total.comparison, r.comparison, lines_before);
   }

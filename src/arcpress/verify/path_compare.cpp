@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "arcpress/core/deviation.hpp"
+#include "arcpress/dialect/arc_segmentation.hpp"
 #include "arcpress/verify/move_geometry.hpp"
 
 namespace arcpress {
@@ -32,6 +33,29 @@ double append_path(const Interpretation& in, size_t i, Plane pl, double chord_mm
   const double sagitta_mm = move_path(in, i, chord_mm, pts);
   for (size_t k = first; k < pts.size(); ++k) pts[k] = in_plane(pts[k], pl);
   return sagitta_mm;
+}
+
+/// An upper bound of the two-sided distance between the chords the firmware of `rule` cuts
+/// output arc j (`arc`, in its plane's coordinates) into and the input polyline `pts` it
+/// replaces (the same ends, up to floating noise), as executed_path() cuts it; nothing
+/// where chords_deviation_bound() gives none (a helix, a whole turn).
+std::optional<double> executed_arc_bound_mm(const Interpretation& ib, size_t j, const ArcGeom& arc,
+                                            const ArcSegmentation& rule, std::span<const Vec3> pts,
+                                            std::vector<Vec2>& ends) {
+  // (A flat arc, which no chord end can be told from its chord: the chord.)
+  if (flat_arc_sagitta_mm(arc) <= kFlatArcMm) {
+    const Deviation d = line_deviation(pts);
+    return d.ordered ? std::optional<double>(d.max_mm) : std::nullopt;
+  }
+  const Move& m = ib.moves[j];
+  const uint32_t n = executed_segments(rule, arc.radius_mm, arc.sweep, arc.h1 - arc.h0);
+  const Vec3 from = in_plane(ib.from(j), m.plane), to = in_plane(m.to, m.plane);
+  ends.clear();
+  executed_chord_ends(rule, Vec2(from.x(), from.y()), arc.center, Vec2(to.x(), to.y()), arc.sweep, n, ends);
+  const auto bound = chords_deviation_bound(pts, arc, ends);
+  // The chords run from the output's own ends, the polyline from the input's: the same
+  // points as read, up to the noise of unit conversion.
+  return bound ? std::optional<double>(*bound + kSamePointMm) : std::nullopt;
 }
 
 }  // namespace
@@ -66,6 +90,7 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
   const double chord_mm = std::max(opt.tolerance_mm * kReadingShare / 2, 1e-6);
   size_t i = 0;  // next input move
   std::vector<Vec3> pts;
+  std::vector<Vec2> chord_ends;
   std::vector<size_t> move_of_point;  // the input move each of `pts` lies on (its end, for a vertex)
   long prev_j = -1;          // previous output feed move, for joints
   bool prev_replaced = false;
@@ -91,6 +116,15 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
       while (k + 1 + repeats_a < ia.moves.size() && ia.goes_nowhere(k + 1 + repeats_a)) ++repeats_a;
       while (j + 1 + repeats_b < ib.moves.size() && ib.goes_nowhere(j + 1 + repeats_b)) ++repeats_b;
       for (size_t taken = 0; taken + repeats_b < repeats_a && ia.moves[k + 1].feed_mm_min == mb.feed_mm_min; ++taken) ++k;
+    }
+    // What the stretch i..k holds: a rapid, or a move whose path is not known, stands for
+    // one input move of its kind (after moves that go nowhere); a feed move for feed moves.
+    if (!is_feed(mb.kind) || !mb.known) {
+      r.covers_path = r.covers_path && ia.moves[k].kind == mb.kind && ia.moves[k].known == mb.known &&
+                      ia.moves_going(i, k) == 0;
+    } else {
+      for (size_t q = i; q <= k && r.covers_path; ++q)
+        r.covers_path = ia.goes_nowhere(q) || (is_feed(ia.moves[q].kind) && ia.moves[q].known);
     }
     // Replaced: it stands for several input moves (that go somewhere), or for one that it
     // is not (a line the fit wrote as an arc), so its joints are the fit's, not the input's own.
@@ -136,15 +170,34 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
       }
       Deviation d;
       double wrong_side_mm = 0;
+      std::optional<ArcGeom> arc;
       if (input_is_same_arc) {
         d.max_mm = 0;
       } else if (is_arc(mb.kind)) {
-        const ArcGeom arc = arc_of_move(ib, j);
-        d = arc_deviation(pts, arc);
-        wrong_side_mm = wrong_side_of_arc_mm(pts, arc.center, arc.sweep > 0, opt.band_side);
+        arc = arc_of_move(ib, j);
+        d = arc_deviation(pts, *arc);
+        wrong_side_mm = wrong_side_of_arc_mm(pts, arc->center, arc->sweep > 0, opt.band_side);
       } else {
         d = line_deviation(pts);
         wrong_side_mm = wrong_side_of_line_mm(pts, opt.band_side);
+      }
+      if (opt.executed.moves_on_chords()) {
+        bool input_arcs = false;
+        for (size_t q = i; q <= k; ++q) input_arcs = input_arcs || is_arc(ia.moves[q].kind);
+        std::optional<double> executed_mm;
+        if (input_is_same_arc) {
+          executed_mm = 0;  // the same arc from the same ends: the same chords
+        } else if (!input_arcs && d.ordered) {
+          executed_mm = arc ? executed_arc_bound_mm(ib, j, *arc, opt.executed, pts, chord_ends) : d.max_mm;
+        }
+        if (!executed_mm) {
+          r.covers_path = false;
+        } else if (*executed_mm > r.max_executed_mm) {
+          r.max_executed_mm = *executed_mm;
+          r.executed_line_b = b.blocks[mb.block].line;
+          r.executed_line_a = a.blocks[ia.moves[i].block].line;
+          r.executed_point = from_plane(pts.front(), mb.plane);
+        }
       }
       if (wrong_side_mm > r.max_wrong_side_mm) {
         r.max_wrong_side_mm = wrong_side_mm;
@@ -205,6 +258,8 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
     }
     i = k + 1;
   }
+  // Input moves after the last output move: none may go anywhere.
+  r.covers_path = r.covers_path && ia.moves_going(i, ia.moves.size()) == 0;
   return r;
 }
 

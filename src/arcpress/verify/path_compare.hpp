@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "arcpress/core/deviation.hpp"
+#include "arcpress/dialect/arc_segmentation.hpp"
 #include "arcpress/lex/block.hpp"
 #include "arcpress/model/move.hpp"
 
@@ -28,6 +29,10 @@ struct CompareOptions {
   /// Measure how far each output move lies on the side of the input it replaces that
   /// `band_side` forbids (PathComparison::max_wrong_side_mm); Both: not measured.
   BandSide band_side = BandSide::Both;
+  /// Where the firmware moves along chords (moves_on_chords()), each output arc is also
+  /// measured as it is executed: its chords, cut as the firmware cuts them, against the
+  /// input moves it replaces (PathComparison::max_executed_mm).
+  ArcSegmentation executed;
 };
 
 struct PathComparison {
@@ -52,6 +57,21 @@ struct PathComparison {
   /// side of the input), and where (1-based lines, input and output).
   double max_wrong_side_mm = 0;
   uint32_t wrong_side_line_a = 0, wrong_side_line_b = 0;
+
+  /// Whether the moves were paired one for one as compress() writes them, so that the
+  /// distances above bound the whole paths' both ways: every input move lies in the stretch
+  /// of an output move (feed moves in a feed move's, each rapid and each move whose path is
+  /// not known in one of its own kind, moves that go nowhere anywhere), and with
+  /// CompareOptions::executed, every output move's executed path was bounded too. Where
+  /// not, only a measure of the whole paths can tell their distance.
+  bool covers_path = true;
+  /// With CompareOptions::executed moving on chords: an upper bound of the largest two-sided
+  /// distance between an output move's executed path and the input moves it replaces (the
+  /// input's lines as they are, an input arc it writes again as its own chords), and where
+  /// (1-based lines, input and output, and the input vertex nearest).
+  double max_executed_mm = 0;
+  uint32_t executed_line_a = 0, executed_line_b = 0;
+  Vec3 executed_point{0, 0, 0};
 
   bool within(double tolerance_mm) const { return matched && max_deviation_mm <= tolerance_mm; }
 };

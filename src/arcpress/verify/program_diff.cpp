@@ -405,64 +405,10 @@ void compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, cons
   }
 }
 
-}  // namespace
-
-ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Program& b, const Interpretation& ib,
-                          const DiffOptions& opt) {
-  // The measure's searches end at a share of the band: a band that is no positive number,
-  // or one far below any machine's resolution, would keep them splitting for ever.
-  if (!(opt.tolerance_mm >= kMinToleranceMm && opt.tolerance_mm <= kMaxToleranceMm))
-    throw std::invalid_argument(fmt::format("diff tolerance must be from {} to {} mm, got {}", kMinToleranceMm,
-                                            kMaxToleranceMm, opt.tolerance_mm));
-  ProgramDiff d;
-  d.arc_chord_mm = std::max(opt.tolerance_mm * kReadingShare / 2, 1e-7);
-  const double precision_mm = opt.tolerance_mm * kReadingShare / 2;
-  Path pa = feed_path(ia, d.arc_chord_mm, opt.tolerance_mm), pb = feed_path(ib, d.arc_chord_mm, opt.tolerance_mm);
-  auto summary = [](const Program& p, const Interpretation& in, const Path& path) {
-    ProgramSummary s;
-    s.unmeasured_arcs = path.rough_arcs;
-    if (path.rough_arcs > 0) s.first_unmeasured_line = p.blocks[in.moves[path.first_rough_move].block].line;
-    s.far_moves = path.far_moves;
-    if (path.far_moves > 0) s.first_far_line = p.blocks[in.moves[path.first_far_move].block].line;
-    for (const UnplacedMove& u : in.unplaced) {
-      const Move& m = in.moves[u.move];
-      const bool entry = enters_from_unknown(m);
-      size_t& count = entry ? s.entry_moves : s.unplaced_feed_moves;
-      if (count++ > 0) continue;
-      std::string why = describe(m.unfit);
-      if (u.cause_line > 0 && is_position_unknown(m.unfit)) why += fmt::format(" at line {}", u.cause_line);
-      (entry ? s.first_entry_line : s.first_unplaced_line) = p.blocks[m.block].line;
-      (entry ? s.entry_reason : s.unplaced_reason) = std::move(why);
-    }
-    s.blocks = p.blocks.size();
-    s.bytes = p.text.size();
-    s.feed_moves = path.feed_moves;
-    s.rapids = path.rapids.size();
-    s.sections = path.section_length_mm.size();
-    for (double l : path.section_length_mm) s.path_mm += l;
-    return s;
-  };
-  d.a = summary(a, ia, pa);
-  d.b = summary(b, ib, pb);
-  // Moves the measure cannot follow, where both programs have exactly the same ones: each
-  // lies on its twin, at no distance, so they are compared (a program equals itself,
-  // whatever its numbers). Leaving them out of both paths only lengthens other distances.
-  if (!pa.unmeasured.empty()) {
-    std::sort(pa.unmeasured.begin(), pa.unmeasured.end());
-    std::sort(pb.unmeasured.begin(), pb.unmeasured.end());
-    if (pa.unmeasured == pb.unmeasured) {
-      for (ProgramSummary* sum : {&d.a, &d.b}) {
-        sum->identical_unmeasured = sum->unmeasured_arcs + sum->far_moves;
-        sum->unmeasured_arcs = sum->far_moves = 0;
-      }
-      pa.chord_excess_mm = pb.chord_excess_mm = 0;
-    }
-  }
-  // Both paths' chords may lie that much off their arcs: a distance read that much short.
-  d.chord_excess_mm = 2 * std::max(pa.chord_excess_mm, pb.chord_excess_mm);
-  d.arc_chord_mm += d.chord_excess_mm;
-  d.deviation_of_b.assign(ib.moves.size(), 0.0);
-
+/// The feed paths' distance both ways, into `d` (see diff_programs()).
+void measure_paths(const Program& a, const Interpretation& ia, const Path& pa, const Program& b,
+                   const Interpretation& ib, const Path& pb, const DiffOptions& opt, double precision_mm,
+                   ProgramDiff& d) {
   // Feed paths, both ways: the maximum, the worst places, and each B move's deviation.
   // Both paths are cut into the same number of contiguous shares, set by their lengths
   // alone; each share measures its part of both directions with its own worst places (its
@@ -534,7 +480,74 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
   } else if ((pa.size() == 0) != (pb.size() == 0)) {
     d.findings.push_back(fmt::format("only {} has feed moves", pa.size() == 0 ? "B" : "A"));
   }
+}
+
+}  // namespace
+
+ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Program& b, const Interpretation& ib,
+                          const DiffOptions& opt) {
+  // The measure's searches end at a share of the band: a band that is no positive number,
+  // or one far below any machine's resolution, would keep them splitting for ever.
+  if (!(opt.tolerance_mm >= kMinToleranceMm && opt.tolerance_mm <= kMaxToleranceMm))
+    throw std::invalid_argument(fmt::format("diff tolerance must be from {} to {} mm, got {}", kMinToleranceMm,
+                                            kMaxToleranceMm, opt.tolerance_mm));
+  if (!opt.measure_path && opt.feed)
+    throw std::invalid_argument("diff: the feed is compared along the path measure, which is off");
+  ProgramDiff d;
+  d.arc_chord_mm = std::max(opt.tolerance_mm * kReadingShare / 2, 1e-7);
+  const double precision_mm = opt.tolerance_mm * kReadingShare / 2;
+  Path pa = feed_path(ia, d.arc_chord_mm, opt.tolerance_mm), pb = feed_path(ib, d.arc_chord_mm, opt.tolerance_mm);
+  auto summary = [](const Program& p, const Interpretation& in, const Path& path) {
+    ProgramSummary s;
+    s.unmeasured_arcs = path.rough_arcs;
+    if (path.rough_arcs > 0) s.first_unmeasured_line = p.blocks[in.moves[path.first_rough_move].block].line;
+    s.far_moves = path.far_moves;
+    if (path.far_moves > 0) s.first_far_line = p.blocks[in.moves[path.first_far_move].block].line;
+    for (const UnplacedMove& u : in.unplaced) {
+      const Move& m = in.moves[u.move];
+      const bool entry = enters_from_unknown(m);
+      size_t& count = entry ? s.entry_moves : s.unplaced_feed_moves;
+      if (count++ > 0) continue;
+      std::string why = describe(m.unfit);
+      if (u.cause_line > 0 && is_position_unknown(m.unfit)) why += fmt::format(" at line {}", u.cause_line);
+      (entry ? s.first_entry_line : s.first_unplaced_line) = p.blocks[m.block].line;
+      (entry ? s.entry_reason : s.unplaced_reason) = std::move(why);
+    }
+    s.blocks = p.blocks.size();
+    s.bytes = p.text.size();
+    s.feed_moves = path.feed_moves;
+    s.rapids = path.rapids.size();
+    s.sections = path.section_length_mm.size();
+    for (double l : path.section_length_mm) s.path_mm += l;
+    return s;
+  };
+  d.a = summary(a, ia, pa);
+  d.b = summary(b, ib, pb);
+  // Moves the measure cannot follow, where both programs have exactly the same ones: each
+  // lies on its twin, at no distance, so they are compared (a program equals itself,
+  // whatever its numbers). Leaving them out of both paths only lengthens other distances.
+  if (!pa.unmeasured.empty()) {
+    std::sort(pa.unmeasured.begin(), pa.unmeasured.end());
+    std::sort(pb.unmeasured.begin(), pb.unmeasured.end());
+    if (pa.unmeasured == pb.unmeasured) {
+      for (ProgramSummary* sum : {&d.a, &d.b}) {
+        sum->identical_unmeasured = sum->unmeasured_arcs + sum->far_moves;
+        sum->unmeasured_arcs = sum->far_moves = 0;
+      }
+      pa.chord_excess_mm = pb.chord_excess_mm = 0;
+    }
+  }
+  // Both paths' chords may lie that much off their arcs: a distance read that much short.
+  d.chord_excess_mm = 2 * std::max(pa.chord_excess_mm, pb.chord_excess_mm);
+  d.arc_chord_mm += d.chord_excess_mm;
+  if (opt.measure_path) {
+    d.deviation_of_b.assign(ib.moves.size(), 0.0);
+    measure_paths(a, ia, pa, b, ib, pb, opt, precision_mm, d);
+  } else if ((pa.size() == 0) != (pb.size() == 0)) {
+    d.findings.push_back(fmt::format("only {} has feed moves", pa.size() == 0 ? "B" : "A"));
+  }
   if (d.worst.size() > opt.top) d.worst.resize(opt.top);
+
 
   if (d.a.sections != d.b.sections)
     d.findings.push_back(fmt::format("cutting sections between rapids: {} in A, {} in B", d.a.sections, d.b.sections));

@@ -63,6 +63,13 @@ struct DiffOptions {
   /// check, from its move-by-move measure) spares the measure most of its work, above all on
   /// a path that retraces itself many times.
   double least_mm = 0;
+  /// Measure the distance between the feed paths (both ways). A caller that has bounded it
+  /// already, move by move over moves it paired one for one (compress(): compare_paths(),
+  /// where PathComparison::covers_path holds), turns this off: everything else (rapids,
+  /// entries, sections, extrusion, non-motion blocks, what could not be compared) is
+  /// compared as ever, and max_deviation_mm, worst and deviation_of_b are left at nothing
+  /// for the caller to fill. Requires `feed` off (the feed is compared along the measure).
+  bool measure_path = true;
 };
 
 /// One place where the paths are apart.

@@ -1,0 +1,173 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The compressor's check in one pass: the move-by-move comparison pairs each output move
+// with the input moves it replaces and measures each pair both ways (on the firmware's
+// chords where it moves on chords); where the pairs cover both paths, that bounds the
+// distance `arcpress diff` measures over the whole paths, which is then not measured again.
+// Where they do not, the whole paths are measured, and decide.
+#include <catch2/catch.hpp>
+#include <fmt/format.h>
+
+#include <cmath>
+#include <string>
+
+#include "arcpress/arcpress.hpp"
+#include "arcpress/api/arcpress.hpp"
+#include "arcpress/dialect/dialect_loader.hpp"
+#include "arcpress/lex/lexer.hpp"
+#include "arcpress/model/interpreter.hpp"
+#include "arcpress/verify/executed_path.hpp"
+#include "arcpress/verify/program_diff.hpp"
+#include "support.hpp"
+
+using namespace arcpress;
+
+namespace {
+
+/// Half a circle of radius `r_mm` about (50, 50) in 1-degree G1 moves, printed to 3
+/// decimals, then a straight line of five 2 mm moves away from it.
+std::string half_circle_and_tail(double r_mm) {
+  std::string p = fmt::format("G21 G90 G17\nM3 S1000\nG0 X{:.3f} Y50\nG1 F1200\n", 50 + r_mm);
+  for (int i = 1; i <= 180; ++i)
+    p += fmt::format("G1 X{:.3f} Y{:.3f}\n", 50 + r_mm * std::cos(i * M_PI / 180), 50 + r_mm * std::sin(i * M_PI / 180));
+  for (int i = 1; i <= 5; ++i) p += fmt::format("G1 X{:.3f} Y{:.3f}\n", 50 - r_mm, 50 - 2.0 * i);
+  return p + "G0 Z5\nM5\nM2\n";
+}
+
+struct Checked {
+  CompressResult result;
+  ProgramDiff whole;  ///< arcpress diff's measure of the whole paths (executed where the band is)
+};
+
+/// `text` compressed with `opt`, and the output measured as `arcpress diff` measures it.
+Checked compressed_and_measured(const std::string& text, const CompressOptions& opt) {
+  DiagnosticSink sink("in");
+  Checked c;
+  c.result = compress("in", text, opt, sink);
+  const Program a = lex("in", text, sink), b = lex("out", c.result.output, sink);
+  const Interpretation ia = interpret(a, sink, opt.dialect), ib = interpret(b, sink, opt.dialect);
+  DiffOptions dopt;
+  dopt.tolerance_mm = opt.fit.tolerance_mm;
+  dopt.feed = false;
+  const ArcSegmentation rule = opt.executed_rule();
+  c.whole = diff_programs(a, executed_path(ia, rule), b, executed_path(ib, rule), dopt);
+  return c;
+}
+
+/// The check of `output` against `text`, as compress() checks its own.
+CompressResult checked(const std::string& text, const std::string& output, const CompressOptions& opt) {
+  DiagnosticSink sink("in");
+  const Program in = lex("in", text, sink);
+  const Interpretation ii = interpret(in, sink, opt.dialect);
+  CompressResult r;
+  r.output = output;
+  verify_output(in, ii, opt, r);
+  return r;
+}
+
+std::string replaced(std::string s, const std::string& from, const std::string& to) {
+  const size_t at = s.find(from);
+  REQUIRE(at != std::string::npos);
+  return s.replace(at, from.size(), to);
+}
+
+}  // namespace
+
+TEST_CASE("arcpress's own output is checked in one pass, and its bound holds the distance arcpress diff measures",
+          "[verify][one-pass]") {
+  for (const char* dialect : {"rs274", "marlin", "klipper"}) {
+    for (double r : {0.8, 3.0, 40.0}) {
+      INFO(dialect << ", radius " << r << " mm");
+      CompressOptions opt;
+      opt.dialect = dialect_named(dialect);
+      const Checked c = compressed_and_measured(half_circle_and_tail(r), opt);
+      REQUIRE(c.result.verified);
+      CHECK(c.result.within_band());
+      CHECK(c.result.stats.arcs_out > 0);
+      CHECK(c.result.comparison.covers_path);
+      CHECK(c.result.pieces_checked == 1);
+      CHECK(c.result.pieces_measured_whole == 0);
+      CHECK(c.result.check.max_deviation_mm > 0);
+      // The pairs' bound is no less than the whole paths' distance (to that measure's precision).
+      CHECK(c.whole.max_deviation_mm <= c.result.check.max_deviation_mm + c.whole.arc_chord_mm);
+      CHECK(c.whole.same(opt.fit.tolerance_mm));
+    }
+  }
+}
+
+TEST_CASE("on the corpus, the one-pass check covers every piece, and bounds the whole paths' distance",
+          "[verify][one-pass][corpus]") {
+  ARCPRESS_CORPUS_FILES_OR_SKIP(files);
+  for (const auto& f : files) {
+    if (std::filesystem::file_size(f) > 2'000'000) continue;  // (the bunny and ps271: the same kind, minutes of measure)
+    const bool printer = f.parent_path().filename() == "printer";
+    CompressOptions opt;
+    opt.fit.tolerance_mm = 0.01;
+    opt.threads = 2;
+    opt.dialect = dialect_named(printer ? "marlin" : "rs274");
+    INFO(f.filename().string());
+    const Checked c = compressed_and_measured(test::read_file(f), opt);
+    REQUIRE(c.result.verified);
+    CHECK(c.result.within_band());
+    CHECK(c.result.pieces_checked > 0);
+    CHECK(c.result.pieces_measured_whole == 0);
+    CHECK(c.whole.max_deviation_mm <= c.result.check.max_deviation_mm + c.whole.arc_chord_mm);
+    CHECK(c.whole.agrees(opt.fit.tolerance_mm));
+  }
+}
+
+TEST_CASE("an output whose moves do not pair one for one with the input's is measured whole, and refused",
+          "[verify][one-pass]") {
+  const std::string text = half_circle_and_tail(3.0);
+  CompressOptions opt;
+  DiagnosticSink sink("in");
+  const CompressResult r = compress("in", text, opt, sink);
+  REQUIRE(r.within_band());
+  const std::string last = "G1 X47.000 Y40.000\n";  // the tail's last move, written as it was
+  REQUIRE(r.output.find(last) != std::string::npos);
+
+  SECTION("the output stops short, its last feed move and the rapid after it left out: every output move still "
+          "ends on the input path") {
+    const CompressResult v = checked(text, replaced(r.output, last + "G0 Z5\n", ""), opt);
+    CHECK(v.comparison.matched);
+    CHECK_FALSE(v.comparison.covers_path);
+    CHECK(v.pieces_measured_whole == 1);
+    CHECK(v.check.max_deviation_mm > 1.9);  // the 2 mm move missing
+    CHECK_FALSE(v.within_band());
+  }
+  SECTION("the last feed move made a rapid to the same point") {
+    const CompressResult v = checked(text, replaced(r.output, last, "G0 X47.000 Y40.000\nG1\n"), opt);
+    CHECK_FALSE(v.comparison.covers_path);
+    CHECK(v.pieces_measured_whole == 1);
+    CHECK_FALSE(v.within_band());
+  }
+  SECTION("the spindle reversed: paired one for one, and the rest still compared") {
+    const CompressResult v = checked(text, replaced(r.output, "M3", "M4"), opt);
+    CHECK(v.comparison.covers_path);
+    CHECK(v.pieces_measured_whole == 0);
+    CHECK(v.check.non_motion_differences == 1);
+    CHECK_FALSE(v.within_band());
+  }
+}
+
+TEST_CASE("an arc inside the band as programmed whose firmware chords leave it is refused where the band is on "
+          "the chords",
+          "[verify][one-pass][executed]") {
+  // Klipper cuts a 3 mm radius into 1 mm chords, 0.04 mm inside the circle: four times the band.
+  const std::string text = half_circle_and_tail(3.0);
+  CompressOptions opt;
+  opt.dialect = dialect_named("klipper");
+  opt.band = CompressOptions::Band::Program;
+  DiagnosticSink sink("in");
+  const CompressResult programmed = compress("in", text, opt, sink);
+  REQUIRE(programmed.within_band());
+  REQUIRE(programmed.stats.arcs_out > 0);
+  opt.band = CompressOptions::Band::Executed;
+  const CompressResult v = checked(text, programmed.output, opt);
+  CHECK(v.comparison.covers_path);
+  CHECK(v.comparison.max_deviation_mm <= 0.01);    // the circles themselves keep the band
+  CHECK(v.comparison.max_executed_mm > 0.03);       // their chords do not
+  CHECK(v.pieces_measured_whole == 1);              // so the whole paths are measured, and decide
+  CHECK(v.check.max_deviation_mm > 0.03);
+  CHECK(v.check.max_deviation_mm <= v.comparison.max_executed_mm + v.check.arc_chord_mm);
+  CHECK_FALSE(v.within_band());
+}
