@@ -454,7 +454,9 @@ std::optional<double> chords_deviation_bound(std::span<const Vec3> pts, const Ar
     return true;
   };
   const size_t m = pts.size() - 1, segments = ends.size() + 1;
-  std::vector<double> t, u;
+  // (Kept from call to call on the thread: the fitter asks this of many candidates.)
+  thread_local std::vector<double> t, u, cuts;
+  thread_local std::vector<Vec2> rays;
   if (!shares(m, [&](size_t j) { return Vec2(pts[j].x(), pts[j].y()); }, t) ||
       !shares(segments, [&](size_t k) { return ends[k - 1]; }, u))
     return std::nullopt;
@@ -463,9 +465,9 @@ std::optional<double> chords_deviation_bound(std::span<const Vec3> pts, const Ar
     if (k >= segments) return pts.back();
     return Vec3(ends[k - 1].x(), ends[k - 1].y(), arc.h0);
   };
-  // Where the ray at share `tau` meets the segment a-b (its nearer end where it misses).
-  auto on_ray = [&](const Vec3& a, const Vec3& b, double tau) {
-    const Vec2 r = ray(tau), d(b.x() - a.x(), b.y() - a.y()), ca(c.x() - a.x(), c.y() - a.y());
+  // Where ray `r` meets the segment a-b (its nearer end where it misses).
+  auto on_ray = [&](const Vec3& a, const Vec3& b, const Vec2& r) {
+    const Vec2 d(b.x() - a.x(), b.y() - a.y()), ca(c.x() - a.x(), c.y() - a.y());
     const double den = d.x() * r.y() - d.y() * r.x();
     if (std::abs(den) <= 1e-300) return a;
     const double mu = std::clamp((ca.x() * r.y() - ca.y() * r.x()) / den, 0.0, 1.0);
@@ -473,9 +475,12 @@ std::optional<double> chords_deviation_bound(std::span<const Vec3> pts, const Ar
   };
   // The turn cut at every vertex's share and every chord end's; in each piece, one segment
   // of the polyline and one chord.
-  std::vector<double> cuts(t.begin(), t.end());
+  cuts.assign(t.begin(), t.end());
   cuts.insert(cuts.end(), u.begin() + 1, u.end() - 1);
   std::sort(cuts.begin(), cuts.end());
+  // The ray at each cut, once (each bounds the piece before it and the piece after).
+  rays.resize(cuts.size());
+  for (size_t i = 0; i < cuts.size(); ++i) rays[i] = ray(cuts[i]);
   double bound = 0;
   size_t j = 0, k = 0;
   for (size_t i = 0; i + 1 < cuts.size(); ++i) {
@@ -486,9 +491,9 @@ std::optional<double> chords_deviation_bound(std::span<const Vec3> pts, const Ar
     while (k + 1 < segments && u[k + 1] <= mid) ++k;
     const Vec3 &a = pts[j], &b = pts[j + 1];
     const Vec3 c0 = chord_end(k), c1 = chord_end(k + 1);
-    for (double share : {lo, hi})
-      bound = std::max({bound, point_segment_distance(on_ray(a, b, share), c0, c1),
-                        point_segment_distance(on_ray(c0, c1, share), a, b)});
+    for (const Vec2& r : {rays[i], rays[i + 1]})
+      bound = std::max({bound, point_segment_distance(on_ray(a, b, r), c0, c1),
+                        point_segment_distance(on_ray(c0, c1, r), a, b)});
     if (bound > stop_above_mm) return bound;
   }
   return bound;
