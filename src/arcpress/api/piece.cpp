@@ -478,6 +478,13 @@ void add_comparison(PathComparison& into, const PathComparison& c, size_t lines_
     into.worst_line_b = c.worst_line_b ? c.worst_line_b + uint32_t(lines_before) : 0;
     into.worst_point = c.worst_point;
   }
+  into.covers_path = into.covers_path && c.covers_path;
+  if (c.max_executed_mm > into.max_executed_mm) {
+    into.max_executed_mm = c.max_executed_mm;
+    into.executed_line_a = c.executed_line_a;
+    into.executed_line_b = c.executed_line_b ? c.executed_line_b + uint32_t(lines_before) : 0;
+    into.executed_point = c.executed_point;
+  }
   if (c.max_wrong_side_mm > into.max_wrong_side_mm) {
     into.max_wrong_side_mm = c.max_wrong_side_mm;
     into.wrong_side_line_a = c.wrong_side_line_a;
