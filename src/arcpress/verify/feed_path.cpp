@@ -66,11 +66,11 @@ std::vector<uint32_t> FeedPath::distinct_segments() const {
   return out;
 }
 
-FeedPath feed_path(const Interpretation& in, double chord_mm, double tolerance_mm) {
+FeedPath feed_path(const Interpretation& in, double chord_mm, double tolerance_mm, bool segments) {
   FeedPath p;
   // Room for a segment and a half per move (most moves are one segment; arcs and long
   // travels are several), so the vectors are seldom grown step by step.
-  const size_t room = in.moves.size() + in.moves.size() / 2 + 1;
+  const size_t room = segments ? in.moves.size() + in.moves.size() / 2 + 1 : 0;
   p.points.reserve(room);
   for (auto* v : {&p.first, &p.move_of, &p.section_of}) v->reserve(room);
   p.arc_of.reserve(room);
@@ -108,8 +108,12 @@ FeedPath feed_path(const Interpretation& in, double chord_mm, double tolerance_m
     p.section_e_rounding_mm[sec] +=
         4 * std::numeric_limits<double>::epsilon() * std::max(std::abs(m.to[kE]), std::abs(in.from(i)[kE]));
     Vec3 prev = xyz(in.from(i));
+    if (!segments && !is_arc(m.kind)) {  // a line: its length alone
+      p.section_length_mm[sec] += (xyz(m.to) - prev).norm();
+      continue;
+    }
     // A section's first segment starts a polyline of its own.
-    if (p.section_of.empty() || p.section_of.back() != sec) p.points.push_back(prev);
+    if (segments && (p.section_of.empty() || p.section_of.back() != sec)) p.points.push_back(prev);
     pts.clear();
     bool straight_end = false;
     const std::optional<FlatArc> arc =
@@ -136,6 +140,11 @@ FeedPath feed_path(const Interpretation& in, double chord_mm, double tolerance_m
       if (piece) {
         p.max_sagitta_mm = std::max(p.max_sagitta_mm, piece_sagitta_mm(*arc, prev, q));
         len = 2 * arc->radius_mm * std::asin(std::min(1.0, len / (2 * arc->radius_mm)));  // along the arc
+      }
+      if (!segments) {
+        p.section_length_mm[sec] += len;
+        prev = q;
+        continue;
       }
       // Long segments are cut into pieces: an AABB over a long diagonal box is hit by
       // nearly every query (travel moves across a printed layer). (An arc's pieces are cut

@@ -88,6 +88,8 @@ constexpr double kPieceSagittaShare = 0.5;
 
 /// The feed path of `in`: arcs followed by chords within `chord_mm` of them or as pieces of
 /// themselves, moves too far from the origin to measure for `tolerance_mm` left out and keyed.
-FeedPath feed_path(const Interpretation& in, double chord_mm, double tolerance_mm);
+/// Without `segments`, only what is not the path's points: sections, their lengths and E,
+/// rapids, entries, the moves not measured (the whole-path measure's segments are not made).
+FeedPath feed_path(const Interpretation& in, double chord_mm, double tolerance_mm, bool segments = true);
 
 }  // namespace arcpress

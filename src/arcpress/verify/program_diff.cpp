@@ -496,7 +496,9 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
   ProgramDiff d;
   d.arc_chord_mm = std::max(opt.tolerance_mm * kReadingShare / 2, 1e-7);
   const double precision_mm = opt.tolerance_mm * kReadingShare / 2;
-  Path pa = feed_path(ia, d.arc_chord_mm, opt.tolerance_mm), pb = feed_path(ib, d.arc_chord_mm, opt.tolerance_mm);
+  // (Without the path measure, no segments: what the rest compares is kept without them.)
+  Path pa = feed_path(ia, d.arc_chord_mm, opt.tolerance_mm, opt.measure_path),
+       pb = feed_path(ib, d.arc_chord_mm, opt.tolerance_mm, opt.measure_path);
   auto summary = [](const Program& p, const Interpretation& in, const Path& path) {
     ProgramSummary s;
     s.unmeasured_arcs = path.rough_arcs;
@@ -543,8 +545,8 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
   if (opt.measure_path) {
     d.deviation_of_b.assign(ib.moves.size(), 0.0);
     measure_paths(a, ia, pa, b, ib, pb, opt, precision_mm, d);
-  } else if ((pa.size() == 0) != (pb.size() == 0)) {
-    d.findings.push_back(fmt::format("only {} has feed moves", pa.size() == 0 ? "B" : "A"));
+  } else if ((pa.feed_moves == 0) != (pb.feed_moves == 0)) {
+    d.findings.push_back(fmt::format("only {} has feed moves", pa.feed_moves == 0 ? "B" : "A"));
   }
   if (d.worst.size() > opt.top) d.worst.resize(opt.top);
 
