@@ -68,7 +68,7 @@ struct PathComparison {
   /// With CompareOptions::executed moving on chords: an upper bound of the largest two-sided
   /// distance between an output move's executed path and the input moves it replaces (the
   /// input's lines as they are, an input arc it writes again as its own chords), and where
-  /// (1-based lines, input and output, and the input vertex nearest).
+  /// (1-based lines, input and output, and the vertex where that output move starts).
   double max_executed_mm = 0;
   uint32_t executed_line_a = 0, executed_line_b = 0;
   Vec3 executed_point{0, 0, 0};
