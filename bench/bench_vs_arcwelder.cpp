@@ -4,9 +4,9 @@
 // default (check on, every hardware thread, the dialect the file names); ArcWelder its
 // console's default at the same band (-r twice the tolerance: its resolution is the band's
 // width). The two take turns, PAIRS pairs per file and band, and the median of each is
-// printed: CPU seconds (user and system, all threads), wall seconds, MB/s, their ratios
-// arcpress / ArcWelder, and the motion blocks each wrote (G0-G3 blocks and blocks of bare
-// axis words, one counter for both tools' files).
+// printed: CPU seconds (user and system, all threads), wall seconds, MB/s, the median of
+// the pairs' ratios arcpress / ArcWelder, and the motion blocks each wrote (G0-G3 blocks
+// and blocks of bare axis words, one counter for both tools' files).
 //   bench_vs_arcwelder ARCWELDER [PAIRS]   ARCWELDER: the path of ArcWelder's console program
 // ArcWelder is no Debian package: build it from its source (FormerLurker/ArcWelderLib,
 // target ArcWelderConsole) in a folder of your own.
@@ -75,7 +75,7 @@ int main(int argc, char** argv) {
     const double mb = double(fs::file_size(f)) / 1e6;
     if (mb < 0.1) continue;
     for (const double band : {0.025, 0.01}) {
-      std::vector<double> cpu_a, cpu_b, wall_a, wall_b;
+      std::vector<double> cpu_a, cpu_b, wall_a, wall_b, cpu_ratio, wall_ratio;
       for (int k = 0; k < pairs; ++k) {
         const ChildRun a = run_child({ARCPRESS_BINARY, f.string(), "-o", out_a.string(), "--tolerance",
                                       fmt::format("{}", band), "-q"});
@@ -85,6 +85,10 @@ int main(int argc, char** argv) {
                      band, a.exit_code, b.exit_code);
           failed = true;
         }
+        // The two of a pair run back to back, under the same load: their ratio drifts less
+        // than the ratio of the medians on a machine whose load comes and goes.
+        if (b.cpu_seconds > 0) cpu_ratio.push_back(a.cpu_seconds / b.cpu_seconds);
+        if (b.seconds > 0) wall_ratio.push_back(a.seconds / b.seconds);
         cpu_a.push_back(a.cpu_seconds);
         cpu_b.push_back(b.cpu_seconds);
         wall_a.push_back(a.seconds);
@@ -92,7 +96,7 @@ int main(int argc, char** argv) {
       }
       const double ca = median(cpu_a), cb = median(cpu_b), wa = median(wall_a), wb = median(wall_b);
       fmt::print("| {} | {:.2f} | {} | {:.3f} | {:.3f} | {:.2f} | {:.2f} | {:.1f} | {:.1f} | {} | {} |\n",
-                 f.filename().string(), mb, band, ca, cb, cb > 0 ? ca / cb : 0.0, wb > 0 ? wa / wb : 0.0, mb / wa,
+                 f.filename().string(), mb, band, ca, cb, median(cpu_ratio), median(wall_ratio), mb / wa,
                  mb / wb, motion_blocks(out_a), motion_blocks(out_b));
     }
   }

@@ -53,7 +53,7 @@ for name in "${wanted[@]}"; do
     printer-causes) ./build/bench/bench_printers --causes | replace docs/printers.md printer-causes ;;
     vs-arcwelder)
       [ -x "${ARCWELDER:-}" ] || { echo "docs_figures: set ARCWELDER to ArcWelder's console program" >&2; exit 2; }
-      ./build/bench/bench_vs_arcwelder "$ARCWELDER" 3 | replace docs/benchmarks.md vs-arcwelder ;;
+      ./build/bench/bench_vs_arcwelder "$ARCWELDER" 5 | replace docs/benchmarks.md vs-arcwelder ;;
     *) echo "docs_figures: no table '$name' (corpus, throughput, stages, memory, curves, diff, pathological, printers, printer-causes, band-side, vs-arcwelder)" >&2; exit 2 ;;
   esac
 done
