@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The default method (--method arcs): a beam search over chains of tangent primitives,
 // layer k holding the best chains of k primitives, guided by the greedy chain.
-#include "arcpress/fit/run_fitter.hpp"
+#include "arcpress/fit/scan_ends.hpp"
 
 namespace arcpress::fit_detail {
 
@@ -33,6 +33,7 @@ std::vector<Chosen> RunFitter::beam_chain(uint32_t a, uint32_t limit, GreedyWalk
   std::vector<std::pair<uint64_t, uint64_t>>& keys = s_.keys;
   std::vector<uint64_t>& packed_keys = s_.packed_keys;
   std::vector<std::pair<uint32_t, Vec2>>& expanded = s_.expanded;
+  std::vector<uint32_t>& order = s_.order;
   int furthest = -1;
   int guide = -1;  // the node the greedy chain would be at: the beam never does worse
   size_t step = 0;
@@ -84,8 +85,7 @@ std::vector<Chosen> RunFitter::beam_chain(uint32_t a, uint32_t limit, GreedyWalk
             }
             continue;
           }
-          Chosen lite = unchecked(nd.v, T, cd);
-          made.push_back({i, T, cd, lite, kept ? guide_score(*kept, lite, limit) : score(lite, limit)});
+          made.push_back({i, T, cd, unchecked(nd.v, T, cd), kept});
         }
       }
     }
@@ -107,6 +107,41 @@ std::vector<Chosen> RunFitter::beam_chain(uint32_t a, uint32_t limit, GreedyWalk
     } else {
       guide = -2;
     }
+    // A chain one primitive short of `limit` along its own end tangent ends the search in the
+    // next layer. Ranking this layer would first scan ahead from every candidate, while the
+    // test of the one end fails at the first vertex off its circle; so such a chain is looked
+    // for first, in the order the next layer would try it: the greedy chain's, then those
+    // ending furthest. (Chains that finish only with a turn at the joint are still found the
+    // usual way, a layer on.)
+    auto finish = [&](int id) -> std::optional<std::vector<Chosen>> {
+      const Node nd = nodes[id];
+      const auto cd = finish_from(nd.v, nd.T, limit);
+      if (!cd) return std::nullopt;
+      auto c = made_from(nd, nd.T, *cd);
+      if (!c) return std::nullopt;
+      nodes.push_back({*c, id, c->prim.end_vertex, c->end_tangent});
+      return chain_to(nodes, static_cast<int>(nodes.size()) - 1);
+    };
+    if (guide >= 0)
+      if (auto done = finish(guide)) return *done;
+    order.clear();
+    for (uint32_t k = 0; k < made.size(); ++k) order.push_back(k);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](uint32_t x, uint32_t y) { return made[x].c.prim.end_vertex > made[y].c.prim.end_vertex; });
+    for (uint32_t k : order) {
+      Made& m = made[k];
+      if (!finish_from(m.c.prim.end_vertex, m.c.end_tangent, limit)) continue;
+      auto c = made_from(nodes[m.from], m.T, m.cand);
+      if (!c) {
+        m.from = -1;  // (failed: not checked again when ranked)
+        continue;
+      }
+      nodes.push_back({*c, m.from, c->prim.end_vertex, c->end_tangent});
+      if (auto done = finish(static_cast<int>(nodes.size()) - 1)) return *done;
+      nodes.pop_back();
+    }
+    for (Made& m : made)
+      if (m.from >= 0) m.sc = m.guide ? guide_score(*m.guide, m.c, limit) : score(m.c, limit);
     // A layer keeps few of its candidates, so most are never put in order: each ranking
     // packs its keys into integers and takes them best first from a heap, ties in the order
     // made. A tangent's bin is worked out only when another kept chain ends at its vertex.
@@ -176,6 +211,17 @@ std::vector<Chosen> RunFitter::beam_chain(uint32_t a, uint32_t limit, GreedyWalk
     layer.swap(next);
   }
   return furthest < 0 ? std::vector<Chosen>{} : chain_to(nodes, furthest);
+}
+
+/// The one-primitive finish from vertex `v` along exactly `T` to `limit`, as the scan
+/// offers it (not yet checked exactly), or nothing.
+std::optional<Candidate> RunFitter::finish_from(uint32_t v, const Vec2& T, uint32_t limit) const {
+  if (v >= limit || !through_candidate(v, T, limit)) return std::nullopt;
+  // (The scan holds the end to the options' limits and to a fixed move after it.)
+  std::optional<Candidate> last;
+  scan_ends(v, T, limit, [&](const Candidate& c) { last = c; });
+  if (!last || last->e != limit) return std::nullopt;
+  return last;
 }
 
 /// Whether the input runs straight from vertex v for kStraightAheadMm (or to `limit`): every

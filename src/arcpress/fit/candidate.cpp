@@ -158,17 +158,30 @@ std::optional<Chosen> RunFitter::through(uint32_t a, const Vec2& T, uint32_t e) 
 /// would fail it are turned away here.
 bool RunFitter::on_circle(uint32_t a, const Vec2& T, const Candidate& c) const {
   const Vec2 N = left_normal(T);
-  const double h0 = p_[a].z();
-  bool flat = std::abs(p_[c.e].z() - h0) <= kLengthEpsMm;
-  for (uint32_t m = a + 1; m < c.e && flat; ++m) flat = std::abs(p_[m].z() - h0) <= kLengthEpsMm;
-  const double eps = flat ? eps_ : eps_ * kPlaneShare;
   const double slack = 1e-12 * (1 + std::abs(c.k));
-  for (uint32_t m = a + 1; m < c.e; ++m) {
-    const Vec2 u = q(m) - q(a);
+  // Each vertex, and for an arc each move's middle: a point of the input too, which the arc
+  // must pass within the band of (for a line the exact check measures the chord).
+  auto off = [&](const Vec2& p, double eps) {
+    const Vec2 u = p - q(a);
     const double w = u.squaredNorm() - eps * eps;
-    if (w > 0 && std::abs(c.k * w - 2 * u.dot(N)) > 2 * eps + slack * w) return false;
-  }
-  return true;
+    return w > 0 && std::abs(c.k * w - 2 * u.dot(N)) > 2 * eps + slack * w;
+  };
+  auto within = [&](double eps) {
+    for (uint32_t m = a + 1; m < c.e; ++m)
+      if (off(q(m), eps)) return false;
+    if (!c.line)
+      for (uint32_t m = a; m < c.e; ++m)
+        if (off(middle_[m], eps)) return false;
+    return true;
+  };
+  // The whole band first: most candidates that fail, fail there at once, and the in-plane
+  // share a climbing primitive keeps is only narrower.
+  if (!within(eps_)) return false;
+  if (level_) return true;
+  const double h0 = p_[a].z();
+  bool flat = true;
+  for (uint32_t m = a + 1; m <= c.e && flat; ++m) flat = std::abs(p_[m].z() - h0) <= kLengthEpsMm;
+  return flat || within(eps_ * kPlaneShare);
 }
 
 }  // namespace arcpress::fit_detail

@@ -87,6 +87,7 @@ class FitAngles {
     closer_miss_ = 1 - std::cos(kJointShare * g1 / 4);
     on_course_cone_ = Cone(kOnCourseRad);
     turn_cone_ = Cone(kTurnShare * g1);
+    near_turn_cone_ = Cone(kTurnShare * g1 + 1e-9);
     turn_line_cone_ = Cone(kTurnShare * g1 + line_kink_);
     two_turns_line_cone_ = Cone(2 * kTurnShare * g1 + line_kink_);
     // (Where the allowance is wide, halves of the smaller turn too, down to its size at the
@@ -143,6 +144,8 @@ class FitAngles {
   double joint_miss_ = 0, closer_miss_ = 0;
   Cone on_course_cone_;                                    // kOnCourseRad: a primitive ending along the input
   Cone turn_cone_, turn_line_cone_, two_turns_line_cone_;  // tighten(): one turn, plus a line's, two plus a line's
+  // turn_cone_ with a margin for the rounding between an unchecked end tangent and the checked one
+  Cone near_turn_cone_;
   double line_kink_ = 0;                                   // largest tangent-chord angle written as a line, rad
   double max_alpha_ = 0, min_alpha_ = 0, line_alpha_ = 0;  // pseudo-angles, see FitAngles()
 };

@@ -366,10 +366,10 @@ class RunFitter : private FitAngles {
   std::optional<Candidate> through_candidate(uint32_t a, const Vec2& T, uint32_t e) const;
   /// The line or arc leaving vertex a along T and ending exactly at vertex e, checked.
   std::optional<Chosen> through(uint32_t a, const Vec2& T, uint32_t e) const;
-  /// scan()'s test of one end: every vertex between `a` and c.e lies within the band of the
-  /// full circle (or line) leaving `a` along T with curvature c.k: scan()'s vertex test
-  /// without a division. Cheap, and necessary for the exact check, so most candidates that
-  /// would fail it are turned away here.
+  /// scan()'s test of one end: every vertex between `a` and c.e, and for an arc every move's
+  /// middle, lies within the band of the full circle (or line) leaving `a` along T with
+  /// curvature c.k: scan()'s point test without a division. Cheap, and necessary for the
+  /// exact check, so most candidates that would fail it are turned away here.
   bool on_circle(uint32_t a, const Vec2& T, const Candidate& c) const;
   /// Signed angle from a to b, radians.
   static double angle_to(const Vec2& a, const Vec2& b) { return std::atan2(cross2(a, b), a.dot(b)); }
@@ -413,9 +413,14 @@ class RunFitter : private FitAngles {
     int from;  ///< the node it leaves from; -1 once checked
     Vec2 T;
     Candidate cand;
-    Chosen c;  ///< unchecked(): end vertex and tangent only
-    Score sc;
+    Chosen c;                 ///< unchecked(): end vertex and tangent only
+    const GuideScan* guide;   ///< the greedy step's scan it came from, whose reaches it takes; or null
+    Score sc{};               ///< once the layer is ranked
   };
+  /// The one-primitive finish from vertex `v` along exactly `T` to `limit`, as the scan
+  /// offers it (not yet checked exactly), or nothing. A test of the one end that fails at the
+  /// first vertex off the circle, where the scan would go on to the last end allowed.
+  std::optional<Candidate> finish_from(uint32_t v, const Vec2& T, uint32_t limit) const;
   /// A chain a beam layer keeps: its end vertex and tangent, and the tangent's bin once needed.
   struct SeenEnd {
     uint32_t v;
@@ -463,6 +468,7 @@ class RunFitter : private FitAngles {
     std::vector<std::pair<uint64_t, uint64_t>> keys;  // beam_chain()
     std::vector<uint64_t> packed_keys;                // beam_chain()
     std::vector<std::pair<uint32_t, Vec2>> expanded;  // beam_chain()
+    std::vector<uint32_t> order;                      // beam_chain()
     // The greedy steps' latest scans (GuideScan), in turn, and whether best_near() is taking one.
     std::array<GuideScan, 9> guide_scans;
     size_t guide_next = 0;

@@ -167,7 +167,9 @@ void RunFitter::make_tangent(uint32_t a, std::vector<Chosen>& chain, size_t& for
     if (!first) continue;
     auto T2 = aimed(c.e, first->end_tangent, to, out);
     if (!T2) continue;
-    auto second = through(c.e, *T2, to);
+    const auto cand2 = through_candidate(c.e, *T2, to);
+    if (!cand2 || (out && !near_turn_cone_.holds(unchecked(c.e, *T2, *cand2).end_tangent, *out))) continue;
+    auto second = make(c.e, *T2, *cand2);
     if (second && (!out || turn_cone_.holds(second->end_tangent, *out))) return std::pair(*first, *second);
   }
   return std::nullopt;
@@ -241,7 +243,10 @@ void RunFitter::tighten(uint32_t a, std::vector<Chosen>& chain, const std::optio
           if (w == 2) {
             std::optional<Vec2> T = in ? aimed(from, T0, to, out) : std::optional<Vec2>(T0);
             if (!T || (!in && out && !turn_line_cone_.holds(reflected_end(from, T0, to), *out))) continue;
-            auto c = through(from, *T, to);
+            // (The end tangent read off the candidate first: most merges fail to meet the joint after.)
+            const auto cand = through_candidate(from, *T, to);
+            if (!cand || (out && !near_turn_cone_.holds(unchecked(from, *T, *cand).end_tangent, *out))) continue;
+            auto c = make(from, *T, *cand);
             if (c && meets(*c)) repl = {*c};
           } else {
             firsts.clear();
