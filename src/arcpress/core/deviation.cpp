@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <vector>
 
 namespace arcpress {
@@ -430,36 +431,42 @@ std::optional<double> chords_deviation_bound(std::span<const Vec3> pts, const Ar
     if (std::abs(p.z() - arc.h0) > kLengthEpsMm) return std::nullopt;
   const Vec2 c = arc.center;
   const double sign = arc.sweep >= 0 ? 1 : -1;
-  auto ray = [&](double t) {
-    const double a = arc.start_angle + arc.sweep * t;
-    return Vec2(std::cos(a), std::sin(a));
+  // Places along the turn are pseudo-angles from the start in the arc's direction, as a
+  // share of the whole turn's: ordered as the angles are, with no trigonometry per point.
+  const Vec2 s_hat(std::cos(arc.start_angle), std::sin(arc.start_angle));
+  const double whole = pseudo_angle_of(turn);
+  // The ray from the centre at a cut, with its place.
+  struct Cut {
+    double at;
+    Vec2 ray;
   };
-  // The share of the turn at which the ray from the centre through (x, y) lies.
-  auto share_of = [&](double x, double y) {
-    double a = sign * (std::atan2(y - c.y(), x - c.x()) - arc.start_angle);
-    a = std::fmod(a, 2 * kPi);
-    if (a < 0) a += 2 * kPi;
-    return a / turn;
-  };
-  // Each vertex's and each chord end's share of the turn, in order along it.
-  auto shares = [&](size_t n, auto point, std::vector<double>& t) {
-    t.assign(n + 1, 0.0);
-    t[n] = 1;
+  // (Kept from call to call on the thread: the fitter asks this of many candidates.)
+  thread_local std::vector<double> t, u;
+  thread_local std::vector<Cut> vertex_cuts, end_cuts, cuts;
+  // Each vertex's and each chord end's place, in order along the turn; the first and the
+  // last at the turn's ends.
+  auto places = [&](size_t n, auto point, std::vector<double>& at, std::vector<Cut>& cut) {
+    at.assign(n + 1, 0.0);
+    at[n] = 1;
+    cut.clear();
+    cut.push_back({0.0, s_hat});
     for (size_t j = 1; j < n; ++j) {
-      const Vec2 p = point(j);
-      t[j] = share_of(p.x(), p.y());
-      if (t[j] < t[j - 1] - 1e-12 || t[j] > 1 + 1e-12) return false;
-      t[j] = std::clamp(t[j], t[j - 1], 1.0);
+      const Vec2 v = point(j) - c;
+      const double len = v.norm();
+      if (len <= 0) return false;
+      at[j] = pseudo_angle(v.dot(s_hat), sign * cross2(s_hat, v)) / whole;
+      if (at[j] < at[j - 1] - 1e-12 || at[j] > 1 + 1e-12) return false;
+      at[j] = std::clamp(at[j], at[j - 1], 1.0);
+      cut.push_back({at[j], v / len});
     }
     return true;
   };
   const size_t m = pts.size() - 1, segments = ends.size() + 1;
-  // (Kept from call to call on the thread: the fitter asks this of many candidates.)
-  thread_local std::vector<double> t, u, cuts;
-  thread_local std::vector<Vec2> rays;
-  if (!shares(m, [&](size_t j) { return Vec2(pts[j].x(), pts[j].y()); }, t) ||
-      !shares(segments, [&](size_t k) { return ends[k - 1]; }, u))
+  if (!places(m, [&](size_t j) { return Vec2(pts[j].x(), pts[j].y()); }, t, vertex_cuts) ||
+      !places(segments, [&](size_t k) { return ends[k - 1]; }, u, end_cuts))
     return std::nullopt;
+  const double end_angle = arc.start_angle + arc.sweep;
+  vertex_cuts.push_back({1.0, Vec2(std::cos(end_angle), std::sin(end_angle))});
   auto chord_end = [&](size_t k) {
     if (k == 0) return pts.front();
     if (k >= segments) return pts.back();
@@ -473,25 +480,22 @@ std::optional<double> chords_deviation_bound(std::span<const Vec3> pts, const Ar
     const double mu = std::clamp((ca.x() * r.y() - ca.y() * r.x()) / den, 0.0, 1.0);
     return Vec3(a + mu * (b - a));
   };
-  // The turn cut at every vertex's share and every chord end's; in each piece, one segment
-  // of the polyline and one chord.
-  cuts.assign(t.begin(), t.end());
-  cuts.insert(cuts.end(), u.begin() + 1, u.end() - 1);
-  std::sort(cuts.begin(), cuts.end());
-  // The ray at each cut, once (each bounds the piece before it and the piece after).
-  rays.resize(cuts.size());
-  for (size_t i = 0; i < cuts.size(); ++i) rays[i] = ray(cuts[i]);
+  // The turn cut at every vertex's place and every chord end's (both already in order); in
+  // each piece, one segment of the polyline and one chord.
+  cuts.clear();
+  std::merge(vertex_cuts.begin(), vertex_cuts.end(), end_cuts.begin() + 1, end_cuts.end(), std::back_inserter(cuts),
+             [](const Cut& x, const Cut& y) { return x.at < y.at; });
   double bound = 0;
   size_t j = 0, k = 0;
   for (size_t i = 0; i + 1 < cuts.size(); ++i) {
-    const double lo = cuts[i], hi = cuts[i + 1];
+    const double lo = cuts[i].at, hi = cuts[i + 1].at;
     if (hi <= lo) continue;
     const double mid = 0.5 * (lo + hi);
     while (j + 1 < m && t[j + 1] <= mid) ++j;
     while (k + 1 < segments && u[k + 1] <= mid) ++k;
     const Vec3 &a = pts[j], &b = pts[j + 1];
     const Vec3 c0 = chord_end(k), c1 = chord_end(k + 1);
-    for (const Vec2& r : {rays[i], rays[i + 1]})
+    for (const Vec2& r : {cuts[i].ray, cuts[i + 1].ray})
       bound = std::max({bound, point_segment_distance(on_ray(a, b, r), c0, c1),
                         point_segment_distance(on_ray(c0, c1, r), a, b)});
     if (bound > stop_above_mm) return bound;
