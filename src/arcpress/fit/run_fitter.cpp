@@ -212,8 +212,10 @@ std::vector<Chosen> RunFitter::fit_kept() {
       size_t beam_forced = 0;
       std::vector<Chosen> b;
       if (searched) b = beam_stretch(a, limit, greedy, beam_forced);
-      // A beam chain of k primitives without kinks beats a greedy chain with more than k.
-      const bool beam_shorter = searched && beam_forced == 0 && greedy.longer_than(b.size());
+      // A beam chain of k primitives without kinks is taken over a greedy chain of k or more
+      // (which the greedy walk, as far as it went, may already show without another step).
+      const bool beam_shorter =
+          searched && beam_forced == 0 && (b.size() <= greedy.at_least() || greedy.longer_than(b.size() - 1));
       if (!beam_shorter) greedy.finish();
       if (beam_shorter || (searched && std::pair(beam_forced, b.size()) < std::pair(greedy.kinks(), greedy.length()))) {
         chain.swap(b);

@@ -298,6 +298,9 @@ class RunFitter : private FitAngles {
       while (chain.size() < k && a < limit) step();
       return chain.size() > k || (chain.size() == k && a < limit);
     }
+    /// The fewest primitives it can end with, walked as far as it is now: those it has, and
+    /// one more unless it reached `limit`.
+    size_t at_least() const { return chain.size() + (a < limit ? 1 : 0); }
     /// Walks to `limit`.
     void finish() {
       while (a < limit) step();
