@@ -379,6 +379,9 @@ class RunFitter : private FitAngles {
   /// The end tangent of the arc leaving `from` along T through `to`: T reflected about the
   /// chord (a line's is the chord itself, within the line allowance of that).
   Vec2 reflected_end(uint32_t from, const Vec2& T, uint32_t to) const;
+  /// The end tangent of the line or arc leaving `from` along T through `to`, as
+  /// through_candidate() would make it (not yet checked).
+  Vec2 end_along(uint32_t from, const Vec2& T, uint32_t to) const;
   /// The start along `in` turned within kTurnShare of the G1 angle so that the arc from
   /// `from` to `to` ends as close to `out` as it can (`in` itself without `out`); nothing
   /// when even the largest turn misses it.

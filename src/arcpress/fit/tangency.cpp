@@ -162,7 +162,9 @@ void RunFitter::make_tangent(uint32_t a, std::vector<Chosen>& chain, size_t& for
     const Candidate& c = cand[split[size_t(x)]];
     // The second primitive's own cheap test first: it fails far more often.
     auto T2_lite = aimed(c.e, unchecked(from, T, c).end_tangent, to, out);
-    if (!T2_lite || !through_candidate(c.e, *T2_lite, to)) continue;
+    if (!T2_lite || (out && !near_turn_cone_.holds(end_along(c.e, *T2_lite, to), *out)) ||
+        !through_candidate(c.e, *T2_lite, to))
+      continue;
     auto first = make(from, T, c);
     if (!first) continue;
     auto T2 = aimed(c.e, first->end_tangent, to, out);
@@ -243,9 +245,10 @@ void RunFitter::tighten(uint32_t a, std::vector<Chosen>& chain, const std::optio
           if (w == 2) {
             std::optional<Vec2> T = in ? aimed(from, T0, to, out) : std::optional<Vec2>(T0);
             if (!T || (!in && out && !turn_line_cone_.holds(reflected_end(from, T0, to), *out))) continue;
-            // (The end tangent read off the candidate first: most merges fail to meet the joint after.)
+            // (Where it would end heading first: most merges fail to meet the joint after.)
+            if (out && !near_turn_cone_.holds(end_along(from, *T, to), *out)) continue;
             const auto cand = through_candidate(from, *T, to);
-            if (!cand || (out && !near_turn_cone_.holds(unchecked(from, *T, *cand).end_tangent, *out))) continue;
+            if (!cand) continue;
             auto c = make(from, *T, *cand);
             if (c && meets(*c)) repl = {*c};
           } else {

@@ -55,6 +55,15 @@ Vec2 RunFitter::reflected_end(uint32_t from, const Vec2& T, uint32_t to) const {
   return 2 * c.dot(T) * c - T;
 }
 
+/// The end tangent of the line or arc leaving `from` along T through `to`, as
+/// through_candidate() would make it (not yet checked): the chord where that is a line, else
+/// T reflected about the chord.
+Vec2 RunFitter::end_along(uint32_t from, const Vec2& T, uint32_t to) const {
+  const Vec2 u = q(to) - q(from);
+  const bool line = pseudo_angle(u.dot(T), std::abs(u.dot(left_normal(T)))) <= line_alpha_;
+  return unchecked(from, T, Candidate{to, 0.0, line}).end_tangent;
+}
+
 /// The start along `in` turned within kTurnShare of the G1 angle so that the arc from
 /// `from` to `to` ends as close to `out` as it can (`in` itself without `out`); nothing
 /// when even the largest turn misses it.
