@@ -2,6 +2,7 @@
 #pragma once
 // Input read in chunks and all-or-nothing output for the command line. One file per system
 // implements it (src/cli/platform/posix.cpp, windows.cpp); what differs is said there.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -33,6 +34,15 @@ class InputFile {
   bool owned_ = false;
   std::optional<size_t> size_;
   long long start_ = 0;
+  size_t taken_ = 0;  // bytes read so far
+  /// How many of `max` bytes a read asks for: of a regular file, no more than are left (and
+  /// at least kSmallestRead, should it grow), so that a small file does not have a whole
+  /// chunk's room cleared for it.
+  size_t asked(size_t max) const {
+    constexpr size_t kSmallestRead = size_t(1) << 16;
+    if (!size_) return max;
+    return std::min(max, std::max(*size_ > taken_ ? *size_ - taken_ : 0, kSmallestRead));
+  }
 };
 
 /// Reads a file, or standard input for "-". Throws arcpress::Error (exit 3) on failure,

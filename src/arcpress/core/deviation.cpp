@@ -467,18 +467,27 @@ std::optional<double> chords_deviation_bound(std::span<const Vec3> pts, const Ar
     return std::nullopt;
   const double end_angle = arc.start_angle + arc.sweep;
   vertex_cuts.push_back({1.0, Vec2(std::cos(end_angle), std::sin(end_angle))});
+  // In the plane: every vertex lies within kLengthEpsMm of the arc's height and every chord
+  // end on it, so a distance in space exceeds its plane's by at most twice that, added at the end.
+  auto flat = [](const Vec3& p) { return Vec2(p.x(), p.y()); };
   auto chord_end = [&](size_t k) {
-    if (k == 0) return pts.front();
-    if (k >= segments) return pts.back();
-    return Vec3(ends[k - 1].x(), ends[k - 1].y(), arc.h0);
+    if (k == 0) return flat(pts.front());
+    if (k >= segments) return flat(pts.back());
+    return ends[k - 1];
   };
   // Where ray `r` meets the segment a-b (its nearer end where it misses).
-  auto on_ray = [&](const Vec3& a, const Vec3& b, const Vec2& r) {
-    const Vec2 d(b.x() - a.x(), b.y() - a.y()), ca(c.x() - a.x(), c.y() - a.y());
+  auto on_ray = [&](const Vec2& a, const Vec2& b, const Vec2& r) {
+    const Vec2 d = b - a, ca = c - a;
     const double den = d.x() * r.y() - d.y() * r.x();
     if (std::abs(den) <= 1e-300) return a;
     const double mu = std::clamp((ca.x() * r.y() - ca.y() * r.x()) / den, 0.0, 1.0);
-    return Vec3(a + mu * (b - a));
+    return Vec2(a + mu * d);
+  };
+  auto distance = [](const Vec2& p, const Vec2& a, const Vec2& b) {
+    const Vec2 d = b - a;
+    const double len2 = d.squaredNorm();
+    const double mu = len2 > 0 ? std::clamp((p - a).dot(d) / len2, 0.0, 1.0) : 0.0;
+    return (p - (a + mu * d)).norm();
   };
   // The turn cut at every vertex's place and every chord end's (both already in order); in
   // each piece, one segment of the polyline and one chord.
@@ -493,13 +502,13 @@ std::optional<double> chords_deviation_bound(std::span<const Vec3> pts, const Ar
     const double mid = 0.5 * (lo + hi);
     while (j + 1 < m && t[j + 1] <= mid) ++j;
     while (k + 1 < segments && u[k + 1] <= mid) ++k;
-    const Vec3 &a = pts[j], &b = pts[j + 1];
-    const Vec3 c0 = chord_end(k), c1 = chord_end(k + 1);
+    const Vec2 a = flat(pts[j]), b = flat(pts[j + 1]);
+    const Vec2 c0 = chord_end(k), c1 = chord_end(k + 1);
     for (const Vec2& r : {cuts[i].ray, cuts[i + 1].ray})
-      bound = std::max({bound, point_segment_distance(on_ray(a, b, r), c0, c1),
-                        point_segment_distance(on_ray(c0, c1, r), a, b)});
-    if (bound > stop_above_mm) return bound;
+      bound = std::max({bound, distance(on_ray(a, b, r), c0, c1), distance(on_ray(c0, c1, r), a, b)});
+    if (bound + 2 * kLengthEpsMm > stop_above_mm) return bound + 2 * kLengthEpsMm;
   }
+  bound += 2 * kLengthEpsMm;
   return bound;
 }
 

@@ -128,6 +128,7 @@ InputFile::~InputFile() {
 }
 
 size_t InputFile::read(std::string& into, size_t max) {
+  max = asked(max);
   const size_t had = into.size();
   into.resize(had + max);
   for (;;) {
@@ -139,6 +140,7 @@ size_t InputFile::read(std::string& into, size_t max) {
       throw Error(kExitIo, fmt::format("cannot read {}: {}", name_, error_text(err)));
     }
     into.resize(had + size_t(n));
+    taken_ += size_t(n);
     return size_t(n);
   }
 }

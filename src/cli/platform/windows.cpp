@@ -190,6 +190,7 @@ InputFile::~InputFile() {
 }
 
 size_t InputFile::read(std::string& into, size_t max) {
+  max = asked(max);
   const size_t had = into.size();
   into.resize(had + max);
   DWORD n = 0;
@@ -205,6 +206,7 @@ size_t InputFile::read(std::string& into, size_t max) {
     throw Error(kExitIo, fmt::format("cannot read {}: {}", name_, error_text(err)));
   }
   into.resize(had + n);
+  taken_ += n;
   return n;
 }
 
