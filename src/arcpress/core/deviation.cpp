@@ -151,9 +151,11 @@ Deviation planar_arc_deviation(std::span<const Vec3> pts, const ArcGeom& arc, do
     // A vertex just behind the start (within rounding) reads as almost a full turn.
     if (a > total && a > 4 - 1e-9) a = 0;
     phi[m] = a;
-    if (m > 0 && phi[m] < phi[m - 1] - 1e-12) dev.ordered = false;
+    if (m > 0 && phi[m] < phi[m - 1] - 1e-12) {
+      dev.ordered = false;
+      if (stop_above_mm < HUGE_VAL) return dev;  // (under a finite stop, the first out of order ends it)
+    }
   }
-  if (!dev.ordered && stop_above_mm < HUGE_VAL) return dev;
   // A piece between two vertices of half a turn or more has no middle from unit vectors.
   for (size_t m = 0; m + 1 < n; ++m)
     if (phi[m + 1] - phi[m] >= 2) return arc_deviation_by_angles(pts, arc, stop_above_mm);
@@ -299,15 +301,19 @@ Deviation arc_deviation_by_angles(std::span<const Vec3> pts, const ArcGeom& arc,
   phi.resize(n);
   phi[0] = 0;
   phi[n - 1] = total;
-  for (size_t m = 1; m + 1 < n; ++m) {
-    double a = angle_along(pts[m]);
-    // A vertex just behind the start (within rounding) reads as almost 2π.
-    if (a > total && a > 2 * kPi - 1e-9) a = 0;
-    phi[m] = a;
+  // (Under a finite stop, the first vertex out of order ends the measure.)
+  for (size_t m = 1; m < n; ++m) {
+    if (m + 1 < n) {
+      double a = angle_along(pts[m]);
+      // A vertex just behind the start (within rounding) reads as almost 2π.
+      if (a > total && a > 2 * kPi - 1e-9) a = 0;
+      phi[m] = a;
+    }
+    if (phi[m] < phi[m - 1] - 1e-12) {
+      dev.ordered = false;
+      if (stop_above_mm < HUGE_VAL) return dev;
+    }
   }
-  for (size_t m = 1; m < n; ++m)
-    if (phi[m] < phi[m - 1] - 1e-12) dev.ordered = false;
-  if (!dev.ordered && stop_above_mm < HUGE_VAL) return dev;
   // Input vertices to the arc (helical height interpolated by angle).
   const bool flat = arc.h0 == arc.h1;
   radial.resize(n);  // |distance to the centre - r| of each vertex

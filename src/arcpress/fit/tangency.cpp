@@ -162,9 +162,11 @@ void RunFitter::make_tangent(uint32_t a, std::vector<Chosen>& chain, size_t& for
     const Candidate& c = cand[split[size_t(x)]];
     // The second primitive's own cheap test first: it fails far more often.
     auto T2_lite = aimed(c.e, unchecked(from, T, c).end_tangent, to, out);
-    if (!T2_lite || (out && !near_turn_cone_.holds(end_along(c.e, *T2_lite, to), *out)) ||
-        !through_candidate(c.e, *T2_lite, to))
-      continue;
+    if (!T2_lite || (out && !near_turn_cone_.holds(end_along(c.e, *T2_lite, to), *out))) continue;
+    const auto lite = through_candidate(c.e, *T2_lite, to);
+    // (The second checked exactly along it before the first: where the split fails, that is
+    // nearly always where, on a helix over a whole turn in the plane, say.)
+    if (!lite || !make(c.e, *T2_lite, *lite)) continue;
     auto first = make(from, T, c);
     if (!first) continue;
     auto T2 = aimed(c.e, first->end_tangent, to, out);
