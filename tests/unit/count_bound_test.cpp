@@ -129,9 +129,11 @@ TEST_CASE("a fit joining an input arc tangentially has no fewer primitives than 
   // G3 from (5, 0) to (0, 5) about the origin, arriving along -x; then G1 moves along
   // wobbling curves that leave (0, 5) along -x too.
   for (double wobble : {0.0, 0.05, 0.2}) {
-    const auto curve = printed(sampled(120, 0, 1, [&](double t) {
+    // (The lambda names its type: an Eigen sum returned as itself would refer to temporaries
+    // that end with the call.)
+    const auto curve = printed(sampled(120, 0, 1, [&](double t) -> Vec2 {
       const double a = deg_to_rad(90 + 150 * t);
-      const double r = 3 + wobble * std::sin(6 * kPi * t);
+      const double r = 3 + wobble * std::pow(std::sin(3 * kPi * t), 2);  // (no radial speed at t = 0)
       return Vec2(0, 2) + r * Vec2(std::cos(a), std::sin(a));
     }));
     std::string text = "G21 G90 G17\nG0 X5 Y0 Z0\nG1 F600\nG3 X0 Y5 I-5 J0\n";
