@@ -8,6 +8,11 @@
 // the pairs' ratios arcpress / ArcWelder, and the motion blocks each wrote (G0-G3 blocks
 // and blocks of bare axis words, one counter for both tools' files).
 //   bench_vs_arcwelder ARCWELDER [PAIRS]   ARCWELDER: the path of ArcWelder's console program
+//   bench_vs_arcwelder ARCWELDER --instructions
+// With --instructions, each runs once under valgrind's callgrind (on PATH), which counts the
+// instructions every thread executes: a figure that a busy machine does not move, where
+// times move by tens of per cent from run to run. It counts work, not time: a division or
+// a cache miss costs more than an addition.
 // ArcWelder is no Debian package: build it from its source (FormerLurker/ArcWelderLib,
 // target ArcWelderConsole) in a folder of your own.
 #include <fmt/format.h>
@@ -46,6 +51,33 @@ size_t motion_blocks(const fs::path& file) {
   return n;
 }
 
+/// `name` found on PATH, or empty.
+std::string on_path(const std::string& name) {
+  const char* path = std::getenv("PATH");
+  for (std::string dirs = path ? path : ""; !dirs.empty();) {
+    const size_t colon = dirs.find(':');
+    const fs::path candidate = fs::path(dirs.substr(0, colon)) / name;
+    if (fs::exists(candidate)) return candidate.string();
+    dirs = colon == std::string::npos ? "" : dirs.substr(colon + 1);
+  }
+  return {};
+}
+
+/// The instructions `words` executes under callgrind, all threads; 0 where it fails.
+double instructions(const std::vector<std::string>& words, const fs::path& log) {
+  static const std::string valgrind = on_path("valgrind");
+  if (valgrind.empty()) return 0;
+  std::vector<std::string> all = {valgrind, "--tool=callgrind", "--callgrind-out-file=/dev/null",
+                                  "--log-file=" + log.string()};
+  all.insert(all.end(), words.begin(), words.end());
+  const ChildRun r = run_child(all);
+  std::ifstream in(log);
+  double n = 0;
+  for (std::string line; std::getline(in, line);)
+    if (const auto at = line.find("Collected : "); at != std::string::npos) n = std::atof(line.c_str() + at + 12);
+  return r.exit_code == 0 ? n : 0;
+}
+
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v.empty() ? 0.0 : v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
@@ -55,11 +87,12 @@ double median(std::vector<double> v) {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    fmt::print(stderr, "usage: bench_vs_arcwelder ARCWELDER [PAIRS]\n");
+    fmt::print(stderr, "usage: bench_vs_arcwelder ARCWELDER [PAIRS | --instructions]\n");
     return 2;
   }
   const std::string arcwelder = argv[1];
-  const int pairs = argc > 2 ? std::max(1, std::atoi(argv[2])) : 3;
+  const bool count = argc > 2 && std::string(argv[2]) == "--instructions";
+  const int pairs = argc > 2 && !count ? std::max(1, std::atoi(argv[2])) : 3;
   if (!fs::exists(arcwelder)) {
     fmt::print(stderr, "bench_vs_arcwelder: no ArcWelder at '{}'\n", arcwelder);
     return 2;
@@ -67,6 +100,31 @@ int main(int argc, char** argv) {
   const fs::path dir = fs::temp_directory_path() / fmt::format("arcpress-vs-arcwelder-{}", ::getpid());
   fs::create_directories(dir);
   const fs::path out_a = dir / "arcpress.gcode", out_b = dir / "arcwelder.gcode";
+  if (count) {
+    fmt::print("| file | MB | band mm | arcpress instructions | ArcWelder instructions | A/B |\n");
+    fmt::print("|---|---|---|---|---|---|\n");
+    bool failed = false;
+    for (const fs::path& f : corpus_files()) {
+      const double mb = double(fs::file_size(f)) / 1e6;
+      if (mb < 0.1) continue;
+      for (const double band : {0.025, 0.01}) {
+        const double a = instructions({ARCPRESS_BINARY, f.string(), "-o", out_a.string(), "--tolerance",
+                                       fmt::format("{}", band), "-q"},
+                                      dir / "a.log");
+        const double b = instructions({arcwelder, f.string(), out_b.string(), fmt::format("-r={}", 2 * band)}, dir / "b.log");
+        if (a == 0 || b == 0) {
+          fmt::print(stderr, "bench_vs_arcwelder: {} at {} mm: no count (is valgrind on PATH?)\n", f.filename().string(),
+                     band);
+          failed = true;
+          continue;
+        }
+        fmt::print("| {} | {:.2f} | {} | {:.3f} G | {:.3f} G | {:.2f} |\n", f.filename().string(), mb, band, a / 1e9,
+                   b / 1e9, a / b);
+      }
+    }
+    fs::remove_all(dir);
+    return failed ? 1 : 0;
+  }
   fmt::print("| file | MB | band mm | arcpress CPU s | ArcWelder CPU s | CPU A/B | wall A/B | arcpress MB/s | "
              "ArcWelder MB/s | arcpress blocks | ArcWelder blocks |\n");
   fmt::print("|---|---|---|---|---|---|---|---|---|---|---|\n");
