@@ -34,6 +34,8 @@ std::vector<Chosen> RunFitter::beam_chain(uint32_t a, uint32_t limit, GreedyWalk
   std::vector<uint64_t>& packed_keys = s_.packed_keys;
   std::vector<std::pair<uint32_t, Vec2>>& expanded = s_.expanded;
   std::vector<uint32_t>& order = s_.order;
+  std::vector<int8_t>& straight = s_.straight;  // per vertex from `a`: straight_ahead(), -1 not yet known
+  straight.assign(limit - a + 1, -1);
   int furthest = -1;
   int guide = -1;  // the node the greedy chain would be at: the beam never does worse
   size_t step = 0;
@@ -65,8 +67,11 @@ std::vector<Chosen> RunFitter::beam_chain(uint32_t a, uint32_t limit, GreedyWalk
     expanded.clear();
     for (int i : layer) {
       const Node nd = nodes[i];
-      const bool straight = nd.parent >= 0 && straight_ahead(nd.v, limit);  // (roots take no turns)
-      const size_t turns = nd.parent < 0 ? 0 : joint_turns_.size() + (straight ? 2 : 0);
+      // (Roots take no turns; whether the input runs straight is worked out once a vertex.)
+      int8_t& memo = straight[nd.v - a];
+      if (nd.parent >= 0 && memo < 0) memo = straight_ahead(nd.v, limit);
+      const bool straight_on = nd.parent >= 0 && memo > 0;
+      const size_t turns = nd.parent < 0 ? 0 : joint_turns_.size() + (straight_on ? 2 : 0);
       for (size_t t = 0; t <= turns; ++t) {
         const Turn* turn = t == 0                         ? nullptr
                            : t <= joint_turns_.size() ? &joint_turns_[t - 1]
