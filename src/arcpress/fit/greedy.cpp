@@ -104,52 +104,12 @@ void RunFitter::consider(uint32_t a, const Vec2& T, uint32_t limit, std::optiona
 /// the input, and the one into the second move, and keep the one whose primitive reaches
 /// furthest.
 Chosen RunFitter::best_free(uint32_t a, uint32_t limit) const {
-  std::vector<Vec2>& starts = s_.free_starts;
-  input_tangents(a, limit, starts);
-  if (auto T = into_next(a, limit)) starts.push_back(*T);
-  // Every start's candidates are scored, as best_from() scores them, and checked exactly in
-  // the order of their scores across all starts (the first start on a tie): the first to
-  // pass is taken, so that where it is the first, one is checked rather than one per start.
-  // It is best_from()'s along its start, and scores at least as high as any other start's
-  // candidates not yet tried. A start whose candidates all fail gets best_from()'s fallback,
-  // placed by its score among those not yet tried.
-  std::vector<FreeEntry>& order = s_.free_order;
-  std::vector<uint32_t>& left = s_.free_left;
-  std::vector<Candidate>& cand = s_.best_cand;
-  std::vector<Chosen>& made = s_.best_made;
-  order.clear();
-  left.assign(starts.size(), 0);
-  auto before = [](const FreeEntry& x, const FreeEntry& y) {
-    if (x.sc > y.sc) return true;
-    if (y.sc > x.sc) return false;
-    return std::pair(x.start, x.rank) < std::pair(y.start, y.rank);
-  };
-  // best_from()'s fallback along start k, placed among the entries from `from` on.
-  auto fall_back = [&](uint32_t k, size_t from) {
-    made.clear();
-    checked_from(a, starts[k], limit, kLookahead, made);
-    std::optional<FreeEntry> best;
-    for (const Chosen& c : made) {
-      const Score sc = score(c, limit);
-      if (!best || sc > best->sc) best = FreeEntry{k, 0, {}, sc, c};
-    }
-    if (best) order.insert(std::upper_bound(order.begin() + long(from), order.end(), *best, before), *best);
-  };
-  for (uint32_t k = 0; k < starts.size(); ++k) {
-    pick(a, starts[k], limit, kLookahead, cand);
-    for (uint32_t i = 0; i < cand.size(); ++i)
-      order.push_back({k, i, cand[i], score(unchecked(a, starts[k], cand[i]), limit), std::nullopt});
-    left[k] = uint32_t(cand.size());
-  }
-  std::sort(order.begin(), order.end(), before);
-  for (uint32_t k = 0; k < starts.size(); ++k)
-    if (left[k] == 0) fall_back(k, 0);
-  for (size_t x = 0; x < order.size(); ++x) {
-    if (order[x].checked) return *order[x].checked;
-    const uint32_t k = order[x].start;
-    if (auto c = make(a, starts[k], order[x].cand)) return *c;
-    if (--left[k] == 0) fall_back(k, x + 1);
-  }
+  std::optional<Chosen> best;
+  Score best_score;
+  input_tangents(a, limit, s_.free_starts);
+  if (auto T = into_next(a, limit)) s_.free_starts.push_back(*T);
+  for (const Vec2& T : s_.free_starts) consider(a, T, limit, best, best_score);
+  if (best) return *best;
   return input_move(a);
 }
 

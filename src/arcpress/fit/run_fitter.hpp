@@ -222,14 +222,6 @@ class RunFitter : private FitAngles {
     size_t i;
     Score sc;
   };
-  /// best_free()'s candidate `rank` along start `start`, scored; or, once checked, the
-  /// primitive best_from()'s fallback chose along it.
-  struct FreeEntry {
-    uint32_t start, rank;
-    Candidate cand;
-    Score sc;
-    std::optional<Chosen> checked;
-  };
   Score score(const Chosen& c, uint32_t limit) const;
   /// The score of `c`, after which the chain reaches `reach`.
   Score scored(const Chosen& c, uint32_t reach) const;
@@ -468,8 +460,6 @@ class RunFitter : private FitAngles {
     std::vector<Ranked> ranked;                       // best_from()
     std::vector<Chosen> best_made;                    // best_from()
     std::vector<Vec2> free_starts;                    // best_free()
-    std::vector<FreeEntry> free_order;                // best_free()
-    std::vector<uint32_t> free_left;                  // best_free()
     std::vector<StartRange> reached;                  // start_tangents()
     std::vector<Vec2> inputs;                         // fanned_input_tangents()
     std::vector<Candidate> tighten_cand;              // tighten()
