@@ -100,27 +100,35 @@ int main(int argc, char** argv) {
   const fs::path dir = fs::temp_directory_path() / fmt::format("arcpress-vs-arcwelder-{}", ::getpid());
   fs::create_directories(dir);
   const fs::path out_a = dir / "arcpress.gcode", out_b = dir / "arcwelder.gcode";
+  // Every corpus file of at least 100 KB at both bands, with the two commands that run it.
+  struct Case {
+    fs::path file;
+    double mb, band;
+    std::vector<std::string> a, b;
+  };
+  std::vector<Case> cases;
+  for (const fs::path& f : corpus_files()) {
+    const double mb = double(fs::file_size(f)) / 1e6;
+    if (mb < 0.1) continue;
+    for (const double band : {0.025, 0.01})
+      cases.push_back({f, mb, band,
+                       {ARCPRESS_BINARY, f.string(), "-o", out_a.string(), "--tolerance", fmt::format("{}", band), "-q"},
+                       {arcwelder, f.string(), out_b.string(), fmt::format("-r={}", 2 * band)}});
+  }
+  bool failed = false;
   if (count) {
     fmt::print("| file | MB | band mm | arcpress instructions | ArcWelder instructions | A/B |\n");
     fmt::print("|---|---|---|---|---|---|\n");
-    bool failed = false;
-    for (const fs::path& f : corpus_files()) {
-      const double mb = double(fs::file_size(f)) / 1e6;
-      if (mb < 0.1) continue;
-      for (const double band : {0.025, 0.01}) {
-        const double a = instructions({ARCPRESS_BINARY, f.string(), "-o", out_a.string(), "--tolerance",
-                                       fmt::format("{}", band), "-q"},
-                                      dir / "a.log");
-        const double b = instructions({arcwelder, f.string(), out_b.string(), fmt::format("-r={}", 2 * band)}, dir / "b.log");
-        if (a == 0 || b == 0) {
-          fmt::print(stderr, "bench_vs_arcwelder: {} at {} mm: no count (is valgrind on PATH?)\n", f.filename().string(),
-                     band);
-          failed = true;
-          continue;
-        }
-        fmt::print("| {} | {:.2f} | {} | {:.3f} G | {:.3f} G | {:.2f} |\n", f.filename().string(), mb, band, a / 1e9,
-                   b / 1e9, a / b);
+    for (const Case& c : cases) {
+      const double a = instructions(c.a, dir / "a.log"), b = instructions(c.b, dir / "b.log");
+      if (a == 0 || b == 0) {
+        fmt::print(stderr, "bench_vs_arcwelder: {} at {} mm: no count (is valgrind on PATH?)\n",
+                   c.file.filename().string(), c.band);
+        failed = true;
+        continue;
       }
+      fmt::print("| {} | {:.2f} | {} | {:.3f} G | {:.3f} G | {:.2f} |\n", c.file.filename().string(), c.mb, c.band,
+                 a / 1e9, b / 1e9, a / b);
     }
     fs::remove_all(dir);
     return failed ? 1 : 0;
@@ -128,35 +136,31 @@ int main(int argc, char** argv) {
   fmt::print("| file | MB | band mm | arcpress CPU s | ArcWelder CPU s | CPU A/B | wall A/B | arcpress MB/s | "
              "ArcWelder MB/s | arcpress blocks | ArcWelder blocks |\n");
   fmt::print("|---|---|---|---|---|---|---|---|---|---|---|\n");
-  bool failed = false;
-  for (const fs::path& f : corpus_files()) {
-    const double mb = double(fs::file_size(f)) / 1e6;
-    if (mb < 0.1) continue;
-    for (const double band : {0.025, 0.01}) {
-      std::vector<double> cpu_a, cpu_b, wall_a, wall_b, cpu_ratio, wall_ratio;
-      for (int k = 0; k < pairs; ++k) {
-        const ChildRun a = run_child({ARCPRESS_BINARY, f.string(), "-o", out_a.string(), "--tolerance",
-                                      fmt::format("{}", band), "-q"});
-        const ChildRun b = run_child({arcwelder, f.string(), out_b.string(), fmt::format("-r={}", 2 * band)});
-        if (a.exit_code != 0 || b.exit_code != 0) {
-          fmt::print(stderr, "bench_vs_arcwelder: {} at {} mm: arcpress exit {}, ArcWelder exit {}\n", f.filename().string(),
-                     band, a.exit_code, b.exit_code);
-          failed = true;
-        }
-        // The two of a pair run back to back, under the same load: their ratio drifts less
-        // than the ratio of the medians on a machine whose load comes and goes.
-        if (b.cpu_seconds > 0) cpu_ratio.push_back(a.cpu_seconds / b.cpu_seconds);
-        if (b.seconds > 0) wall_ratio.push_back(a.seconds / b.seconds);
-        cpu_a.push_back(a.cpu_seconds);
-        cpu_b.push_back(b.cpu_seconds);
-        wall_a.push_back(a.seconds);
-        wall_b.push_back(b.seconds);
+  for (const Case& c : cases) {
+    const fs::path& f = c.file;
+    const double band = c.band, mb = c.mb;
+    std::vector<double> cpu_a, cpu_b, wall_a, wall_b, cpu_ratio, wall_ratio;
+    for (int k = 0; k < pairs; ++k) {
+      const ChildRun a = run_child(c.a);
+      const ChildRun b = run_child(c.b);
+      if (a.exit_code != 0 || b.exit_code != 0) {
+        fmt::print(stderr, "bench_vs_arcwelder: {} at {} mm: arcpress exit {}, ArcWelder exit {}\n", f.filename().string(),
+                   band, a.exit_code, b.exit_code);
+        failed = true;
       }
-      const double ca = median(cpu_a), cb = median(cpu_b), wa = median(wall_a), wb = median(wall_b);
-      fmt::print("| {} | {:.2f} | {} | {:.3f} | {:.3f} | {:.2f} | {:.2f} | {:.1f} | {:.1f} | {} | {} |\n",
-                 f.filename().string(), mb, band, ca, cb, median(cpu_ratio), median(wall_ratio), mb / wa,
-                 mb / wb, motion_blocks(out_a), motion_blocks(out_b));
+      // The two of a pair run back to back, under the same load: their ratio drifts less
+      // than the ratio of the medians on a machine whose load comes and goes.
+      if (b.cpu_seconds > 0) cpu_ratio.push_back(a.cpu_seconds / b.cpu_seconds);
+      if (b.seconds > 0) wall_ratio.push_back(a.seconds / b.seconds);
+      cpu_a.push_back(a.cpu_seconds);
+      cpu_b.push_back(b.cpu_seconds);
+      wall_a.push_back(a.seconds);
+      wall_b.push_back(b.seconds);
     }
+    const double ca = median(cpu_a), cb = median(cpu_b), wa = median(wall_a), wb = median(wall_b);
+    fmt::print("| {} | {:.2f} | {} | {:.3f} | {:.3f} | {:.2f} | {:.2f} | {:.1f} | {:.1f} | {} | {} |\n",
+               f.filename().string(), mb, band, ca, cb, median(cpu_ratio), median(wall_ratio), mb / wa,
+               mb / wb, motion_blocks(out_a), motion_blocks(out_b));
   }
   fs::remove_all(dir);
   return failed ? 1 : 0;
