@@ -166,14 +166,20 @@ void RunFitter::make_tangent(uint32_t a, std::vector<Chosen>& chain, size_t& for
     const auto lite = through_candidate(c.e, *T2_lite, to);
     // (The second checked exactly along it before the first: where the split fails, that is
     // nearly always where, on a helix over a whole turn in the plane, say.)
-    if (!lite || !make(c.e, *T2_lite, *lite)) continue;
+    if (!lite) continue;
+    std::optional<Chosen> second = make(c.e, *T2_lite, *lite);
+    if (!second) continue;
     auto first = make(from, T, c);
     if (!first) continue;
     auto T2 = aimed(c.e, first->end_tangent, to, out);
     if (!T2) continue;
-    const auto cand2 = through_candidate(c.e, *T2, to);
-    if (!cand2 || (out && !near_turn_cone_.holds(unchecked(c.e, *T2, *cand2).end_tangent, *out))) continue;
-    auto second = make(c.e, *T2, *cand2);
+    // Along the first's own end tangent; where that is the estimate's (a line's chord), the
+    // second is the one just checked.
+    if (*T2 != *T2_lite) {
+      const auto cand2 = through_candidate(c.e, *T2, to);
+      if (!cand2 || (out && !near_turn_cone_.holds(unchecked(c.e, *T2, *cand2).end_tangent, *out))) continue;
+      second = make(c.e, *T2, *cand2);
+    }
     if (second && (!out || turn_cone_.holds(second->end_tangent, *out))) return std::pair(*first, *second);
   }
   return std::nullopt;
