@@ -10,7 +10,8 @@
 // smooth joint tangent (the rest of the program as written, plus for every stretch between
 // corners the fewest tangent-continuous lines and arcs joined at the input's vertices that
 // keep its vertices in the band, leaving and arriving along the moves written as they are
-// that it joins: count_bound.hpp). Where that bound exceeds ArcWelder's count, no
+// that it joins, and ending where a run ends or extrusion starts or stops: count_bound.hpp).
+// Where that bound exceeds ArcWelder's count, no
 // tangent-continuous output can match ArcWelder's.
 // With --causes, a second table instead: where the blocks go, as blocks out per file and band
 // with one rule changed at a time: the default; `min_moves = 3` (the marlin dialect's former
@@ -101,7 +102,10 @@ size_t motion_blocks(const std::string& text) {
 /// beside corners) and the moves kept as they are of min_g1_primitive_count(), or of
 /// min_primitive_count() where no tangent chain exists. A stretch that joins a kept move (an
 /// input arc, a lone line) at a vertex that is no corner leaves or arrives along that move,
-/// as the fitter's must.
+/// as the fitter's must. Inside a stretch, a primitive ends where one run of the chain ends
+/// and the next begins (what stands between them is written there) and where extrusion or
+/// an extra axis starts or stops moving (a block moves them evenly along itself); the
+/// tangent goes on across such a vertex.
 size_t tangent_bound(const std::string& text, const Dialect& d, double band_mm) {
   DiagnosticSink sink;
   Program p = lex("in", text, sink);
@@ -116,8 +120,18 @@ size_t tangent_bound(const std::string& text, const Dialect& d, double band_mm) 
       v.emplace_back(a[kX], a[kY], a[kZ]);
     }
     std::vector<uint8_t> kept(n, 1);  // per move of the chain: not in a run
-    for (uint32_t r = chain.first_run; r < chain.first_run + chain.run_count; ++r)
-      std::fill_n(kept.begin() + (runs[r].first_move - chain.first_move), runs[r].move_count, uint8_t(0));
+    std::vector<uint8_t> must_end(n + 1, 0);  // per vertex of the chain: every fit ends a primitive there
+    for (uint32_t r = chain.first_run; r < chain.first_run + chain.run_count; ++r) {
+      const uint32_t first = runs[r].first_move - chain.first_move;
+      std::fill_n(kept.begin() + first, runs[r].move_count, uint8_t(0));
+      must_end[first] = must_end[first + runs[r].move_count] = 1;
+    }
+    for (uint32_t k = 1; k < n; ++k)
+      for (int x = kA; x < kAxisCount; ++x) {
+        const double before = in.from(chain.first_move + k)[x] - in.from(chain.first_move + k - 1)[x];
+        const double after = in.from(chain.first_move + k + 1)[x] - in.from(chain.first_move + k)[x];
+        if ((before == 0) != (after == 0)) must_end[k] = 1;
+      }
     std::vector<uint8_t> corner(v.size(), 0);
     for (size_t k = 1; k + 1 < v.size(); ++k) corner[k] = is_corner(v[k - 1], v[k], v[k + 1], band_mm, 30);
     std::vector<uint8_t> split = corner;
@@ -138,12 +152,17 @@ size_t tangent_bound(const std::string& text, const Dialect& d, double band_mm) 
       return std::nullopt;
     };
     std::vector<Vec2> piece;
+    std::vector<uint8_t> piece_ends;  // must_end of the piece's vertices
     EndTangents ends;
+    auto begin = [&](uint32_t k) {
+      piece.assign(1, Vec2(v[k].x(), v[k].y()));
+      piece_ends.assign(1, must_end[k]);
+    };
     auto flush = [&](uint32_t end_vertex) {
       if (piece.size() >= 2) {
         if (end_vertex < n && kept[end_vertex] && !split[end_vertex]) ends.end = kept_tangent(end_vertex, +1);
-        const size_t g = min_g1_primitive_count(piece, band_mm, 0.5, ends);
-        bound += g ? g : min_primitive_count(piece, band_mm);
+        const size_t g = min_g1_primitive_count(piece, band_mm, 0.5, ends, piece_ends);
+        bound += g ? g : min_primitive_count(piece, band_mm, piece_ends);
       }
       piece.clear();
       ends = {};
@@ -151,17 +170,18 @@ size_t tangent_bound(const std::string& text, const Dialect& d, double band_mm) 
     for (uint32_t k = 0; k <= n; ++k) {
       const bool fitted_before = k > 0 && !kept[k - 1], fitted_after = k < n && !kept[k];
       if (fitted_after && !fitted_before) {  // a stretch begins
-        piece.assign(1, Vec2(v[k].x(), v[k].y()));
+        begin(k);
         if (k > 0 && !split[k]) ends.start = kept_tangent(long(k) - 1, -1);
         continue;
       }
       if (!fitted_before) continue;
       piece.push_back(Vec2(v[k].x(), v[k].y()));
+      piece_ends.push_back(must_end[k]);
       if (!fitted_after) {
         flush(k);
       } else if (split[k]) {
         flush(k);
-        piece.assign(1, Vec2(v[k].x(), v[k].y()));
+        begin(k);
       }
     }
   }

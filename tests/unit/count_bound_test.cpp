@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "arcpress/api/arcpress.hpp"
+#include "arcpress/arcpress.hpp"
 #include "arcpress/fit/count_bound.hpp"
 
 using namespace arcpress;
@@ -169,6 +170,38 @@ TEST_CASE("a right-angle corner: no tangent chain gets round it inside the band,
   repeated.insert(repeated.begin() + 20, 2, repeated[20]);
   CHECK(min_primitive_count(repeated, 0.01) == 1);
   CHECK(min_g1_primitive_count(repeated, 0.01, 0.5) == 1);
+}
+
+TEST_CASE("where every fit must end a primitive (extrusion stops), no primitive of the bound spans the vertex, and "
+          "the tangent goes on across it", "[fit][bound]") {
+  const auto line = sampled(10, 0, 10, [](double x) { return Vec2(x, 0); });
+  const std::vector<uint8_t> two_ends = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
+  CHECK(min_primitive_count(line, 0.01) == 1);
+  CHECK(min_primitive_count(line, 0.01, two_ends) == 3);
+  CHECK(min_g1_primitive_count(line, 0.01, 0.5, {}, two_ends) == 3);
+  // Ends at the first and last vertex, or none given, change nothing.
+  CHECK(min_g1_primitive_count(line, 0.01, 0.5, {}, std::vector<uint8_t>{1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1}) == 1);
+  // On one circle the two arcs either side of the end are tangent to each other.
+  const auto quarter = printed(arc({0, 0}, 5, 0, 90, 40));
+  std::vector<uint8_t> middle(quarter.size(), 0);
+  middle[20] = 1;
+  CHECK(min_g1_primitive_count(quarter, 0.01, 0.5, {}, middle) == 2);
+  // A program that extrudes along the first half of the quarter and moves on without
+  // extruding: every fit writes at least the bound's primitives.
+  std::string text = fmt::format("G21 G90 G17 M83\nG0 X{:.4f} Y{:.4f} Z0\nG1 F600\n", quarter[0].x(), quarter[0].y());
+  for (size_t i = 1; i < quarter.size(); ++i)
+    text += fmt::format("G1 X{:.4f} Y{:.4f}{}\n", quarter[i].x(), quarter[i].y(), i <= 20 ? " E0.05" : "");
+  text += "M2\n";
+  for (const char* dialect : {"marlin", "rs274"}) {
+    CompressOptions opt;
+    opt.dialect = dialect_named(dialect);
+    DiagnosticSink sink;
+    const CompressResult r = compress("t.gcode", text, opt, sink);
+    REQUIRE(r.ok);
+    INFO(dialect << ": " << r.stats.lines_out + r.stats.arcs_out << " primitives");
+    CHECK(r.forced_kinks == 0);
+    CHECK(r.stats.lines_out + r.stats.arcs_out >= min_g1_primitive_count(quarter, opt.fit.tolerance_mm, opt.fit.g1_angle_deg, {}, middle));
+  }
 }
 
 TEST_CASE("no fit has fewer primitives than the bound in the same band, whatever the method", "[fit][bound]") {

@@ -120,9 +120,15 @@ std::vector<Range> take_new(std::vector<Range> ranges, std::vector<Range>& taken
   return fresh;
 }
 
+/// Whether a primitive from vertex i must end before vertex j (> i): at vertex j - 1, when
+/// that lies between them and is one of `ends`. (Called for j = i + 1, i + 2, ... in turn.)
+bool ends_before(PrimitiveEnds ends, size_t i, size_t j) {
+  return j > i + 1 && j - 1 < ends.size() && ends[j - 1];
+}
+
 }  // namespace
 
-size_t min_primitive_count(std::span<const Vec2> pts, double band_mm) {
+size_t min_primitive_count(std::span<const Vec2> pts, double band_mm, PrimitiveEnds ends) {
   const size_t n = pts.size() < 2 ? 0 : pts.size() - 1;  // moves
   if (n == 0) return 0;
   // The circles through vertex i and vertex j: by the left normal N (a unit vector, either
@@ -136,7 +142,7 @@ size_t min_primitive_count(std::span<const Vec2> pts, double band_mm) {
   DirectionSet normals;
   for (size_t i = 0; i < n; ++i) {
     size_t killer = 0;  // the vertex that ended the last test from i: tried first
-    for (size_t j = i + 1; j <= n; ++j) {
+    for (size_t j = i + 1; j <= n && !ends_before(ends, i, j); ++j) {
       if (best[i] + 1 >= best[j]) continue;
       const Vec2 d = pts[j] - pts[i];
       const double dd = d.squaredNorm();
@@ -168,7 +174,7 @@ size_t min_primitive_count(std::span<const Vec2> pts, double band_mm) {
 }
 
 size_t min_g1_primitive_count(std::span<const Vec2> pts, double band_mm, double g1_angle_deg,
-                              const EndTangents& joins) {
+                              const EndTangents& joins, PrimitiveEnds ends) {
   const size_t n = pts.size() < 2 ? 0 : pts.size() - 1;  // moves
   if (n == 0) return 0;
   const double eps = band_mm, g1 = deg_to_rad(g1_angle_deg);
@@ -208,17 +214,17 @@ size_t min_g1_primitive_count(std::span<const Vec2> pts, double band_mm, double 
     }
   }
   // Whether the last primitive, arriving along tangents a .. b (rad), joins the end tangent.
-  const std::optional<double> end_rad =
-      joins.end ? std::optional<double>(std::atan2(joins.end->y(), joins.end->x())) : std::nullopt;
+  const bool end_fixed = joins.end.has_value();
+  const double end_rad = end_fixed ? std::atan2(joins.end->y(), joins.end->x()) : 0.0;
   auto joins_end = [&](double a, double b) {
-    if (!end_rad) return true;
-    const double e = near(*end_rad, (a + b) / 2);
+    if (!end_fixed) return true;
+    const double e = near(end_rad, (a + b) / 2);
     return e >= a - g1 && e <= b + g1;
   };
   // Circles turning left (k >= 0) and right (k <= 0) apart: a move inside the arc may not cut
   // more than ε into the circle, and its middle, from `a` at u, bounds k from one side only:
   // k w - 2 u·N >= -2ε turning left, <= 2ε turning right (from |u - N/k| >= 1/|k| - ε).
-  std::array<Polygon, 2> sides, ends;
+  std::array<Polygon, 2> sides, at_end;
   for (size_t count = 1; !next.empty(); ++count) {
     layer.swap(next);
     next.clear();
@@ -237,7 +243,7 @@ size_t min_g1_primitive_count(std::span<const Vec2> pts, double band_mm, double 
         if (inner) poly.keep(-2 * bt, -w, allow - 2 * bn);
       };
       auto middle = [&](size_t m) { return Vec2(0.5 * (pts[m] + pts[m + 1]) - pts[i]); };
-      for (size_t j = i + 1; j <= n; ++j) {
+      for (size_t j = i + 1; j <= n && !ends_before(ends, i, j); ++j) {
         if (j > i + 1) {  // vertex j - 1 is now between the ends, and the move before it
           const Vec2 u = pts[j - 1] - pts[i];
           const double bn = u.dot(N0), bt = u.dot(T0), ul = u.norm();
@@ -266,7 +272,7 @@ size_t min_g1_primitive_count(std::span<const Vec2> pts, double band_mm, double 
         const double dn = d.dot(N0), dt = d.dot(T0), allow = 2 * std::sqrt(dd) * bend + slack;
         Range off{kPi, -kPi};
         for (int side = 0; side < 2; ++side) {
-          Polygon& end = ends[side];
+          Polygon& end = at_end[side];
           end = sides[side];
           end.keep(2 * dt, dd, allow + 2 * dn);
           end.keep(-2 * dt, -dd, allow - 2 * dn);

@@ -6,6 +6,7 @@
 // primitives are all of this kind (and held to more: the moves between vertices, the joints'
 // tangents, the options' limits), so no fit of the same polyline in the same band has fewer.
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <span>
 
@@ -13,11 +14,18 @@
 
 namespace arcpress {
 
+/// Vertices where every fit ends a primitive, whatever its shape: where the program between
+/// two moves must stay as written (a feed change, a comment between them), or where
+/// extrusion or an extra axis starts or stops (one block moves them linearly along it).
+/// Per vertex of the polyline, nonzero: a primitive ends there; empty: none.
+using PrimitiveEnds = std::span<const uint8_t>;
+
 /// The fewest primitives as above over `pts` (the polyline's vertices in its plane, mm),
-/// each vertex within `band_mm` (mm) of the circle or line of the primitive spanning it.
-/// Exact (dynamic programming over every pair of vertices): O(n²) tests, most of them ended
-/// by the vertex that ended the test before, so meant for curves of thousands of points.
-size_t min_primitive_count(std::span<const Vec2> pts, double band_mm);
+/// each vertex within `band_mm` (mm) of the circle or line of the primitive spanning it, and
+/// none spanning a vertex of `ends`. Exact (dynamic programming over every pair of
+/// vertices): O(n²) tests, most of them ended by the vertex that ended the test before, so
+/// meant for curves of thousands of points.
+size_t min_primitive_count(std::span<const Vec2> pts, double band_mm, PrimitiveEnds ends = {});
 
 /// Tangents a chain of primitives keeps at its ends, where it joins a move that is not
 /// fitted (an input arc, a lone line).
@@ -34,7 +42,9 @@ struct EndTangents {
 /// curvatures that keep the vertices in the band are bounded by half-planes over a tangent
 /// range of a quarter degree (the circle's bend over it allowed for), so a range is kept
 /// whenever some tangent in it could be, and the count is still a lower bound.
+/// A primitive ends at each vertex of `ends`, and the next one leaves within the G1 angle
+/// of its end tangent.
 size_t min_g1_primitive_count(std::span<const Vec2> pts, double band_mm, double g1_angle_deg,
-                              const EndTangents& joins = {});
+                              const EndTangents& joins = {}, PrimitiveEnds ends = {});
 
 }  // namespace arcpress
