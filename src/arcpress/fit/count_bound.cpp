@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "arcpress/fit/count_bound.hpp"
 
+#include "arcpress/fit/run_fitter.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -311,6 +313,12 @@ size_t min_g1_primitive_count(std::span<const Vec2> pts, double band_mm, double 
     touched.clear();
   }
   return 0;
+}
+
+size_t min_g1_primitive_count_as_fitted(std::span<const Vec2> pts, double band_mm, double g1_angle_deg,
+                                        const EndTangents& joins, PrimitiveEnds ends) {
+  return min_g1_primitive_count(pts, band_mm * (1 - fit_detail::kRoundingReserve), g1_angle_deg * fit_detail::kJointShare,
+                                joins, ends);
 }
 
 }  // namespace arcpress

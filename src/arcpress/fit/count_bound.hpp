@@ -47,4 +47,12 @@ struct EndTangents {
 size_t min_g1_primitive_count(std::span<const Vec2> pts, double band_mm, double g1_angle_deg,
                               const EndTangents& joins = {}, PrimitiveEnds ends = {});
 
+/// min_g1_primitive_count() for the band and the G1 angle the fitter works to: it keeps a
+/// share of each back for rounding the printed arc centres (of the band, kRoundingReserve;
+/// of the angle at a joint, all but kJointShare), so no fit of the same polyline without a
+/// forced kink has fewer primitives. Where this lies above the full bound, the difference
+/// is what the reserves cost, not what the search misses.
+size_t min_g1_primitive_count_as_fitted(std::span<const Vec2> pts, double band_mm, double g1_angle_deg,
+                                        const EndTangents& joins = {}, PrimitiveEnds ends = {});
+
 }  // namespace arcpress
