@@ -33,7 +33,7 @@ std::vector<Chosen> RunFitter::beam_chain(uint32_t a, uint32_t limit, GreedyWalk
   std::vector<std::pair<uint64_t, uint64_t>>& keys = s_.keys;
   std::vector<uint64_t>& packed_keys = s_.packed_keys;
   std::vector<std::pair<uint32_t, Vec2>>& expanded = s_.expanded;
-  std::vector<uint32_t>& order = s_.order;
+  std::vector<uint64_t>& order = s_.order;
   std::vector<int8_t>& straight = s_.straight;  // per vertex from `a`: straight_ahead(), -1 not yet known
   straight.assign(limit - a + 1, -1);
   int furthest = -1;
@@ -129,12 +129,13 @@ std::vector<Chosen> RunFitter::beam_chain(uint32_t a, uint32_t limit, GreedyWalk
     };
     if (guide >= 0)
       if (auto done = finish(guide)) return *done;
+    // Furthest end first, ties in the order made: one integer each, sorted in place.
     order.clear();
-    for (uint32_t k = 0; k < made.size(); ++k) order.push_back(k);
-    std::stable_sort(order.begin(), order.end(),
-                     [&](uint32_t x, uint32_t y) { return made[x].c.prim.end_vertex > made[y].c.prim.end_vertex; });
-    for (uint32_t k : order) {
-      Made& m = made[k];
+    for (uint32_t k = 0; k < made.size(); ++k)
+      order.push_back(uint64_t(UINT32_MAX - made[k].c.prim.end_vertex) << 32 | k);
+    std::sort(order.begin(), order.end());
+    for (uint64_t key : order) {
+      Made& m = made[uint32_t(key)];
       if (!finish_from(m.c.prim.end_vertex, m.c.end_tangent, limit)) continue;
       auto c = made_from(nodes[m.from], m.T, m.cand);
       if (!c) {

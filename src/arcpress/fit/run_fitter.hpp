@@ -474,7 +474,7 @@ class RunFitter : private FitAngles {
     std::vector<std::pair<uint64_t, uint64_t>> keys;  // beam_chain()
     std::vector<uint64_t> packed_keys;                // beam_chain()
     std::vector<std::pair<uint32_t, Vec2>> expanded;  // beam_chain()
-    std::vector<uint32_t> order;                      // beam_chain()
+    std::vector<uint64_t> order;                      // beam_chain()
     std::vector<int8_t> straight;                     // beam_chain()
     // The greedy steps' latest scans (GuideScan), in turn, and whether best_near() is taking one.
     std::array<GuideScan, 9> guide_scans;
