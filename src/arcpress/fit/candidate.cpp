@@ -76,10 +76,13 @@ std::optional<Chosen> RunFitter::make_arc(uint32_t a, uint32_t e, const Vec2& ce
     executed_chord_ends(o_.executed, Vec2(pts.front().x(), pts.front().y()), g.center,
                         Vec2(pts.back().x(), pts.back().y()), g.sweep, chords, ends);
     if (o_.executed.rule != ArcSegmentation::Rule::Klipper) {
+      // The circle's own points at the chord ends, turned one chord at a time from the start.
       double drift = 0;
+      const Turn step(g.sweep / chords);
+      Vec2 radius = Vec2(pts.front().x(), pts.front().y()) - g.center;
       for (uint32_t k = 1; k < chords; ++k) {
-        const Vec3 ideal = g.point_at(double(k) / chords);
-        drift = std::max(drift, (ends[k - 1] - Vec2(ideal.x(), ideal.y())).norm());
+        radius = step(radius);
+        drift = std::max(drift, (ends[k - 1] - (g.center + radius)).norm());
       }
       sagitta += drift;
     }
