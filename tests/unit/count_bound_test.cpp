@@ -232,6 +232,7 @@ TEST_CASE("no fit has fewer primitives than the bound in the same band, whatever
         CHECK(bound >= 2);
         CHECK(g1_bound >= bound);
         CHECK(count >= bound);
+        CHECK(count >= min_primitive_count_as_fitted(printed(raw), tol));
         CHECK(fitted_bound >= g1_bound);
         // A fit without forced kinks is a tangent chain, joined within the share of the G1
         // angle the fitter turns by; the seed methods' may break anywhere.

@@ -321,4 +321,8 @@ size_t min_g1_primitive_count_as_fitted(std::span<const Vec2> pts, double band_m
                                 joins, ends);
 }
 
+size_t min_primitive_count_as_fitted(std::span<const Vec2> pts, double band_mm, PrimitiveEnds ends) {
+  return min_primitive_count(pts, band_mm * (1 - fit_detail::kRoundingReserve), ends);
+}
+
 }  // namespace arcpress

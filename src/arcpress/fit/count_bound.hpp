@@ -55,4 +55,8 @@ size_t min_g1_primitive_count(std::span<const Vec2> pts, double band_mm, double 
 size_t min_g1_primitive_count_as_fitted(std::span<const Vec2> pts, double band_mm, double g1_angle_deg,
                                         const EndTangents& joins = {}, PrimitiveEnds ends = {});
 
+/// min_primitive_count() in the band the fitter works to: no fit of the same polyline has
+/// fewer primitives, kinked or not.
+size_t min_primitive_count_as_fitted(std::span<const Vec2> pts, double band_mm, PrimitiveEnds ends = {});
+
 }  // namespace arcpress
