@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <string_view>
 
 namespace arcpress {
@@ -43,11 +44,14 @@ std::optional<ForeignContent> foreign_content(const Program& program, bool whole
     while (!text.empty() && (text.back() == '\0' || text.back() == '\x1a')) text.remove_suffix(1);
 
   // Control bytes outside comments, counted line by line (a '(' comment ends at its line).
+  // Most programs hold none anywhere, which one plain pass over the bytes shows first.
+  const bool any_control =
+      std::any_of(text.begin(), text.end(), [](char ch) { return is_control(static_cast<unsigned char>(ch)); });
   size_t outside = 0, control = 0;
   SourceLoc first_control;
   uint32_t line = 1, col = 0;
   bool in_paren = false, in_semicolon = false;
-  for (const char ch : text) {
+  for (const char ch : any_control ? text : std::string_view()) {
     const auto c = static_cast<unsigned char>(ch);
     ++col;
     if (c == '\n') {
