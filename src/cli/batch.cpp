@@ -192,9 +192,9 @@ int run_batch(const CompressArgs& a, const BatchArgs& b) {
       one.opt.threads = 1;  // N programs at once take N threads, and N times one program's memory
       try {
         if (!a.in_place) {
-          std::error_code ec;
-          fs::create_directories(utf8_path(j.output).parent_path(), ec);
-          if (ec) throw Error(kExitIo, fmt::format("cannot make the folder for '{}': {}", j.output, ec.message()));
+          std::error_code made;
+          fs::create_directories(utf8_path(j.output).parent_path(), made);
+          if (made) throw Error(kExitIo, fmt::format("cannot make the folder for '{}': {}", j.output, made.message()));
         }
         r.exit_code = compress_file(one, r, &read);
       } catch (const Error& e) {

@@ -112,6 +112,11 @@ FeedPath feed_path(const Interpretation& in, double chord_mm, double tolerance_m
       p.section_length_mm[sec] += (xyz(m.to) - prev).norm();
       continue;
     }
+    if (!segments)  // a flat arc: its length alone, without its pieces
+      if (const auto len = flat_arc_length_mm(in, i)) {
+        p.section_length_mm[sec] += *len;
+        continue;
+      }
     // A section's first segment starts a polyline of its own.
     if (segments && (p.section_of.empty() || p.section_of.back() != sec)) p.points.push_back(prev);
     pts.clear();

@@ -72,15 +72,36 @@ Vec3 on_circle(const FlatArc& arc, const Vec2& v) {
 
 }  // namespace
 
-std::optional<FlatArc> arc_pieces(const Interpretation& in, size_t i, double max_sagitta_mm, double max_sweep_rad,
-                                  double max_piece_mm, size_t max_pieces, std::vector<Vec3>& out, bool& straight_end) {
+namespace {
+
+/// Move i as the flat arc arc_pieces() cuts, when it is one.
+std::optional<ArcGeom> flat_arc_of(const Interpretation& in, size_t i) {
   const Move& m = in.moves[i];
-  straight_end = false;
   if (!is_arc(m.kind) || m.turns > 1) return std::nullopt;
   const ArcGeom g = arc_of_move(in, i);
   const double r = g.radius_mm;
   if (g.h1 != g.h0 || !(r > kLengthEpsMm) || !std::isfinite(r) || flat_arc_sagitta_mm(g) <= kFlatArcMm)
     return std::nullopt;
+  return g;
+}
+
+}  // namespace
+
+std::optional<double> flat_arc_length_mm(const Interpretation& in, size_t i) {
+  const auto g = flat_arc_of(in, i);
+  if (!g) return std::nullopt;
+  const Vec3 end = from_plane(g->point_at(1), in.moves[i].plane);
+  return g->radius_mm * std::abs(g->sweep) + (in.moves[i].xyz() - end).norm();
+}
+
+std::optional<FlatArc> arc_pieces(const Interpretation& in, size_t i, double max_sagitta_mm, double max_sweep_rad,
+                                  double max_piece_mm, size_t max_pieces, std::vector<Vec3>& out, bool& straight_end) {
+  const Move& m = in.moves[i];
+  straight_end = false;
+  const auto flat = flat_arc_of(in, i);
+  if (!flat) return std::nullopt;
+  const ArcGeom& g = *flat;
+  const double r = g.radius_mm;
   const double fine = std::min(2 * std::acos(std::clamp(1 - max_sagitta_mm / r, -1.0, 1.0)),
                                2 * std::asin(std::min(1.0, max_piece_mm / (2 * r))));
   const double by_sweep = std::ceil(std::abs(g.sweep) / max_sweep_rad);

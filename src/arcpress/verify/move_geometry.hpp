@@ -52,6 +52,11 @@ struct FlatArc {
 std::optional<FlatArc> arc_pieces(const Interpretation& in, size_t i, double max_sagitta_mm, double max_sweep_rad,
                                   double max_piece_mm, size_t max_pieces, std::vector<Vec3>& out, bool& straight_end);
 
+/// The length of move i (mm) along the path arc_pieces() cuts it into, when it is a flat arc:
+/// along the circle, and the last straight step where rounding left the end point off it.
+/// Nothing for other moves. (The same sum as the pieces', without cutting them.)
+std::optional<double> flat_arc_length_mm(const Interpretation& in, size_t i);
+
 /// The point nearest `p` on the piece of `arc` from `a` to `b` (both on the circle, the
 /// piece less than half a turn, in the arc's direction): exact.
 Vec3 nearest_on_piece(const FlatArc& arc, const Vec3& a, const Vec3& b, const Vec3& p);
