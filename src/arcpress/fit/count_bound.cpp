@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "arcpress/fit/count_bound.hpp"
 
-#include "arcpress/fit/run_fitter.hpp"
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
 #include <vector>
+
+#include "arcpress/fit/run_fitter.hpp"  // the shares of the band and the angle the fitter keeps back
 
 namespace arcpress {
 namespace {

@@ -44,7 +44,8 @@ std::optional<ForeignContent> foreign_content(const Program& program, bool whole
     while (!text.empty() && (text.back() == '\0' || text.back() == '\x1a')) text.remove_suffix(1);
 
   // Control bytes outside comments, counted line by line (a '(' comment ends at its line).
-  // Most programs hold none anywhere, which one plain pass over the bytes shows first.
+  // Most programs hold none anywhere, which one plain pass over the bytes shows first: then
+  // the count below reads nothing.
   const bool any_control =
       std::any_of(text.begin(), text.end(), [](char ch) { return is_control(static_cast<unsigned char>(ch)); });
   size_t outside = 0, control = 0;

@@ -70,10 +70,6 @@ Vec3 on_circle(const FlatArc& arc, const Vec2& v) {
                     arc.center[axes_of(arc.plane).normal], arc.plane);
 }
 
-}  // namespace
-
-namespace {
-
 /// Move i as the flat arc arc_pieces() cuts, when it is one.
 std::optional<ArcGeom> flat_arc_of(const Interpretation& in, size_t i) {
   const Move& m = in.moves[i];
