@@ -5,8 +5,13 @@
 // console's default at the same band (-r twice the tolerance: its resolution is the band's
 // width). The two take turns, PAIRS pairs per file and band, and the median of each is
 // printed: CPU seconds (user and system, all threads), wall seconds, MB/s, the median of
-// the pairs' ratios arcpress / ArcWelder, and the motion blocks each wrote (G0-G3 blocks
-// and blocks of bare axis words, one counter for both tools' files).
+// the pairs' ratios arcpress / ArcWelder, the motion blocks each wrote (G0-G3 blocks and
+// blocks of bare axis words, one counter for both tools' files), and how far each output's
+// path lies from the input's, as `arcpress diff` measures both (both ways, on the
+// programmed path: arcs as circles).
+// ArcWelder rewrites only extruding moves: on a CNC program (corpus/cnc), whose feed moves
+// carry no E, its default writes every move back. Such a program also gets a row of
+// ArcWelder with --allow-travel-arcs (-y), its way to fit moves that do not extrude.
 //   bench_vs_arcwelder ARCWELDER [PAIRS]   ARCWELDER: the path of ArcWelder's console program
 //   bench_vs_arcwelder ARCWELDER --instructions
 // With --instructions, each runs once under valgrind's callgrind (on PATH), which counts the
@@ -78,6 +83,18 @@ double instructions(const std::vector<std::string>& words, const fs::path& log) 
   return r.exit_code == 0 ? n : 0;
 }
 
+/// The largest distance between the paths of programs `in` and `out` that `arcpress diff`
+/// measures at `band` (mm), or a negative number where it printed none; `report` holds
+/// what it printed.
+double measured_deviation_mm(const fs::path& in, const fs::path& out, double band, const fs::path& report) {
+  run_child({ARCPRESS_BINARY, "diff", in.string(), out.string(), "--tolerance", fmt::format("{}", band)},
+            report.string());
+  std::ifstream text(report);
+  for (std::string line; std::getline(text, line);)
+    if (const auto at = line.find("max deviation "); at != std::string::npos) return std::atof(line.c_str() + at + 14);
+  return -1;
+}
+
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v.empty() ? 0.0 : v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
@@ -100,9 +117,11 @@ int main(int argc, char** argv) {
   const fs::path dir = fs::temp_directory_path() / fmt::format("arcpress-vs-arcwelder-{}", ::getpid());
   fs::create_directories(dir);
   const fs::path out_a = dir / "arcpress.gcode", out_b = dir / "arcwelder.gcode";
-  // Every corpus file of at least 100 KB at both bands, with the two commands that run it.
+  // Every corpus file of at least 100 KB at both bands, with the two commands that run it
+  // and the name of its row (a CNC program's second row says ArcWelder's option).
   struct Case {
     fs::path file;
+    std::string name;
     double mb, band;
     std::vector<std::string> a, b;
   };
@@ -110,10 +129,18 @@ int main(int argc, char** argv) {
   for (const fs::path& f : corpus_files()) {
     const double mb = double(fs::file_size(f)) / 1e6;
     if (mb < 0.1) continue;
-    for (const double band : {0.025, 0.01})
-      cases.push_back({f, mb, band,
-                       {ARCPRESS_BINARY, f.string(), "-o", out_a.string(), "--tolerance", fmt::format("{}", band), "-q"},
-                       {arcwelder, f.string(), out_b.string(), fmt::format("-r={}", 2 * band)}});
+    const bool cnc = f.parent_path().filename() == "cnc";
+    for (const double band : {0.025, 0.01}) {
+      const std::vector<std::string> a = {ARCPRESS_BINARY, f.string(), "-o", out_a.string(),
+                                          "--tolerance", fmt::format("{}", band), "-q"};
+      const std::vector<std::string> b = {arcwelder, f.string(), out_b.string(), fmt::format("-r={}", 2 * band)};
+      cases.push_back({f, f.filename().string(), mb, band, a, b});
+      if (cnc) {
+        std::vector<std::string> travel = b;
+        travel.push_back("-y");
+        cases.push_back({f, f.filename().string() + ", ArcWelder -y", mb, band, a, travel});
+      }
+    }
   }
   bool failed = false;
   if (count) {
@@ -122,20 +149,18 @@ int main(int argc, char** argv) {
     for (const Case& c : cases) {
       const double a = instructions(c.a, dir / "a.log"), b = instructions(c.b, dir / "b.log");
       if (a == 0 || b == 0) {
-        fmt::print(stderr, "bench_vs_arcwelder: {} at {} mm: no count (is valgrind on PATH?)\n",
-                   c.file.filename().string(), c.band);
+        fmt::print(stderr, "bench_vs_arcwelder: {} at {} mm: no count (is valgrind on PATH?)\n", c.name, c.band);
         failed = true;
         continue;
       }
-      fmt::print("| {} | {:.2f} | {} | {:.3f} G | {:.3f} G | {:.2f} |\n", c.file.filename().string(), c.mb, c.band,
-                 a / 1e9, b / 1e9, a / b);
+      fmt::print("| {} | {:.2f} | {} | {:.3f} G | {:.3f} G | {:.2f} |\n", c.name, c.mb, c.band, a / 1e9, b / 1e9, a / b);
     }
     fs::remove_all(dir);
     return failed ? 1 : 0;
   }
   fmt::print("| file | MB | band mm | arcpress CPU s | ArcWelder CPU s | CPU A/B | wall A/B | arcpress MB/s | "
-             "ArcWelder MB/s | arcpress blocks | ArcWelder blocks |\n");
-  fmt::print("|---|---|---|---|---|---|---|---|---|---|---|\n");
+             "ArcWelder MB/s | arcpress blocks | ArcWelder blocks | arcpress deviation mm | ArcWelder deviation mm |\n");
+  fmt::print("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Case& c : cases) {
     const fs::path& f = c.file;
     const double band = c.band, mb = c.mb;
@@ -144,8 +169,8 @@ int main(int argc, char** argv) {
       const ChildRun a = run_child(c.a);
       const ChildRun b = run_child(c.b);
       if (a.exit_code != 0 || b.exit_code != 0) {
-        fmt::print(stderr, "bench_vs_arcwelder: {} at {} mm: arcpress exit {}, ArcWelder exit {}\n", f.filename().string(),
-                   band, a.exit_code, b.exit_code);
+        fmt::print(stderr, "bench_vs_arcwelder: {} at {} mm: arcpress exit {}, ArcWelder exit {}\n", c.name, band,
+                   a.exit_code, b.exit_code);
         failed = true;
       }
       // The two of a pair run back to back, under the same load: their ratio drifts less
@@ -158,9 +183,15 @@ int main(int argc, char** argv) {
       wall_b.push_back(b.seconds);
     }
     const double ca = median(cpu_a), cb = median(cpu_b), wa = median(wall_a), wb = median(wall_b);
-    fmt::print("| {} | {:.2f} | {} | {:.3f} | {:.3f} | {:.2f} | {:.2f} | {:.1f} | {:.1f} | {} | {} |\n",
-               f.filename().string(), mb, band, ca, cb, median(cpu_ratio), median(wall_ratio), mb / wa,
-               mb / wb, motion_blocks(out_a), motion_blocks(out_b));
+    // Each output against the input, by the same measure; above the band in bold.
+    auto deviation = [&](const fs::path& out) {
+      const double d = measured_deviation_mm(f, out, band, dir / "diff.txt");
+      if (d < 0) return std::string("-");
+      return d > band ? fmt::format("**{:.4f}**", d) : fmt::format("{:.4f}", d);
+    };
+    fmt::print("| {} | {:.2f} | {} | {:.3f} | {:.3f} | {:.2f} | {:.2f} | {:.1f} | {:.1f} | {} | {} | {} | {} |\n", c.name,
+               mb, band, ca, cb, median(cpu_ratio), median(wall_ratio), mb / wa, mb / wb, motion_blocks(out_a),
+               motion_blocks(out_b), deviation(out_a), deviation(out_b));
   }
   fs::remove_all(dir);
   return failed ? 1 : 0;

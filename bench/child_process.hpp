@@ -26,14 +26,14 @@ struct ChildRun {
   long minor_faults = 0;    ///< pages the kernel mapped in for it (no disk read)
 };
 
-/// Runs `words` (the program first) and waits for it.
-inline ChildRun run_child(std::vector<std::string> words) {
+/// Runs `words` (the program first) and waits for it; what it prints goes to `stdout_path`.
+inline ChildRun run_child(std::vector<std::string> words, const std::string& stdout_path = "/dev/null") {
   std::vector<char*> argv;
   for (auto& w : words) argv.push_back(w.data());
   argv.push_back(nullptr);
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, stdout_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
   ChildRun r;
   pid_t pid = 0;
