@@ -14,10 +14,18 @@
 // ArcWelder with --allow-travel-arcs (-y), its way to fit moves that do not extrude.
 //   bench_vs_arcwelder ARCWELDER [PAIRS]   ARCWELDER: the path of ArcWelder's console program
 //   bench_vs_arcwelder ARCWELDER --instructions
+//   bench_vs_arcwelder ARCWELDER --printers
 // With --instructions, each runs once under valgrind's callgrind (on PATH), which counts the
 // instructions every thread executes: a figure that a busy machine does not move, where
 // times move by tens of per cent from run to run. It counts work, not time: a division or
 // a cache miss costs more than an addition.
+// With --printers, the band each tool holds on the printer files (all sizes, both bands, read
+// as Marlin reads them): ArcWelder with the options of bench_printers' reference figures
+// (-r twice the tolerance, -y), its blocks and the largest distance of its path from the
+// input's on the programmed path and on the chords Marlin cuts its arcs into (arcpress diff,
+// and with --executed); then the largest resolution, in twentieths of -r from -r down to
+// half of it, at which its executed path keeps the band, and its blocks there; beside
+// arcpress's blocks and executed distance at its default with --dialect marlin.
 // ArcWelder is no Debian package: build it from its source (FormerLurker/ArcWelderLib,
 // target ArcWelderConsole) in a folder of your own.
 #include <fmt/format.h>
@@ -84,11 +92,14 @@ double instructions(const std::vector<std::string>& words, const fs::path& log) 
 }
 
 /// The largest distance between the paths of programs `in` and `out` that `arcpress diff`
-/// measures at `band` (mm), or a negative number where it printed none; `report` holds
-/// what it printed.
-double measured_deviation_mm(const fs::path& in, const fs::path& out, double band, const fs::path& report) {
-  run_child({ARCPRESS_BINARY, "diff", in.string(), out.string(), "--tolerance", fmt::format("{}", band)},
-            report.string());
+/// measures at `band` (mm), with `options` (a dialect, --executed), or a negative number
+/// where it printed none; `report` holds what it printed.
+double measured_deviation_mm(const fs::path& in, const fs::path& out, double band, const fs::path& report,
+                             const std::vector<std::string>& options = {}) {
+  std::vector<std::string> words = {ARCPRESS_BINARY, "diff", in.string(), out.string(), "--tolerance",
+                                    fmt::format("{}", band)};
+  words.insert(words.end(), options.begin(), options.end());
+  run_child(words, report.string());
   std::ifstream text(report);
   for (std::string line; std::getline(text, line);)
     if (const auto at = line.find("max deviation "); at != std::string::npos) return std::atof(line.c_str() + at + 14);
@@ -104,12 +115,13 @@ double median(std::vector<double> v) {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    fmt::print(stderr, "usage: bench_vs_arcwelder ARCWELDER [PAIRS | --instructions]\n");
+    fmt::print(stderr, "usage: bench_vs_arcwelder ARCWELDER [PAIRS | --instructions | --printers]\n");
     return 2;
   }
   const std::string arcwelder = argv[1];
   const bool count = argc > 2 && std::string(argv[2]) == "--instructions";
-  const int pairs = argc > 2 && !count ? std::max(1, std::atoi(argv[2])) : 3;
+  const bool printers = argc > 2 && std::string(argv[2]) == "--printers";
+  const int pairs = argc > 2 && !count && !printers ? std::max(1, std::atoi(argv[2])) : 3;
   if (!fs::exists(arcwelder)) {
     fmt::print(stderr, "bench_vs_arcwelder: no ArcWelder at '{}'\n", arcwelder);
     return 2;
@@ -143,6 +155,54 @@ int main(int argc, char** argv) {
     }
   }
   bool failed = false;
+  if (printers) {
+    fmt::print("| file | band mm | ArcWelder blocks | ArcWelder dev. program mm | ArcWelder dev. executed mm | "
+               "largest -r holding the band executed | ArcWelder blocks there | arcpress blocks | arcpress dev. "
+               "executed mm |\n");
+    fmt::print("|---|---|---|---|---|---|---|---|---|\n");
+    const std::vector<std::string> marlin = {"--dialect", "marlin"}, executed = {"--dialect", "marlin", "--executed"};
+    const fs::path report = dir / "diff.txt";
+    for (const fs::path& f : corpus_files()) {
+      if (f.parent_path().filename() != "printer") continue;
+      for (const double band : {0.025, 0.01}) {
+        auto arcwelder_at = [&](double r) {
+          return run_child({arcwelder, f.string(), out_b.string(), fmt::format("-r={}", r), "-y"}).exit_code == 0;
+        };
+        // Above the band in bold.
+        auto shown = [&](double d) {
+          if (d < 0) return std::string("-");
+          return d > band ? fmt::format("**{:.4f}**", d) : fmt::format("{:.4f}", d);
+        };
+        const bool ran = run_child({ARCPRESS_BINARY, f.string(), "-o", out_a.string(), "--tolerance",
+                                    fmt::format("{}", band), "-q", "--dialect", "marlin"})
+                             .exit_code == 0;
+        if (!ran || !arcwelder_at(2 * band)) {
+          fmt::print(stderr, "bench_vs_arcwelder: {} at {} mm: a run failed\n", f.filename().string(), band);
+          failed = true;
+          continue;
+        }
+        const size_t blocks_b = motion_blocks(out_b);
+        const double program_b = measured_deviation_mm(f, out_b, band, report, marlin);
+        const double executed_b = measured_deviation_mm(f, out_b, band, report, executed);
+        std::string held = "none", held_blocks = "-";
+        for (int k = 20; k >= 10; --k) {
+          const double r = 2 * band * k / 20;
+          if (k < 20 && !arcwelder_at(r)) break;
+          const double d = k == 20 ? executed_b : measured_deviation_mm(f, out_b, band, report, executed);
+          if (d >= 0 && d <= band) {
+            held = fmt::format("{:.4g}", r);
+            held_blocks = std::to_string(motion_blocks(out_b));
+            break;
+          }
+        }
+        fmt::print("| {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", f.filename().string(), band, blocks_b,
+                   shown(program_b), shown(executed_b), held, held_blocks, motion_blocks(out_a),
+                   shown(measured_deviation_mm(f, out_a, band, report, executed)));
+      }
+    }
+    fs::remove_all(dir);
+    return failed ? 1 : 0;
+  }
   if (count) {
     fmt::print("| file | MB | band mm | arcpress instructions | ArcWelder instructions | A/B |\n");
     fmt::print("|---|---|---|---|---|---|\n");

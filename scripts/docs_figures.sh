@@ -11,9 +11,10 @@
 # docs/printers.md (bench_printers, about a minute); band-side in docs/fitting.md (the corpus
 # with each one-sided band, tests/integration/band_side_corpus.sh); vs-arcwelder and
 # vs-arcwelder-instructions in docs/benchmarks.md (bench_vs_arcwelder, and with
-# --instructions under valgrind, a few minutes; with ARCWELDER set to the path of
-# ArcWelder's console program, built from its source in a folder of your own; not among the
-# defaults).
+# --instructions under valgrind, a few minutes), and printers-vs-arcwelder in
+# docs/printers.md (bench_vs_arcwelder --printers, about a minute): with ARCWELDER set to
+# the path of ArcWelder's console program, built from its source in a folder of your own;
+# not among the defaults.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 [ -x build/bench/bench_throughput ] || { echo "docs_figures: build with 'bash scripts/build.sh --test' first" >&2; exit 2; }
@@ -60,6 +61,9 @@ for name in "${wanted[@]}"; do
       [ -x "${ARCWELDER:-}" ] || { echo "docs_figures: set ARCWELDER to ArcWelder's console program" >&2; exit 2; }
       command -v valgrind >/dev/null || { echo "docs_figures: vs-arcwelder-instructions needs valgrind" >&2; exit 2; }
       ./build/bench/bench_vs_arcwelder "$ARCWELDER" --instructions | replace docs/benchmarks.md vs-arcwelder-instructions ;;
-    *) echo "docs_figures: no table '$name' (corpus, throughput, stages, memory, curves, diff, pathological, printers, printer-causes, band-side, vs-arcwelder, vs-arcwelder-instructions)" >&2; exit 2 ;;
+    printers-vs-arcwelder)
+      [ -x "${ARCWELDER:-}" ] || { echo "docs_figures: set ARCWELDER to ArcWelder's console program" >&2; exit 2; }
+      ./build/bench/bench_vs_arcwelder "$ARCWELDER" --printers | replace docs/printers.md printers-vs-arcwelder ;;
+    *) echo "docs_figures: no table '$name' (corpus, throughput, stages, memory, curves, diff, pathological, printers, printer-causes, band-side, vs-arcwelder, vs-arcwelder-instructions, printers-vs-arcwelder)" >&2; exit 2 ;;
   esac
 done
