@@ -106,6 +106,12 @@ double measured_deviation_mm(const fs::path& in, const fs::path& out, double ban
   return -1;
 }
 
+/// A distance for the tables: "-" where none was measured, in bold above the band.
+std::string deviation_cell(double d_mm, double band) {
+  if (d_mm < 0) return "-";
+  return d_mm > band ? fmt::format("**{:.4f}**", d_mm) : fmt::format("{:.4f}", d_mm);
+}
+
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v.empty() ? 0.0 : v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
@@ -168,11 +174,7 @@ int main(int argc, char** argv) {
         auto arcwelder_at = [&](double r) {
           return run_child({arcwelder, f.string(), out_b.string(), fmt::format("-r={}", r), "-y"}).exit_code == 0;
         };
-        // Above the band in bold.
-        auto shown = [&](double d) {
-          if (d < 0) return std::string("-");
-          return d > band ? fmt::format("**{:.4f}**", d) : fmt::format("{:.4f}", d);
-        };
+        auto shown = [&](double d) { return deviation_cell(d, band); };
         const bool ran = run_child({ARCPRESS_BINARY, f.string(), "-o", out_a.string(), "--tolerance",
                                     fmt::format("{}", band), "-q", "--dialect", "marlin"})
                              .exit_code == 0;
@@ -243,11 +245,9 @@ int main(int argc, char** argv) {
       wall_b.push_back(b.seconds);
     }
     const double ca = median(cpu_a), cb = median(cpu_b), wa = median(wall_a), wb = median(wall_b);
-    // Each output against the input, by the same measure; above the band in bold.
+    // Each output against the input, by the same measure.
     auto deviation = [&](const fs::path& out) {
-      const double d = measured_deviation_mm(f, out, band, dir / "diff.txt");
-      if (d < 0) return std::string("-");
-      return d > band ? fmt::format("**{:.4f}**", d) : fmt::format("{:.4f}", d);
+      return deviation_cell(measured_deviation_mm(f, out, band, dir / "diff.txt"), band);
     };
     fmt::print("| {} | {:.2f} | {} | {:.3f} | {:.3f} | {:.2f} | {:.2f} | {:.1f} | {:.1f} | {} | {} | {} | {} |\n", c.name,
                mb, band, ca, cb, median(cpu_ratio), median(wall_ratio), mb / wa, mb / wb, motion_blocks(out_a),
