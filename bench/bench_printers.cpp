@@ -154,6 +154,8 @@ size_t tangent_bound(const std::string& text, const Dialect& d, double band_mm, 
       }
       return std::nullopt;
     };
+    const auto g1_count = as_fitted ? min_g1_primitive_count_as_fitted : min_g1_primitive_count;
+    const auto c0_count = as_fitted ? min_primitive_count_as_fitted : min_primitive_count;
     std::vector<Vec2> piece;
     std::vector<uint8_t> piece_ends;  // must_end of the piece's vertices
     EndTangents ends;
@@ -164,13 +166,8 @@ size_t tangent_bound(const std::string& text, const Dialect& d, double band_mm, 
     auto flush = [&](uint32_t end_vertex) {
       if (piece.size() >= 2) {
         if (end_vertex < n && kept[end_vertex] && !split[end_vertex]) ends.end = kept_tangent(end_vertex, +1);
-        if (as_fitted) {
-          const size_t g = min_g1_primitive_count_as_fitted(piece, band_mm, 0.5, ends, piece_ends);
-          bound += g ? g : min_primitive_count_as_fitted(piece, band_mm, piece_ends);
-        } else {
-          const size_t g = min_g1_primitive_count(piece, band_mm, 0.5, ends, piece_ends);
-          bound += g ? g : min_primitive_count(piece, band_mm, piece_ends);
-        }
+        const size_t g = g1_count(piece, band_mm, 0.5, ends, piece_ends);
+        bound += g ? g : c0_count(piece, band_mm, piece_ends);
       }
       piece.clear();
       ends = {};
