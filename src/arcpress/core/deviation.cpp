@@ -441,49 +441,36 @@ std::optional<double> chords_deviation_bound(std::span<const Vec3> pts, const Ar
   // share of the whole turn's: ordered as the angles are, with no trigonometry per point.
   const Vec2 s_hat(std::cos(arc.start_angle), std::sin(arc.start_angle));
   const double whole = pseudo_angle_of(turn);
-  // The ray from the centre at a cut, with its place.
-  struct Cut {
-    double at;
-    Vec2 ray;
-  };
   // (Kept from call to call on the thread: the fitter asks this of many candidates.)
   thread_local std::vector<double> t, u;
-  thread_local std::vector<Cut> vertex_cuts, end_cuts, cuts;
   // Each vertex's and each chord end's place, in order along the turn; the first and the
   // last at the turn's ends.
-  auto places = [&](size_t n, auto point, std::vector<double>& at, std::vector<Cut>& cut) {
+  auto places = [&](size_t n, auto point, std::vector<double>& at) {
     at.assign(n + 1, 0.0);
     at[n] = 1;
-    cut.clear();
-    cut.push_back({0.0, s_hat});
     for (size_t j = 1; j < n; ++j) {
       const Vec2 v = point(j) - c;
-      const double len = v.norm();
-      if (len <= 0) return false;
+      if (v.x() == 0 && v.y() == 0) return false;
       at[j] = pseudo_angle(v.dot(s_hat), sign * cross2(s_hat, v)) / whole;
       if (at[j] < at[j - 1] - 1e-12 || at[j] > 1 + 1e-12) return false;
       at[j] = std::clamp(at[j], at[j - 1], 1.0);
-      cut.push_back({at[j], v / len});
     }
     return true;
   };
-  const size_t m = pts.size() - 1, segments = ends.size() + 1;
-  if (!places(m, [&](size_t j) { return Vec2(pts[j].x(), pts[j].y()); }, t, vertex_cuts) ||
-      !places(segments, [&](size_t k) { return ends[k - 1]; }, u, end_cuts))
-    return std::nullopt;
-  const double end_angle = arc.start_angle + arc.sweep;
-  vertex_cuts.push_back({1.0, Vec2(std::cos(end_angle), std::sin(end_angle))});
-  // In the plane: every vertex lies within kLengthEpsMm of the arc's height and every chord
-  // end on it, so a distance in space exceeds its plane's by at most twice that, added at the end.
   auto flat = [](const Vec3& p) { return Vec2(p.x(), p.y()); };
+  const size_t m = pts.size() - 1, segments = ends.size() + 1;
+  auto vertex = [&](size_t j) { return flat(pts[j]); };
+  // Chord end k: 0 and `segments` are the arc's ends, the polyline's.
   auto chord_end = [&](size_t k) {
     if (k == 0) return flat(pts.front());
     if (k >= segments) return flat(pts.back());
     return ends[k - 1];
   };
-  // Where ray `r` meets the segment a-b (its nearer end where it misses).
-  auto on_ray = [&](const Vec2& a, const Vec2& b, const Vec2& r) {
-    const Vec2 d = b - a, ca = c - a;
+  if (!places(m, vertex, t) || !places(segments, chord_end, u)) return std::nullopt;
+  // Where the ray from the centre through `p` meets the segment a-b (its nearer end where it
+  // misses); the ray's length does not matter.
+  auto on_ray = [&](const Vec2& a, const Vec2& b, const Vec2& p) {
+    const Vec2 d = b - a, ca = c - a, r = p - c;
     const double den = d.x() * r.y() - d.y() * r.x();
     if (std::abs(den) <= 1e-300) return a;
     const double mu = std::clamp((ca.x() * r.y() - ca.y() * r.x()) / den, 0.0, 1.0);
@@ -493,29 +480,34 @@ std::optional<double> chords_deviation_bound(std::span<const Vec3> pts, const Ar
     const Vec2 d = b - a;
     const double len2 = d.squaredNorm();
     const double mu = len2 > 0 ? std::clamp((p - a).dot(d) / len2, 0.0, 1.0) : 0.0;
-    return (p - (a + mu * d)).norm();
+    return (p - (a + mu * d)).squaredNorm();
   };
-  // The turn cut at every vertex's place and every chord end's (both already in order); in
-  // each piece, one segment of the polyline and one chord.
-  cuts.clear();
-  std::merge(vertex_cuts.begin(), vertex_cuts.end(), end_cuts.begin() + 1, end_cuts.end(), std::back_inserter(cuts),
-             [](const Cut& x, const Cut& y) { return x.at < y.at; });
-  double bound = 0;
+  // The turn cut at every vertex's place and every chord end's, walked in order: in each
+  // piece, one segment j of the polyline and one chord k. At a piece's end that is a vertex,
+  // the polyline's point is that vertex and the chord's is where the ray through it meets
+  // the chord; at a chord end, the other way round. (Squared distances until the end.)
+  // In the plane: every vertex lies within kLengthEpsMm of the arc's height and every chord
+  // end on it, so a distance in space exceeds its plane's by at most twice that, added at the end.
+  const double stop_plane = stop_above_mm - 2 * kLengthEpsMm;
+  const double stop2 = stop_plane >= 0 ? stop_plane * stop_plane : -1.0;
+  double bound2 = 0;
   size_t j = 0, k = 0;
-  for (size_t i = 0; i + 1 < cuts.size(); ++i) {
-    const double lo = cuts[i].at, hi = cuts[i + 1].at;
-    if (hi <= lo) continue;
-    const double mid = 0.5 * (lo + hi);
-    while (j + 1 < m && t[j + 1] <= mid) ++j;
-    while (k + 1 < segments && u[k + 1] <= mid) ++k;
-    const Vec2 a = flat(pts[j]), b = flat(pts[j + 1]);
-    const Vec2 c0 = chord_end(k), c1 = chord_end(k + 1);
-    for (const Vec2& r : {cuts[i].ray, cuts[i + 1].ray})
-      bound = std::max({bound, distance(on_ray(a, b, r), c0, c1), distance(on_ray(c0, c1, r), a, b)});
-    if (bound + 2 * kLengthEpsMm > stop_above_mm) return bound + 2 * kLengthEpsMm;
+  double lo = 0;
+  for (;;) {
+    while (j + 1 < m && t[j + 1] <= lo) ++j;
+    while (k + 1 < segments && u[k + 1] <= lo) ++k;
+    const double hi = std::min(t[j + 1], u[k + 1]);
+    const Vec2 a = vertex(j), b = vertex(j + 1), c0 = chord_end(k), c1 = chord_end(k + 1);
+    // At lo and at hi: each cut is a vertex's place or a chord end's, or both.
+    const Vec2 p_lo = t[j] == lo ? a : on_ray(a, b, c0), q_lo = u[k] == lo ? c0 : on_ray(c0, c1, a);
+    const Vec2 p_hi = t[j + 1] == hi ? b : on_ray(a, b, c1), q_hi = u[k + 1] == hi ? c1 : on_ray(c0, c1, b);
+    bound2 = std::max({bound2, distance(p_lo, c0, c1), distance(q_lo, a, b), distance(p_hi, c0, c1),
+                       distance(q_hi, a, b)});
+    if (bound2 > stop2) return std::sqrt(bound2) + 2 * kLengthEpsMm;
+    if (hi >= 1) break;
+    lo = hi;
   }
-  bound += 2 * kLengthEpsMm;
-  return bound;
+  return std::sqrt(bound2) + 2 * kLengthEpsMm;
 }
 
 double wrong_side_of_line_mm(std::span<const Vec3> pts, BandSide side) {
