@@ -138,7 +138,7 @@ Deviation planar_arc_deviation(std::span<const Vec3> pts, const ArcGeom& arc, do
   for (size_t m = 0; m < n; ++m) {
     Vec2 v = rel(m);
     double len = v.norm();
-    unit[m] = len > 0 ? Vec2(v / len) : s_hat;
+    unit[m] = len > 0 ? Vec2(v * (1 / len)) : s_hat;
     radial[m] = std::abs(len - r);
     // No point of the arc is nearer a vertex than the full circle is: a vertex off the circle
     // by more than the stop fails the candidate before anything else is measured.

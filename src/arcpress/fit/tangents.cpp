@@ -195,6 +195,7 @@ std::pair<double, double> RunFitter::start_range(uint32_t a, uint32_t e) const {
   const double length = chord.norm();
   if (length <= kLengthEpsMm) return {1, -1};
   const Vec2 c = chord / length;
+  const double inv_length = 1 / length;
   bool flat = true;
   for (uint32_t m = a + 1; m <= e && flat && !level_; ++m) flat = std::abs(p_[m].z() - p_[a].z()) <= kLengthEpsMm;
   const double eps = flat ? eps_ : eps_ * kPlaneShare;
@@ -207,13 +208,15 @@ std::pair<double, double> RunFitter::start_range(uint32_t a, uint32_t e) const {
     const Vec2 u = ((j & 1) ? middle_[j / 2] : q(j / 2)) - q(a);
     const double w = u.squaredNorm() - eps * eps;
     if (w <= 0) continue;  // within the band of `a` itself
-    const double P = w / length - u.dot(c), Q = cross2(c, u);
+    const double P = w * inv_length - u.dot(c), Q = cross2(c, u);
     const double R2 = P * P + Q * Q;
     if (R2 <= eps * eps) continue;
-    const double R = std::sqrt(R2), sin_half = eps / R, cos_half = std::sqrt(1 - sin_half * sin_half);
-    // The zero of sin(α + β), α = −β, taken in (−π/2, π/2].
-    const Vec2 zero = P > 0 || (P == 0 && Q <= 0) ? Vec2(P / R, -Q / R) : Vec2(-P / R, Q / R);
-    const Vec2 low = Turn::by(cos_half, -sin_half)(zero), high = Turn::by(cos_half, sin_half)(zero);
+    // The zero of sin(α + β), α = −β, taken in (−π/2, π/2], and the interval's edges
+    // asin(ε / R) either side of it: as directions R and R² times too long (ordering by
+    // pseudo-angle, and atan2, take directions of any length).
+    const Vec2 zero = P > 0 || (P == 0 && Q <= 0) ? Vec2(P, -Q) : Vec2(-P, Q);
+    const double cos_half = std::sqrt(R2 - eps * eps);
+    const Vec2 low = Turn::by(cos_half, -eps)(zero), high = Turn::by(cos_half, eps)(zero);
     if (const double o = order(low); o > lo_order) {
       lo = low;
       lo_order = o;
