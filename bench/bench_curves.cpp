@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Xu 2021's test curves (Table 2), sampled as the paper does, fitted at three tolerances:
 // segments out, measured deviation, largest tangent change at smooth joints, time per curve.
-// Then contours of the kind CAM writes, against the lines and arcs that drew them, and the
-// fitter's throughput on the corpus runs. Figures only; nothing here is a test.
+// Then contours of the kind CAM writes, against the lines and arcs that drew them, smooth 3-D
+// finishing passes with each method's time, and the fitter's throughput on the corpus runs.
+// Figures only; nothing here is a test.
 // Usage: bench_curves [REPEATS] [--corpus]   (--corpus: the throughput on the corpus alone, and
 // what a smaller search would save there)
 #include <fmt/format.h>
@@ -173,6 +174,23 @@ std::vector<Shape> cam_shapes() {
   return out;
 }
 
+/// Finishing passes over a smooth surface, as 3-D CAM writes them without arcs: 20 raster
+/// passes 1 mm apart in Y, each 2 000 moves of 0.05 mm along X, the height following
+/// z = 2·sin(x/7)·cos(y/9) + 0.5·sin(x/3.1) (the runs are fitted in the XZ plane, G18). Long
+/// smooth stretches of long primitives: where a wider search costs the most for the least.
+std::string raster_program() {
+  std::string s = "G21 G90 G17\nG0 Z5\nG0 X0 Y0\nG1 Z0 F500\nG1 F1200\n";
+  for (int pass = 0; pass < 20; ++pass) {
+    const double y = pass;
+    s += fmt::format("G1 Y{:.3f}\n", y);
+    for (int i = 0; i <= 2000; ++i) {
+      const double x = 0.05 * (pass % 2 ? 2000 - i : i);
+      s += fmt::format("G1 X{:.3f} Z{:.4f}\n", x, 2 * std::sin(x / 7) * std::cos(y / 9) + 0.5 * std::sin(x / 3.1));
+    }
+  }
+  return s + "G0 Z5\nM2\n";
+}
+
 /// A contour drawn at random from `seed`, as CAM writes one: 3 to 12 pieces, each a line of
 /// 1-20 mm or an arc of 0.5-30 mm radius (log-uniform) turning 15-170° either way, joined
 /// tangentially or, one time in seven, at a corner of 40-120°; lines in moves of at most
@@ -330,6 +348,27 @@ int main(int argc, char** argv) {
                  drawn, cell(sums[0]), cell(sums[1]), cell(sums[2]), worst_dev);
       fmt::print("{:<24} {:>6} {:>6} {:>9} {:>9} {:>9}\n", "  contours over drawn", "", "", over(sums[0]), over(sums[1]),
                  over(sums[2]));
+    }
+
+    // Smooth 3-D finishing passes: blocks, forced kinks and time per method.
+    fmt::print("\nSmooth 3-D finishing passes (20 x 2 000 moves, XZ runs): blocks/forced kinks, and ms on one thread\n");
+    fmt::print("{:<8} {:>7} {:>9} {:>8} {:>9} {:>8} {:>9} {:>8}\n", "tol mm", "moves", "arcs", "ms", "global", "ms", "greedy",
+               "ms");
+    const std::string raster = raster_program();
+    for (double tol : {0.01, 0.005}) {
+      std::string row = fmt::format("{:<8.3f}", tol);
+      for (auto m : {FitOptions::Method::Arcs, FitOptions::Method::Global, FitOptions::Method::Greedy}) {
+        CompressOptions opt;
+        opt.fit.tolerance_mm = tol;
+        opt.fit.method = m;
+        opt.threads = 1;
+        opt.verify = false;
+        const auto [seconds, r] = timed_compress("raster", raster, opt, repeats);
+        if (m == FitOptions::Method::Arcs) row += fmt::format(" {:>7}", r.stats.moves_in);
+        row += fmt::format(" {:>9} {:>8.1f}", fmt::format("{}/{}", r.stats.lines_out + r.stats.arcs_out, r.forced_kinks),
+                           1000 * seconds);
+      }
+      fmt::print("{}\n", row);
     }
   }
 
