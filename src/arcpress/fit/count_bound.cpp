@@ -142,8 +142,14 @@ size_t min_primitive_count(std::span<const Vec2> pts, double band_mm, PrimitiveE
   std::vector<size_t> best(n + 1, std::numeric_limits<size_t>::max());
   best[0] = 0;
   DirectionSet normals;
+  // The points tested against a primitive from vertex i to vertex j (> i + 1), by index: 2m is
+  // vertex m (i < m < j), 2m + 1 the middle of the move from vertex m (i <= m < j). A move's
+  // middle lies on the input path the primitive replaces, so within the band of it, and the
+  // circle is nearer than the arc: without it, the circles through a long move's two ends
+  // would include those that bow far off its middle.
+  auto point = [&](size_t p) { return p % 2 ? Vec2(0.5 * (pts[p / 2] + pts[p / 2 + 1])) : pts[p / 2]; };
   for (size_t i = 0; i < n; ++i) {
-    size_t killer = 0;  // the vertex that ended the last test from i: tried first
+    size_t killer = 0;  // the point that ended the last test from i: tried first
     for (size_t j = i + 1; j <= n && !ends_before(ends, i, j); ++j) {
       if (best[i] + 1 >= best[j]) continue;
       const Vec2 d = pts[j] - pts[i];
@@ -151,20 +157,20 @@ size_t min_primitive_count(std::span<const Vec2> pts, double band_mm, PrimitiveE
       bool ok = true;
       if (j > i + 1 && dd > 0) {
         normals.reset();
-        auto holds = [&](size_t m) {
-          const Vec2 u = pts[m] - pts[i];
+        auto holds = [&](size_t p) {
+          const Vec2 u = point(p) - pts[i];
           const Vec2 w = d * ((u.squaredNorm() - eps * eps) / dd) - u;
           const double len = w.norm();
           if (len <= eps) return true;
           normals.keep(std::atan2(w.y(), w.x()) + kPi / 2, std::asin(eps / len));
           return !normals.empty();
         };
-        if (killer > i && killer < j) ok = holds(killer);
-        for (size_t m = j - 1; ok && m > i; --m) {
-          if (m == killer) continue;
-          if (!holds(m)) {
+        if (killer > 2 * i && killer < 2 * j) ok = holds(killer);
+        for (size_t p = 2 * j - 1; ok && p > 2 * i; --p) {
+          if (p == killer) continue;
+          if (!holds(p)) {
             ok = false;
-            killer = m;
+            killer = p;
           }
         }
       }

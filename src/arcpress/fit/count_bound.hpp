@@ -2,9 +2,10 @@
 #pragma once
 // A lower bound on the primitives a fit can need, for judging the fitter's counts: the fewest
 // lines and arcs (any radius, any sweep, tangent at their joints or not) whose joints are
-// vertices of the polyline and which keep every vertex between within the band. The fitter's
-// primitives are all of this kind (and held to more: the moves between vertices, the joints'
-// tangents, the options' limits), so no fit of the same polyline in the same band has fewer.
+// vertices of the polyline and which keep every vertex between, and every move's middle, within
+// the band. The fitter's primitives are all of this kind (and held to more: every point of the
+// moves between vertices, the joints' tangents, the options' limits), so no fit of the same
+// polyline in the same band has fewer.
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -21,8 +22,8 @@ namespace arcpress {
 using PrimitiveEnds = std::span<const uint8_t>;
 
 /// The fewest primitives as above over `pts` (the polyline's vertices in its plane, mm),
-/// each vertex within `band_mm` (mm) of the circle or line of the primitive spanning it, and
-/// none spanning a vertex of `ends`. Exact (dynamic programming over every pair of
+/// each vertex and each move's middle within `band_mm` (mm) of the circle or line of the
+/// primitive spanning it, and none spanning a vertex of `ends`. Exact (dynamic programming over every pair of
 /// vertices): O(n²) tests, most of them ended by the vertex that ended the test before, so
 /// meant for curves of thousands of points.
 size_t min_primitive_count(std::span<const Vec2> pts, double band_mm, PrimitiveEnds ends = {});
