@@ -53,12 +53,17 @@ TEST_CASE("a polyline on one circle or one line needs one primitive, and nothing
   CHECK(min_primitive_count(std::vector<Vec2>{}, 0.01) == 0);
 }
 
-TEST_CASE("a zigzag wider than the band: any three vertices lie on a circle, four do not", "[fit][bound]") {
+TEST_CASE("a zigzag wider than the band: any three vertices lie on a circle, but it bows 0.29 mm off the moves' "
+          "middles, so each move is a primitive of its own", "[fit][bound]") {
   std::vector<Vec2> zigzag;
   for (int i = 0; i <= 10; ++i) zigzag.emplace_back(i, i % 2 ? 1.0 : 0.0);
-  CHECK(min_primitive_count(zigzag, 0.01) == 5);
+  CHECK(min_primitive_count(zigzag, 0.01) == 10);
   zigzag.emplace_back(11, 1);
-  CHECK(min_primitive_count(zigzag, 0.01) == 6);
+  CHECK(min_primitive_count(zigzag, 0.01) == 11);
+  // Within a band wide enough for the middles (the circle through three vertices passes
+  // 1 - 1/√2 mm inside them), two moves make one arc again.
+  zigzag.pop_back();
+  CHECK(min_primitive_count(zigzag, 0.3) == 5);
 }
 
 TEST_CASE("two arcs of different radii need two primitives, and a band wide enough for one circle needs one",
@@ -258,6 +263,28 @@ TEST_CASE("no fit has fewer primitives than the bound in the same band, whatever
         if (r.forced_kinks == 0) CHECK(count >= fitted_bound);
       }
     }
+}
+
+TEST_CASE("on the loop at 0.005 mm, where following one tangent at a time misses two primitives, the global method's "
+          "ranges of tangents find the fewest the fitter's band and joints allow", "[fit][bound]") {
+  const auto raw = sampled(999, -2, 2, [](double t) { return Vec2(10 * (t * t * t - t) / (t * t + 1), 10 * (t * t - 1) / (t * t + 1)); });
+  const size_t optimum = min_g1_primitive_count_as_fitted(printed(raw), 0.005, 0.5);
+  auto count = [&](FitOptions::Method method) {
+    CompressOptions opt;
+    opt.fit.tolerance_mm = 0.005;
+    opt.fit.min_radius_mm = 0;
+    opt.fit.method = method;
+    DiagnosticSink sink;
+    const CompressResult r = compress("t.nc", program(raw), opt, sink);
+    REQUIRE(r.comparison.matched);
+    REQUIRE(r.forced_kinks == 0);
+    CHECK(r.comparison.max_deviation_mm <= 0.005);
+    return r.stats.lines_out + r.stats.arcs_out;
+  };
+  const size_t global = count(FitOptions::Method::Global), arcs = count(FitOptions::Method::Arcs);
+  INFO("the fewest tangent primitives as fitted " << optimum << ", global " << global << ", arcs " << arcs);
+  CHECK(global == optimum);
+  CHECK(arcs > global);
 }
 
 TEST_CASE("on the published test curves at 0.01 mm, the global method finds the fewest tangent primitives and the "

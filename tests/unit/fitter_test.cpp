@@ -561,7 +561,8 @@ TEST_CASE("the beam keeps the chains whose last primitive ends furthest: a narro
   // Plum's inner tips at 0.003 mm: the chain whose petal arc ends at a tip's entrance, where
   // only the tip's own small arc goes on, reaches least in the next step; ranked by that
   // alone it was dropped for chains that turned in sooner and got stuck past the tip
-  // (53 blocks, the layered search 47).
+  // (53 blocks, the layered search 47, the global method's search over ranges of tangents
+  // 45). Choosing one end or another along the petals costs an eighth at most.
   FitOptions search, global;
   global.method = FitOptions::Method::Global;
   search.tolerance_mm = global.tolerance_mm = 0.003;
@@ -569,7 +570,7 @@ TEST_CASE("the beam keeps the chains whose last primitive ends furthest: a narro
   auto d = compress_text(program(plum_points()), search);
   auto g = compress_text(program(plum_points()), global);
   INFO(d.arcs + d.lines << " blocks, the global method " << g.arcs + g.lines);
-  CHECK(d.arcs + d.lines <= g.arcs + g.lines + 2);
+  CHECK(8 * (d.arcs + d.lines) <= 9 * (g.arcs + g.lines) + 8);
   CHECK(d.r.forced_kinks == 0);
   CHECK(d.r.comparison.max_deviation_mm <= 0.003);
 }

@@ -226,19 +226,19 @@ std::vector<Chosen> RunFitter::fit_kept() {
       }
     }
     if (search && o_.merge) tighten_between_kinks(a, chain);
-    // The global method also searches every (vertex, tangent) state layer by layer, for
-    // every stretch the greedy chain does not cover with one primitive, and keeps that
-    // chain when, merged too, it has fewer kinks, or as few and fewer primitives. The
-    // default method does so where its chain wiggles.
-    if ((o_.method == FitOptions::Method::Global && chain.size() > 1) ||
-        (o_.method == FitOptions::Method::Arcs && wiggles(chain))) {
-      auto g = layered_chain(a, limit);
+    // Where the chain wiggles, every (vertex, tangent) state is searched layer by layer; with
+    // the global method, every (vertex, range of tangents) state too, for every stretch the
+    // chain does not cover with one primitive. A chain found is kept when, merged too, it has
+    // fewer kinks, or as few and fewer primitives.
+    auto consider = [&](std::vector<Chosen> g) {
       if (!g.empty() && o_.merge) tighten(a, g, in_tangent_);
       if (!g.empty() && std::pair(size_t(0), g.size()) < std::pair(forced, chain.size())) {
         chain.swap(g);
         forced = 0;
       }
-    }
+    };
+    if (search && wiggles(chain)) consider(layered_chain(a, limit));
+    if (o_.method == FitOptions::Method::Global && chain.size() > 1) consider(range_chain(a, limit));
     if ((search || o_.method == FitOptions::Method::Greedy) && wiggles(chain)) untangle(a, limit, chain, forced);
     out.insert(out.end(), chain.begin(), chain.end());
     a = limit;

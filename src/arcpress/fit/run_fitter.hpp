@@ -4,7 +4,7 @@
 // angles it turns by, and RunFitter, which fits one stretch of a run. Its members are
 // defined in the files named for what they do: run_fitter.cpp (the run, its vertices and
 // stretches), tangents.cpp, scan.cpp and candidate.cpp (the machinery every method shares),
-// then one file per method (greedy, beam, layered, lowe, stream) and tangency.cpp.
+// then one file per method (greedy, beam, layered, range_search, lowe, stream) and tangency.cpp.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -63,6 +63,14 @@ constexpr double kTangentBinShare = 0.5;
 constexpr uint32_t kLayerGroups = 4;
 /// Layered search: it gives up (and the beam's chain stands) past this many states per vertex.
 constexpr size_t kMaxStatesPerVertex = 64;
+/// Range search: tangents scanned per degree of a state's range of start tangents.
+constexpr double kRangeSamplesPerDeg = 5;
+/// Range search: the share of the joint allowance it carries from one primitive's end
+/// tangents to the next one's starts (the rest is room for a line's chord, which leaves off
+/// its scanned tangent, and for the start chosen between two samples).
+constexpr double kRangeJointShare = 0.95;
+/// Range search: exact checks per primitive the chain is read back with at most.
+constexpr size_t kRangeChecksPerPrimitive = 256;
 
 /// The start tangents at a free start whose circles reach vertex e inside the band: their
 /// tangent-chord angles (radians, positive to the left of the chord) from lo to hi.
@@ -514,8 +522,18 @@ class RunFitter : private FitAngles {
   /// others with fewer primitives), and the search gives up past kMaxStatesPerVertex states
   /// per vertex. Unlike the beam, no state is dropped for scoring lower, so a chain that
   /// must pass a narrow place with the one right tangent is not lost. Empty when no chain
-  /// reaches `limit` tangentially.
+  /// reaches `limit` tangentially. (The default method's, where its chain wiggles.)
   std::vector<Chosen> layered_chain(uint32_t a, uint32_t limit) const;
+  /// The G1 chain from `a` to `limit` with the fewest primitives a breadth-first search over
+  /// (vertex, range of start tangents) finds (--method global): a state's whole range is
+  /// scanned (kRangeSamplesPerDeg), and the starts that reach each end make a range of end
+  /// tangents, widened by the joint's turn into the next state's range at that vertex; the
+  /// part of it no earlier layer reached is a new state. Only ends at or past the layer's
+  /// furthest vertex are taken, and it gives up past kMaxStatesPerVertex states per vertex.
+  /// The chain is then read back from the end, each primitive checked exactly and joined
+  /// within the joint's turn: where the searches that follow one tangent at a time miss the
+  /// one start a chain of few primitives needs, this finds it. Empty when none is found.
+  std::vector<Chosen> range_chain(uint32_t a, uint32_t limit) const;
   static std::vector<Chosen> chain_to(const std::vector<Node>& nodes, int id);
   static Vec2 rotated(const Vec2& T, double rad) { return Turn(rad)(T); }
   /// The input's own directions at `a`, where the tangent is free: those of circles through

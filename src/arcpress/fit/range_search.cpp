@@ -1,0 +1,207 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The range search (--method global): breadth first over (vertex, range of start tangents),
+// for the fewest primitives; the chain read back from the end.
+#include <climits>
+#include <cmath>
+#include <functional>
+
+#include "arcpress/fit/scan_ends.hpp"
+
+namespace arcpress::fit_detail {
+
+namespace {
+
+/// The angle `a` (rad) moved by whole turns into (ref - π, ref + π].
+double near_angle(double a, double ref) { return ref + std::remainder(a - ref, 2 * kPi); }
+
+double angle_of(const Vec2& d) { return std::atan2(d.y(), d.x()); }
+
+Vec2 direction_at(double angle) { return Vec2(std::cos(angle), std::sin(angle)); }
+
+/// `ranges` sorted, overlapping ones merged.
+void merge(std::vector<std::pair<double, double>>& ranges) {
+  std::sort(ranges.begin(), ranges.end());
+  size_t out = 0;
+  for (size_t i = 0; i < ranges.size(); ++i)
+    if (out > 0 && ranges[i].first <= ranges[out - 1].second) {
+      ranges[out - 1].second = std::max(ranges[out - 1].second, ranges[i].second);
+    } else {
+      ranges[out++] = ranges[i];
+    }
+  ranges.resize(out);
+}
+
+}  // namespace
+
+std::vector<Chosen> RunFitter::range_chain(uint32_t a, uint32_t limit) const {
+  // The turn carried from one primitive's end tangents to the next one's starts (rad).
+  const double joint = kJointShare * deg_to_rad(o_.g1_angle_deg);
+  const double carried = kRangeJointShare * joint;
+  struct State {
+    uint32_t v;
+    double lo, hi;       // the start tangents' angles (rad) it may leave with
+    uint32_t reach = 0;  // the furthest end its scans reached, once expanded
+  };
+  std::vector<State> states;
+  // Per vertex from `a`: the start angles the layers so far reached it with (merged).
+  std::vector<std::vector<std::pair<double, double>>> taken(limit - a + 1);
+  // The input's direction at v: angles at a vertex are kept within half a turn of it.
+  auto reference = [&](uint32_t v) { return angle_of(q(std::min(v + 1, limit)) - q(v > a ? v - 1 : a)); };
+  if (arrives_along(a)) {
+    const double t = angle_of(*in_tangent_);
+    states.push_back({a, t - carried, t + carried});
+  } else {  // (a primitive turns by at most a quarter turn off its chord before it)
+    const double r = reference(a);
+    states.push_back({a, r - kPi / 2, r + kPi / 2});
+  }
+  auto samples = [](const State& s) {
+    return std::clamp(int(std::ceil(rad_to_deg(s.hi - s.lo) * kRangeSamplesPerDeg)) + 1, 2, 1000);
+  };
+  auto sample = [](const State& s, int j, int count) { return s.lo + (s.hi - s.lo) * j / (count - 1); };
+  const size_t max_states = kMaxStatesPerVertex * size_t(limit - a) + 16;
+  std::vector<std::vector<int>> layers{{0}};
+  struct Arrival {
+    uint32_t e;
+    double lo, hi;
+  };
+  std::vector<Arrival> arrivals;
+  std::vector<std::pair<int, int>> reached(limit - a + 1, {INT_MAX, -1});  // per end: first and last sample
+  std::vector<uint32_t> ends;
+  std::vector<std::pair<double, double>> here;
+  int found = -1;  // the state of the last layer whose primitive reaches `limit`
+  double found_lo = 0, found_hi = 0;
+  uint32_t front = a;  // the furthest vertex the layers so far reached
+  while (found < 0 && !layers.back().empty()) {
+    arrivals.clear();
+    for (int id : layers.back()) {
+      const State s = states[size_t(id)];
+      // The ends each sample of the range reaches; those a range of samples reaches.
+      const int count = samples(s);
+      ends.clear();
+      for (int j = 0; j < count; ++j)
+        scan_ends(s.v, direction_at(sample(s, j, count)), limit, [&](const Candidate& c) {
+          auto& r = reached[c.e - a];
+          if (r.second < 0) ends.push_back(c.e);
+          r.first = std::min(r.first, j);
+          r.second = std::max(r.second, j);
+        });
+      std::sort(ends.begin(), ends.end());
+      states[size_t(id)].reach = ends.empty() ? s.v : ends.back();
+      for (uint32_t e : ends) {
+        auto& r = reached[e - a];
+        double lo = sample(s, r.first, count), hi = sample(s, r.second, count);
+        r = {INT_MAX, -1};
+        // An arc ends along its start tangent mirrored in the chord.
+        const double chord = near_angle(angle_of(q(e) - q(s.v)), 0.5 * (lo + hi));
+        const double end_lo = 2 * chord - hi, end_hi = 2 * chord - lo;
+        if (e == limit) {
+          if (out_tangent_) {  // the end tangent within the joint's turn of the move after
+            const double o = near_angle(angle_of(*out_tangent_), 0.5 * (end_lo + end_hi));
+            lo = std::max(lo, 2 * chord - o - carried);
+            hi = std::min(hi, 2 * chord - o + carried);
+            if (lo > hi) continue;
+          }
+          if (found < 0) {
+            found = id;
+            found_lo = lo;
+            found_hi = hi;
+          }
+          continue;
+        }
+        if (e >= front) arrivals.push_back({e, end_lo - carried, end_hi + carried});
+      }
+      if (found >= 0) break;
+    }
+    if (found >= 0) break;
+    // Per vertex, the union of the layer's arrivals less what earlier layers reached: each
+    // piece left is a state of the next layer.
+    std::sort(arrivals.begin(), arrivals.end(), [](const Arrival& x, const Arrival& y) { return x.e < y.e; });
+    std::vector<int> next;
+    for (size_t i = 0; i < arrivals.size();) {
+      const uint32_t e = arrivals[i].e;
+      const double ref = reference(e);
+      here.clear();
+      for (; i < arrivals.size() && arrivals[i].e == e; ++i) {
+        const double lo = near_angle(arrivals[i].lo, ref);
+        here.push_back({lo, lo + (arrivals[i].hi - arrivals[i].lo)});
+      }
+      merge(here);
+      auto& t = taken[e - a];
+      for (const auto& [lo, hi] : here) {
+        double from = lo;
+        for (const auto& [tlo, thi] : t) {
+          if (thi <= from || tlo >= hi) continue;
+          if (tlo > from) {
+            states.push_back({e, from, tlo});
+            next.push_back(int(states.size()) - 1);
+          }
+          from = std::max(from, thi);
+          if (from >= hi) break;
+        }
+        if (from < hi) {
+          states.push_back({e, from, hi});
+          next.push_back(int(states.size()) - 1);
+        }
+      }
+      t.insert(t.end(), here.begin(), here.end());
+      merge(t);
+      front = std::max(front, e);
+    }
+    if (states.size() > max_states) return {};
+    layers.push_back(std::move(next));
+  }
+  if (found < 0) return {};
+  // Read back from the end, depth first: for primitive i, a state of layer i that reached
+  // the next joint, and a start in its range (nearest the middle of the starts whose end
+  // meets the next primitive's start within the joint's turn first) whose primitive passes
+  // the exact check and that joint.
+  const size_t k = layers.size();
+  std::vector<Chosen> chain(k);
+  size_t checks = kRangeChecksPerPrimitive * k;
+  std::vector<double> starts;
+  std::function<bool(size_t, uint32_t, const std::optional<Vec2>&)> read_back = [&](size_t i, uint32_t to,
+                                                                                    const std::optional<Vec2>& next) {
+    const std::vector<int> last{found};
+    for (int id : i + 1 == k ? last : layers[i]) {
+      const State s = states[size_t(id)];
+      if (s.v >= to || s.reach < to) continue;
+      double lo = s.lo, hi = s.hi;
+      if (i + 1 == k) {
+        lo = found_lo;
+        hi = found_hi;
+      }
+      if (next) {
+        const double chord = near_angle(angle_of(q(to) - q(s.v)), 0.5 * (s.lo + s.hi));
+        const double wanted = 2 * chord - near_angle(angle_of(*next), 2 * chord - 0.5 * (s.lo + s.hi));
+        lo = std::max(lo, wanted - joint);
+        hi = std::min(hi, wanted + joint);
+        if (lo > hi) continue;
+      }
+      const int count = samples(s);
+      const double mid = 0.5 * (lo + hi);
+      starts.assign(1, mid);
+      for (int j = 0; j < count; ++j)
+        if (const double t = sample(s, j, count); t >= lo && t <= hi) starts.push_back(t);
+      std::sort(starts.begin(), starts.end(), [&](double x, double y) { return std::abs(x - mid) < std::abs(y - mid); });
+      const std::vector<double> tried = starts;  // (the calls below reuse `starts`)
+      for (double t : tried) {
+        if (checks == 0) return false;
+        --checks;
+        auto c = through(s.v, direction_at(t), to);
+        if (!c || (next && !joint_cone_.holds(c->end_tangent, *next))) continue;
+        if (i == 0) {
+          if (in_tangent_ && !joint_cone_.holds(*in_tangent_, start_tangent(*c, a))) continue;
+          chain[0] = *c;
+          return true;
+        }
+        chain[i] = *c;
+        if (read_back(i - 1, s.v, start_tangent(*c, s.v))) return true;
+      }
+    }
+    return false;
+  };
+  if (!read_back(k - 1, limit, out_tangent_)) return {};
+  return chain;
+}
+
+}  // namespace arcpress::fit_detail
