@@ -43,6 +43,31 @@ std::vector<Vec2> sampled(int moves, double t0, double t1, const std::function<V
   return p;
 }
 
+/// Xu's loop, (10 (t³ − t), 10 (t² − 1)) / (t² + 1) for t in [−2, 2], in 999 moves.
+std::vector<Vec2> loop_curve() {
+  return sampled(999, -2, 2, [](double t) { return Vec2(10 * (t * t * t - t) / (t * t + 1), 10 * (t * t - 1) / (t * t + 1)); });
+}
+
+/// `raw` as a program fitted by `method` at `tol_mm`, with no smallest radius.
+CompressResult fitted(const std::vector<Vec2>& raw, double tol_mm, FitOptions::Method method) {
+  CompressOptions opt;
+  opt.fit.tolerance_mm = tol_mm;
+  opt.fit.min_radius_mm = 0;
+  opt.fit.method = method;
+  DiagnosticSink sink;
+  return compress("t.nc", program(raw), opt, sink);
+}
+
+/// The lines and arcs `method` fits `raw` with at `tol_mm` (no smallest radius), after
+/// requiring that the check paired every move, that no joint broke and the band held.
+size_t tangent_fit_count(const std::vector<Vec2>& raw, double tol_mm, FitOptions::Method method) {
+  const CompressResult r = fitted(raw, tol_mm, method);
+  REQUIRE(r.comparison.matched);
+  REQUIRE(r.forced_kinks == 0);
+  CHECK(r.comparison.max_deviation_mm <= tol_mm);
+  return r.stats.lines_out + r.stats.arcs_out;
+}
+
 }  // namespace
 
 TEST_CASE("a polyline on one circle or one line needs one primitive, and nothing needs none", "[fit][bound]") {
@@ -239,12 +264,7 @@ TEST_CASE("no fit has fewer primitives than the bound in the same band, whatever
       const size_t fitted_c0_bound = min_primitive_count_as_fitted(printed(raw), tol);
       for (auto method : {FitOptions::Method::Arcs, FitOptions::Method::Global, FitOptions::Method::Greedy,
                           FitOptions::Method::Stream, FitOptions::Method::Lowe}) {
-        CompressOptions opt;
-        opt.fit.tolerance_mm = tol;
-        opt.fit.min_radius_mm = 0;
-        opt.fit.method = method;
-        DiagnosticSink sink;
-        const CompressResult r = compress("t.nc", program(raw), opt, sink);
+        const CompressResult r = fitted(raw, tol, method);
         REQUIRE(r.ok);
         REQUIRE(r.comparison.matched);
         const size_t count = r.stats.lines_out + r.stats.arcs_out;
@@ -267,21 +287,10 @@ TEST_CASE("no fit has fewer primitives than the bound in the same band, whatever
 
 TEST_CASE("on the loop at 0.005 mm, where following one tangent at a time misses two primitives, the global method's "
           "ranges of tangents find the fewest the fitter's band and joints allow", "[fit][bound]") {
-  const auto raw = sampled(999, -2, 2, [](double t) { return Vec2(10 * (t * t * t - t) / (t * t + 1), 10 * (t * t - 1) / (t * t + 1)); });
+  const auto raw = loop_curve();
   const size_t optimum = min_g1_primitive_count_as_fitted(printed(raw), 0.005, 0.5);
-  auto count = [&](FitOptions::Method method) {
-    CompressOptions opt;
-    opt.fit.tolerance_mm = 0.005;
-    opt.fit.min_radius_mm = 0;
-    opt.fit.method = method;
-    DiagnosticSink sink;
-    const CompressResult r = compress("t.nc", program(raw), opt, sink);
-    REQUIRE(r.comparison.matched);
-    REQUIRE(r.forced_kinks == 0);
-    CHECK(r.comparison.max_deviation_mm <= 0.005);
-    return r.stats.lines_out + r.stats.arcs_out;
-  };
-  const size_t global = count(FitOptions::Method::Global), arcs = count(FitOptions::Method::Arcs);
+  const size_t global = tangent_fit_count(raw, 0.005, FitOptions::Method::Global);
+  const size_t arcs = tangent_fit_count(raw, 0.005, FitOptions::Method::Arcs);
   INFO("the fewest tangent primitives as fitted " << optimum << ", global " << global << ", arcs " << arcs);
   CHECK(global == optimum);
   CHECK(arcs > global);
@@ -297,23 +306,12 @@ TEST_CASE("on the published test curves at 0.01 mm, the global method finds the 
       {"bezier2", sampled(999, 0, 1, bezier({0.54, 3.40}, {7.22, 3.61}, {7.39, 3.14}))},
       {"leaf", sampled(999, 0, 5, [](double t) { return Vec2(30 * t / (1 + t * t * t), 30 * t * t / (1 + t * t * t)); })},
       {"y=x^3", sampled(1999, -2, 2, [](double x) { return Vec2(x, x * x * x); })},
-      {"loop", sampled(999, -2, 2,
-                       [](double t) { return Vec2(10 * (t * t * t - t) / (t * t + 1), 10 * (t * t - 1) / (t * t + 1)); })},
+      {"loop", loop_curve()},
   };
   for (const auto& [name, raw] : curves) {
     const size_t optimum = min_g1_primitive_count(printed(raw), 0.01, 0.5);
-    auto count = [&](FitOptions::Method method) {
-      CompressOptions opt;
-      opt.fit.min_radius_mm = 0;
-      opt.fit.method = method;
-      DiagnosticSink sink;
-      const CompressResult r = compress("t.nc", program(raw), opt, sink);
-      REQUIRE(r.comparison.matched);
-      REQUIRE(r.forced_kinks == 0);
-      return r.stats.lines_out + r.stats.arcs_out;
-    };
     INFO(name << ": the fewest tangent primitives " << optimum);
-    CHECK(count(FitOptions::Method::Global) == optimum);
-    CHECK(count(FitOptions::Method::Arcs) <= optimum + 1);
+    CHECK(tangent_fit_count(raw, 0.01, FitOptions::Method::Global) == optimum);
+    CHECK(tangent_fit_count(raw, 0.01, FitOptions::Method::Arcs) <= optimum + 1);
   }
 }
