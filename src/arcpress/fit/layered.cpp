@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The layered search (the default method's, where its chain wiggles): breadth first over
-// (vertex, tangent) states, one per tangent bin in each group of vertices, for the fewest
-// primitives.
+// The layered search (the global method's, and the default's where its chain wiggles):
+// breadth first over (vertex, tangent) states, one per tangent bin in each group of
+// vertices, for the fewest primitives.
 #include "arcpress/fit/scan_ends.hpp"
 
 namespace arcpress::fit_detail {

@@ -28,7 +28,7 @@ struct FitOptions {
   enum class Method : uint8_t {
     Keep,  ///< every G1 stays as it is (the pipeline without fitting)
     Arcs,    ///< G1-continuous lines and arcs, fewest found by a beam search over chains (default)
-    Global,  ///< as Arcs, and a search over (vertex, range of start tangents) states where it is shorter
+    Global,  ///< as Arcs, and searches over (vertex, tangent) and (vertex, range of tangents) states where shorter
     Greedy,  ///< G1-continuous lines and arcs, one primitive at a time with a short look-ahead
     Stream,  ///< seeds 001/003: arcs through both end points grown one vertex at a time, then seed 000's G1 adjustment
     Lowe,    ///< seed 000: Lowe's line detection, arcs over runs of the lines, then its G1 adjustment

@@ -226,10 +226,10 @@ std::vector<Chosen> RunFitter::fit_kept() {
       }
     }
     if (search && o_.merge) tighten_between_kinks(a, chain);
-    // Where the chain wiggles, every (vertex, tangent) state is searched layer by layer; with
-    // the global method, every (vertex, range of tangents) state too, for every stretch the
-    // chain does not cover with one primitive. A chain found is kept when, merged too, it has
-    // fewer kinks, or as few and fewer primitives.
+    // Where the chain wiggles, and with the global method for every stretch the chain does
+    // not cover with one primitive, every (vertex, tangent) state is searched layer by layer;
+    // with the global method every (vertex, range of tangents) state too. A chain found is
+    // kept when, merged too, it has fewer kinks, or as few and fewer primitives.
     auto consider = [&](std::vector<Chosen> g) {
       if (!g.empty() && o_.merge) tighten(a, g, in_tangent_);
       if (!g.empty() && std::pair(size_t(0), g.size()) < std::pair(forced, chain.size())) {
@@ -237,8 +237,9 @@ std::vector<Chosen> RunFitter::fit_kept() {
         forced = 0;
       }
     };
-    if (search && wiggles(chain)) consider(layered_chain(a, limit));
-    if (o_.method == FitOptions::Method::Global && chain.size() > 1) consider(range_chain(a, limit));
+    const bool global = o_.method == FitOptions::Method::Global;
+    if ((search && wiggles(chain)) || (global && chain.size() > 1)) consider(layered_chain(a, limit));
+    if (global && chain.size() > 1) consider(range_chain(a, limit));
     if ((search || o_.method == FitOptions::Method::Greedy) && wiggles(chain)) untangle(a, limit, chain, forced);
     out.insert(out.end(), chain.begin(), chain.end());
     a = limit;

@@ -522,7 +522,8 @@ class RunFitter : private FitAngles {
   /// others with fewer primitives), and the search gives up past kMaxStatesPerVertex states
   /// per vertex. Unlike the beam, no state is dropped for scoring lower, so a chain that
   /// must pass a narrow place with the one right tangent is not lost. Empty when no chain
-  /// reaches `limit` tangentially. (The default method's, where its chain wiggles.)
+  /// reaches `limit` tangentially. (The global method's, and the default's where its chain
+  /// wiggles.)
   std::vector<Chosen> layered_chain(uint32_t a, uint32_t limit) const;
   /// The G1 chain from `a` to `limit` with the fewest primitives a breadth-first search over
   /// (vertex, range of start tangents) finds (--method global): a state's whole range is
