@@ -7,6 +7,7 @@
 #include <limits>
 #include <vector>
 
+#include "arcpress/fit/angle_ranges.hpp"
 #include "arcpress/fit/run_fitter.hpp"  // the shares of the band and the angle the fitter keeps back
 
 namespace arcpress {
@@ -51,14 +52,7 @@ class DirectionSet {
   std::vector<Interval> set_, next_;
 };
 
-/// The angle `a` (rad) moved by whole turns into (ref - π, ref + π].
-double near(double a, double ref) {
-  return ref + std::remainder(a - ref, 2 * kPi);
-}
-
-struct Range {
-  double lo, hi;  // rad
-};
+using Range = AngleRange;
 
 /// The (offset, curvature) points of a convex polygon: offsets (rad) of the start tangent
 /// from a range's middle, curvatures (1/mm) of the circle leaving along it.
@@ -94,33 +88,6 @@ class Polygon {
  private:
   std::vector<Vec2> v_, tmp_;
 };
-
-/// `ranges` sorted, overlapping ones merged.
-std::vector<Range> merged(std::vector<Range> ranges) {
-  std::sort(ranges.begin(), ranges.end(), [](const Range& x, const Range& y) { return x.lo < y.lo; });
-  std::vector<Range> out;
-  for (const Range& r : ranges)
-    if (!out.empty() && r.lo <= out.back().hi) out.back().hi = std::max(out.back().hi, r.hi);
-    else out.push_back(r);
-  return out;
-}
-
-/// `ranges` minus `taken` (sorted and disjoint); what is left is added to `taken`.
-std::vector<Range> take_new(std::vector<Range> ranges, std::vector<Range>& taken) {
-  std::vector<Range> fresh;
-  for (Range r : merged(std::move(ranges))) {
-    for (const Range& t : taken) {
-      if (t.hi <= r.lo || t.lo >= r.hi) continue;
-      if (t.lo > r.lo) fresh.push_back({r.lo, t.lo});
-      r.lo = std::max(r.lo, t.hi);
-      if (r.lo >= r.hi) break;
-    }
-    if (r.lo < r.hi) fresh.push_back(r);
-  }
-  taken.insert(taken.end(), fresh.begin(), fresh.end());
-  taken = merged(std::move(taken));
-  return fresh;
-}
 
 /// Whether a primitive from vertex i must end before vertex j (> i): at vertex j - 1, when
 /// that lies between them and is one of `ends`. (Called for j = i + 1, i + 2, ... in turn.)
@@ -215,7 +182,7 @@ size_t min_g1_primitive_count(std::span<const Vec2> pts, double band_mm, double 
   {
     const double ref = reference(0);
     if (joins.start) {
-      const double t = near(std::atan2(joins.start->y(), joins.start->x()), ref);
+      const double t = near_angle(std::atan2(joins.start->y(), joins.start->x()), ref);
       add_states(0, take_new({{t - g1, t + g1}}, taken[0]));
     } else {
       add_states(0, take_new({{ref - kPi, ref + kPi}}, taken[0]));
@@ -226,7 +193,7 @@ size_t min_g1_primitive_count(std::span<const Vec2> pts, double band_mm, double 
   const double end_rad = end_fixed ? std::atan2(joins.end->y(), joins.end->x()) : 0.0;
   auto joins_end = [&](double a, double b) {
     if (!end_fixed) return true;
-    const double e = near(end_rad, (a + b) / 2);
+    const double e = near_angle(end_rad, (a + b) / 2);
     return e >= a - g1 && e <= b + g1;
   };
   // Circles turning left (k >= 0) and right (k <= 0) apart: a move inside the arc may not cut
@@ -274,7 +241,7 @@ size_t min_g1_primitive_count(std::span<const Vec2> pts, double band_mm, double 
         }
         // The circle through vertex j, k |d|² = 2 d·N, and at most half a turn (T·d >= 0).
         const double chord = std::atan2(d.y(), d.x());
-        const double rel = near(chord - st.mid, 0);
+        const double rel = near_angle(chord - st.mid, 0);
         const double lo = std::max(-half, rel - kPi / 2), hi = std::min(half, rel + kPi / 2);
         if (lo > hi) continue;
         const double dn = d.dot(N0), dt = d.dot(T0), allow = 2 * std::sqrt(dd) * bend + slack;
@@ -301,7 +268,7 @@ size_t min_g1_primitive_count(std::span<const Vec2> pts, double band_mm, double 
         if (off.lo > off.hi) continue;
         // The arc ends along its start tangent mirrored in the chord; the next may turn by g1.
         const double ref = reference(j);
-        const double a = near(2 * chord - st.mid - off.hi, ref), b = a + (off.hi - off.lo);
+        const double a = near_angle(2 * chord - st.mid - off.hi, ref), b = a + (off.hi - off.lo);
         if (j == n) {
           if (joins_end(a, b)) return count;
           continue;

@@ -5,31 +5,16 @@
 #include <cmath>
 #include <functional>
 
+#include "arcpress/fit/angle_ranges.hpp"
 #include "arcpress/fit/scan_ends.hpp"
 
 namespace arcpress::fit_detail {
 
 namespace {
 
-/// The angle `a` (rad) moved by whole turns into (ref - π, ref + π].
-double near_angle(double a, double ref) { return ref + std::remainder(a - ref, 2 * kPi); }
-
 double angle_of(const Vec2& d) { return std::atan2(d.y(), d.x()); }
 
 Vec2 direction_at(double angle) { return Vec2(std::cos(angle), std::sin(angle)); }
-
-/// `ranges` sorted, overlapping ones merged.
-void merge(std::vector<std::pair<double, double>>& ranges) {
-  std::sort(ranges.begin(), ranges.end());
-  size_t out = 0;
-  for (size_t i = 0; i < ranges.size(); ++i)
-    if (out > 0 && ranges[i].first <= ranges[out - 1].second) {
-      ranges[out - 1].second = std::max(ranges[out - 1].second, ranges[i].second);
-    } else {
-      ranges[out++] = ranges[i];
-    }
-  ranges.resize(out);
-}
 
 }  // namespace
 
@@ -44,7 +29,7 @@ std::vector<Chosen> RunFitter::range_chain(uint32_t a, uint32_t limit) const {
   };
   std::vector<State> states;
   // Per vertex from `a`: the start angles the layers so far reached it with (merged).
-  std::vector<std::vector<std::pair<double, double>>> taken(limit - a + 1);
+  std::vector<std::vector<AngleRange>> taken(limit - a + 1);
   // The input's direction at v: angles at a vertex are kept within half a turn of it.
   auto reference = [&](uint32_t v) { return angle_of(q(std::min(v + 1, limit)) - q(v > a ? v - 1 : a)); };
   if (arrives_along(a)) {
@@ -67,7 +52,7 @@ std::vector<Chosen> RunFitter::range_chain(uint32_t a, uint32_t limit) const {
   std::vector<Arrival> arrivals;
   std::vector<std::pair<int, int>> reached(limit - a + 1, {INT_MAX, -1});  // per end: first and last sample
   std::vector<uint32_t> ends;
-  std::vector<std::pair<double, double>> here;
+  std::vector<AngleRange> here;
   int found = -1;  // the state of the last layer whose primitive reaches `limit`
   double found_lo = 0, found_hi = 0;
   uint32_t front = a;  // the furthest vertex the layers so far reached
@@ -125,26 +110,10 @@ std::vector<Chosen> RunFitter::range_chain(uint32_t a, uint32_t limit) const {
         const double lo = near_angle(arrivals[i].lo, ref);
         here.push_back({lo, lo + (arrivals[i].hi - arrivals[i].lo)});
       }
-      merge(here);
-      auto& t = taken[e - a];
-      for (const auto& [lo, hi] : here) {
-        double from = lo;
-        for (const auto& [tlo, thi] : t) {
-          if (thi <= from || tlo >= hi) continue;
-          if (tlo > from) {
-            states.push_back({e, from, tlo});
-            next.push_back(int(states.size()) - 1);
-          }
-          from = std::max(from, thi);
-          if (from >= hi) break;
-        }
-        if (from < hi) {
-          states.push_back({e, from, hi});
-          next.push_back(int(states.size()) - 1);
-        }
+      for (const AngleRange& r : take_new(here, taken[e - a])) {
+        states.push_back({e, r.lo, r.hi});
+        next.push_back(int(states.size()) - 1);
       }
-      t.insert(t.end(), here.begin(), here.end());
-      merge(t);
       front = std::max(front, e);
     }
     if (states.size() > max_states) return {};
