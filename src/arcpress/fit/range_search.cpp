@@ -127,7 +127,6 @@ std::vector<Chosen> RunFitter::range_chain(uint32_t a, uint32_t limit) const {
   const size_t k = layers.size();
   std::vector<Chosen> chain(k);
   size_t checks = kRangeChecksPerPrimitive * k;
-  std::vector<double> starts;
   std::function<bool(size_t, uint32_t, const std::optional<Vec2>&)> read_back = [&](size_t i, uint32_t to,
                                                                                     const std::optional<Vec2>& next) {
     const std::vector<int> last{found};
@@ -148,12 +147,11 @@ std::vector<Chosen> RunFitter::range_chain(uint32_t a, uint32_t limit) const {
       }
       const int count = samples(s);
       const double mid = 0.5 * (lo + hi);
-      starts.assign(1, mid);
+      std::vector<double> starts{mid};
       for (int j = 0; j < count; ++j)
         if (const double t = sample(s, j, count); t >= lo && t <= hi) starts.push_back(t);
       std::sort(starts.begin(), starts.end(), [&](double x, double y) { return std::abs(x - mid) < std::abs(y - mid); });
-      const std::vector<double> tried = starts;  // (the calls below reuse `starts`)
-      for (double t : tried) {
+      for (double t : starts) {
         if (checks == 0) return false;
         --checks;
         auto c = through(s.v, direction_at(t), to);
