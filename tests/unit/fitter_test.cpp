@@ -1206,6 +1206,37 @@ TEST_CASE("one move between a corner and a lone move that the path meets smoothl
   }
 }
 
+TEST_CASE("two moves before a lone move the path meets with a kink in any fit become one arc, kinking there by "
+          "less than the moves did",
+          "[fit][chain]") {
+  // An input arc ends heading along +X; the path turns there by 40°, a corner. Two moves of
+  // 0.45 mm follow on a circle of 1.2 mm, turning clockwise by 21.6° between them; after a
+  // comment a lone move of 0.175 mm turns 16° further. Both joints are smooth. The arc over
+  // the two moves bulges 0.021 mm from their chords, inside 0.025 mm, and ends 5.2° off the
+  // lone move, which no primitive ending there can meet tangentially. Held to end along it,
+  // the fit left the second move as it was, kinked 10.8° before it and 16° after it; with the
+  // kink before the lone move taken as given, one arc kinks there by 5.2° and nowhere else.
+  const double R = 1.2, half = std::asin(0.45 / (2 * R));  // half the turn over each chord
+  const double d1 = deg_to_rad(-40), d2 = d1 - 2 * half, d3 = d2 - deg_to_rad(16);
+  const Vec2 p1 = 0.45 * Vec2(std::cos(d1), std::sin(d1)), p2 = p1 + 0.45 * Vec2(std::cos(d2), std::sin(d2));
+  const Vec2 p3 = p2 + 0.175 * Vec2(std::cos(d3), std::sin(d3));
+  auto point = [](const Vec2& p) { return fmt::format("X{:.4f} Y{:.4f}", p.x(), p.y()); };
+  // A quarter of a clockwise circle of radius 2 around (0, -2) ends at (0, 0) heading along +X.
+  const std::string text = fmt::format(
+      "G21 G90 G17\nG0 X-2 Y-2 Z0\nG1 F600\nG2 X0 Y0 I2 J0\nG1 {}\nG1 {}\n(lone)\nG1 {}\nM2\n", point(p1),
+      point(p2), point(p3));
+  FitOptions f;
+  f.tolerance_mm = 0.025;
+  auto o = compress_text(text, f);
+  INFO(o.r.output);
+  CHECK(o.arcs == 1);
+  CHECK(o.lines == 0);
+  CHECK(o.r.forced_kinks == 1);
+  CHECK(o.r.comparison.smooth_joints == 1);
+  CHECK(o.r.comparison.max_smooth_kink_deg == Approx(5.2).margin(0.1));
+  CHECK(o.r.comparison.max_deviation_mm <= f.tolerance_mm);
+}
+
 TEST_CASE("between two corners, a short move that turns into a long one is bent to meet it tangentially",
           "[fit][search]") {
   // Infill from a slicer (PrusaSlicer 2.5's bunny, 3 decimals): at 144.851 and 143.255 the

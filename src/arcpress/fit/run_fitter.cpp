@@ -192,60 +192,80 @@ std::vector<Chosen> RunFitter::fit_kept() {
       a = limit;
       continue;
     }
-    const bool search = o_.method == FitOptions::Method::Arcs || o_.method == FitOptions::Method::Global;
-    if (search || o_.method == FitOptions::Method::Greedy)
-      for (uint32_t v = a + 1; v < limit; ++v)
-        heading_[v] = search ? sided_tangent(v, a, limit) : input_tangent(v, a, limit);
     size_t forced = 0;
-    std::vector<Chosen> chain;
-    if (o_.method == FitOptions::Method::Stream) {
-      chain = stream_chain(a, limit, forced);
-    } else if (o_.method == FitOptions::Method::Lowe) {
-      chain = lowe_chain(a, limit, forced);
-    } else {
-      // The greedy chain is the answer for stretches it covers in one or two primitives
-      // joined tangentially; longer ones, and those it could only cover with a forced
-      // kink, are searched again, and the chain with fewer kinks, then fewer primitives,
-      // wins. The greedy chain is walked only as far as the search and that choice need.
-      GreedyWalk greedy(*this, a, limit);
-      const bool searched = search && o_.beam_width > 1 && (greedy.longer_than(2) || greedy.kinks() > 0);
-      size_t beam_forced = 0;
-      std::vector<Chosen> b;
-      if (searched) b = beam_stretch(a, limit, greedy, beam_forced);
-      // A beam chain of k primitives without kinks is taken over a greedy chain of k or more
-      // (which the greedy walk, as far as it went, may already show without another step).
-      const bool beam_shorter =
-          searched && beam_forced == 0 && (b.size() <= greedy.at_least() || greedy.longer_than(b.size() - 1));
-      if (!beam_shorter) greedy.finish();
-      if (beam_shorter || (searched && std::pair(beam_forced, b.size()) < std::pair(greedy.kinks(), greedy.length()))) {
-        chain.swap(b);
-        forced = beam_forced;
-      } else {
-        chain = std::move(greedy.chain);
-        forced = greedy.kinks();
-      }
+    std::vector<Chosen> chain = fit_stretch(a, limit, forced);
+    // Where the chain meets the fixed move after it with a kink all the same, the end is
+    // searched again free, the kink there taken as given: held to the fixed move's
+    // direction, the stretch's last primitive could only be a move left as it was (two
+    // moves between an arc and a move of another width: two lines and three kinks, where
+    // one arc over both kinks twice). The chain with fewer kinks, then fewer primitives, wins.
+    if (out_tangent_ && !chain.empty() && !joint_cone_.holds(chain.back().end_tangent, *out_tangent_)) {
+      const Vec2 after = *out_tangent_;
+      out_tangent_.reset();
+      lim_ = scan_limits();
+      stretch_id_ = ++s_.stretches;
+      size_t free_forced = 0;
+      std::vector<Chosen> free_end = fit_stretch(a, limit, free_forced);
+      const size_t end_kink = free_end.empty() || !joint_cone_.holds(free_end.back().end_tangent, after) ? 1 : 0;
+      if (std::pair(free_forced + end_kink, free_end.size()) < std::pair(forced + 1, chain.size())) chain.swap(free_end);
     }
-    if (search && o_.merge) tighten_between_kinks(a, chain);
-    // Where the chain wiggles, and with the global method for every stretch the chain does
-    // not cover with one primitive, every (vertex, tangent) state is searched layer by layer;
-    // with the global method every (vertex, range of tangents) state too. A chain found is
-    // kept when, merged too, it has fewer kinks, or as few and fewer primitives.
-    auto consider = [&](std::vector<Chosen> g) {
-      if (!g.empty() && o_.merge) tighten(a, g, in_tangent_);
-      if (!g.empty() && std::pair(size_t(0), g.size()) < std::pair(forced, chain.size())) {
-        chain.swap(g);
-        forced = 0;
-      }
-    };
-    const bool global = o_.method == FitOptions::Method::Global;
-    if ((search && wiggles(chain)) || (global && chain.size() > 1)) consider(layered_chain(a, limit));
-    if (global && chain.size() > 1) consider(range_chain(a, limit));
-    if ((search || o_.method == FitOptions::Method::Greedy) && wiggles(chain)) untangle(a, limit, chain, forced);
     out.insert(out.end(), chain.begin(), chain.end());
     a = limit;
   }
   report_spike_corners(out);
   return out;
+}
+
+std::vector<Chosen> RunFitter::fit_stretch(uint32_t a, uint32_t limit, size_t& forced) {
+  const bool search = o_.method == FitOptions::Method::Arcs || o_.method == FitOptions::Method::Global;
+  if (search || o_.method == FitOptions::Method::Greedy)
+    for (uint32_t v = a + 1; v < limit; ++v)
+      heading_[v] = search ? sided_tangent(v, a, limit) : input_tangent(v, a, limit);
+  std::vector<Chosen> chain;
+  if (o_.method == FitOptions::Method::Stream) {
+    chain = stream_chain(a, limit, forced);
+  } else if (o_.method == FitOptions::Method::Lowe) {
+    chain = lowe_chain(a, limit, forced);
+  } else {
+    // The greedy chain is the answer for stretches it covers in one or two primitives
+    // joined tangentially; longer ones, and those it could only cover with a forced
+    // kink, are searched again, and the chain with fewer kinks, then fewer primitives,
+    // wins. The greedy chain is walked only as far as the search and that choice need.
+    GreedyWalk greedy(*this, a, limit);
+    const bool searched = search && o_.beam_width > 1 && (greedy.longer_than(2) || greedy.kinks() > 0);
+    size_t beam_forced = 0;
+    std::vector<Chosen> b;
+    if (searched) b = beam_stretch(a, limit, greedy, beam_forced);
+    // A beam chain of k primitives without kinks is taken over a greedy chain of k or more
+    // (which the greedy walk, as far as it went, may already show without another step).
+    const bool beam_shorter =
+        searched && beam_forced == 0 && (b.size() <= greedy.at_least() || greedy.longer_than(b.size() - 1));
+    if (!beam_shorter) greedy.finish();
+    if (beam_shorter || (searched && std::pair(beam_forced, b.size()) < std::pair(greedy.kinks(), greedy.length()))) {
+      chain.swap(b);
+      forced = beam_forced;
+    } else {
+      chain = std::move(greedy.chain);
+      forced = greedy.kinks();
+    }
+  }
+  if (search && o_.merge) tighten_between_kinks(a, chain);
+  // Where the chain wiggles, and with the global method for every stretch the chain does
+  // not cover with one primitive, every (vertex, tangent) state is searched layer by layer;
+  // with the global method every (vertex, range of tangents) state too. A chain found is
+  // kept when, merged too, it has fewer kinks, or as few and fewer primitives.
+  auto consider = [&](std::vector<Chosen> g) {
+    if (!g.empty() && o_.merge) tighten(a, g, in_tangent_);
+    if (!g.empty() && std::pair(size_t(0), g.size()) < std::pair(forced, chain.size())) {
+      chain.swap(g);
+      forced = 0;
+    }
+  };
+  const bool global = o_.method == FitOptions::Method::Global;
+  if ((search && wiggles(chain)) || (global && chain.size() > 1)) consider(layered_chain(a, limit));
+  if (global && chain.size() > 1) consider(range_chain(a, limit));
+  if ((search || o_.method == FitOptions::Method::Greedy) && wiggles(chain)) untangle(a, limit, chain, forced);
+  return chain;
 }
 
 /// Whether the joint at vertex v, after a move that is fixed or not, is one the fit made:
