@@ -192,24 +192,44 @@ std::vector<Chosen> RunFitter::fit_kept() {
       a = limit;
       continue;
     }
-    size_t forced = 0;
-    std::vector<Chosen> chain = fit_stretch(a, limit, forced);
-    // Where the chain meets the fixed move after it with a kink all the same, the end is
-    // searched again free, the kink there taken as given: held to the fixed move's
-    // direction, the stretch's last primitive could only be a move left as it was (two
-    // moves between an arc and a move of another width: two lines and three kinks, where
-    // one arc over both kinks twice). The chain with fewer kinks, then fewer primitives, wins.
-    if (out_tangent_ && !chain.empty() && !joint_cone_.holds(chain.back().end_tangent, *out_tangent_)) {
-      const Vec2 after = *out_tangent_;
-      out_tangent_.reset();
+    // The chain is searched with both ends held to the directions of the fixed moves around
+    // the stretch. Where it kinks at its end all the same, the end is searched again free;
+    // where it kinks anywhere while its start is held, the start too: the kink is then taken
+    // at the end or start as given. Held, the last primitive could only be a move left as it
+    // was (two moves between an arc and a move of another width: two lines and three kinks,
+    // where one arc over both kinks twice); after a lone line, the chain along it could only
+    // go on as the input's moves. The chain with fewer kinks, those at its ends included,
+    // then fewer primitives, wins.
+    const std::optional<Vec2> before = in_tangent_, after = out_tangent_;
+    struct Tried {
+      std::vector<Chosen> chain;
+      size_t kinks = 0;
+      bool free_start = false, free_end = false;
+    };
+    auto attempt = [&](bool free_start, bool free_end) {
+      in_tangent_ = free_start ? std::nullopt : before;
+      out_tangent_ = free_end ? std::nullopt : after;
       lim_ = scan_limits();
       stretch_id_ = ++s_.stretches;
-      size_t free_forced = 0;
-      std::vector<Chosen> free_end = fit_stretch(a, limit, free_forced);
-      const size_t end_kink = free_end.empty() || !joint_cone_.holds(free_end.back().end_tangent, after) ? 1 : 0;
-      if (std::pair(free_forced + end_kink, free_end.size()) < std::pair(forced + 1, chain.size())) chain.swap(free_end);
-    }
-    out.insert(out.end(), chain.begin(), chain.end());
+      Tried t{{}, 0, free_start, free_end};
+      t.chain = fit_stretch(a, limit, t.kinks);
+      if (t.chain.empty()) return t;
+      if (free_start && !joint_cone_.holds(*before, start_tangent(t.chain.front(), a))) {
+        t.chain.front().kinked = true;
+        ++t.kinks;
+      }
+      if (after && !joint_cone_.holds(t.chain.back().end_tangent, *after)) ++t.kinks;
+      return t;
+    };
+    Tried best = attempt(false, false);
+    auto weigh = [&](Tried t) {
+      if (!t.chain.empty() && std::pair(t.kinks, t.chain.size()) < std::pair(best.kinks, best.chain.size())) best = std::move(t);
+    };
+    if (after && !best.chain.empty() && !joint_cone_.holds(best.chain.back().end_tangent, *after)) weigh(attempt(false, true));
+    if (before && best.kinks > 0 && !best.chain.empty() && !best.chain.front().kinked) weigh(attempt(true, best.free_end));
+    in_tangent_ = before;
+    out_tangent_ = after;
+    out.insert(out.end(), best.chain.begin(), best.chain.end());
     a = limit;
   }
   report_spike_corners(out);
