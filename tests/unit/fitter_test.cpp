@@ -1265,6 +1265,25 @@ TEST_CASE("after a lone line, two moves whose chain along it must kink later sta
   CHECK(o.r.within_band());
 }
 
+TEST_CASE("a kink a chain cannot avoid moves to the lone move after it when that saves a primitive", "[fit][chain]") {
+  // For Marlin, at 0.025 mm: a move of 0.078 mm, then one of 1.15 mm turning 13.5° (a smooth
+  // joint, where no tangent chain passes), then, after a block that only sets the feed, a
+  // lone move straight on. Held to end along the lone move, the chain is the two moves and
+  // kinks 13.5° between them; one line over both passes the first move's end 0.016 mm off
+  // and meets the lone move 0.8° off: one primitive fewer, and a smaller kink.
+  const std::string text =
+      "G21\nG90\nM83\nG0 X0 Y0 Z0.2\nG1 F1200\nG1 X0.008 Y-0.078 E0.0025\nG1 X0.378 Y-1.166 E0.0355\nG1 F1200\n"
+      "G1 X0.748 Y-2.253 E0.0355\n";
+  FitOptions f;
+  f.tolerance_mm = 0.025;
+  auto o = compress_text(text, f, load_dialect_file(ARCPRESS_SOURCE_DIR "/dialects/marlin.toml"));
+  INFO(o.r.output);
+  CHECK(o.lines == 1);
+  CHECK(o.r.forced_kinks == 1);
+  CHECK(o.r.comparison.max_smooth_kink_deg < 1);
+  CHECK(o.r.within_band());
+}
+
 TEST_CASE("between two corners, a short move that turns into a long one is bent to meet it tangentially",
           "[fit][search]") {
   // Infill from a slicer (PrusaSlicer 2.5's bunny, 3 decimals): at 144.851 and 143.255 the

@@ -193,13 +193,12 @@ std::vector<Chosen> RunFitter::fit_kept() {
       continue;
     }
     // The chain is searched with both ends held to the directions of the fixed moves around
-    // the stretch. Where it kinks at its end all the same, the end is searched again free;
-    // where it kinks anywhere while its start is held, the start too: the kink is then taken
-    // at the end or start as given. Held, the last primitive could only be a move left as it
-    // was (two moves between an arc and a move of another width: two lines and three kinks,
-    // where one arc over both kinks twice); after a lone line, the chain along it could only
-    // go on as the input's moves. The chain with fewer kinks, those at its ends included,
-    // then fewer primitives, wins.
+    // the stretch. Where it kinks all the same, the end, then the start, is searched again
+    // free: the kink may then be taken there instead. Held, the last primitive could only be
+    // a move left as it was (two moves between an arc and a move of another width: two lines
+    // and three kinks, where one arc over both kinks twice); after a lone line, the chain
+    // along it could only go on as the input's moves. The chain with fewer kinks, those at
+    // its ends included, then fewer primitives, wins.
     const std::optional<Vec2> before = in_tangent_, after = out_tangent_;
     struct Tried {
       std::vector<Chosen> chain;
@@ -225,7 +224,7 @@ std::vector<Chosen> RunFitter::fit_kept() {
     auto weigh = [&](Tried t) {
       if (!t.chain.empty() && std::pair(t.kinks, t.chain.size()) < std::pair(best.kinks, best.chain.size())) best = std::move(t);
     };
-    if (after && !best.chain.empty() && !joint_cone_.holds(best.chain.back().end_tangent, *after)) weigh(attempt(false, true));
+    if (after && best.kinks > 0 && !best.chain.empty()) weigh(attempt(false, true));
     if (before && best.kinks > 0 && !best.chain.empty() && !best.chain.front().kinked) weigh(attempt(true, best.free_end));
     in_tangent_ = before;
     out_tangent_ = after;
