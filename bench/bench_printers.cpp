@@ -97,6 +97,34 @@ size_t motion_blocks(const std::string& text) {
   return n;
 }
 
+/// Joints along the printed path that turn by more than `angle_deg`: between two moves in a
+/// row that both extrude (G1, G2 or G3 in XY, E going forwards), whoever made the joint, the
+/// slicer or the fit. Blocks that do not move stand between them unnoticed; a travel ends
+/// the path.
+size_t sharp_joints(const std::string& text, const Dialect& d, double angle_deg) {
+  DiagnosticSink sink;
+  Program p = lex("in", text, sink);
+  Interpretation in = interpret(p, sink, d);
+  size_t n = 0;
+  bool before = false;  // the move before extruded along a direction
+  Vec2 end{0, 0};        // and arrived along this one
+  for (size_t i = 0; i < in.moves.size(); ++i) {
+    const Move& m = in.moves[i];
+    if (m.kind == MoveKind::Other) {
+      before = false;
+      continue;
+    }
+    const Vec2 start = move_start_tangent(in, i);
+    const bool prints = m.kind != MoveKind::Rapid && m.plane == Plane::XY && m.to[kE] > in.from(i)[kE] &&
+                        start.squaredNorm() > 0;
+    if (prints && before && turn_deg(end, start) > angle_deg) ++n;
+    if (!prints && m.to[kX] == in.from(i)[kX] && m.to[kY] == in.from(i)[kY]) continue;  // goes nowhere in XY
+    before = prints;
+    end = move_end_tangent(in, i);
+  }
+  return n;
+}
+
 /// The fewest blocks the runs of `text` can be written in by any fit that keeps every
 /// smooth joint tangent (see the file's head): per chain of runs (chain_runs(), as the
 /// fitter fits them), the sum over the stretches of runs between corners (is_corner(), and
@@ -257,8 +285,9 @@ int main(int argc, char** argv) {
   for (const Reference& r : kArcWelder) reference[r.file] = r;
   const std::string head =
       "| file | band mm | ArcWelder blocks | arcpress blocks | ≤ ArcWelder | bytes out | max dev. program mm | max dev. "
-      "executed mm | joints over 0.5° | max kink ° | MB/s | blocks, --g1-angle 5 | tangent lower bound | as fitted |\n"
-      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+      "executed mm | joints over 0.5° | max kink ° | all joints over 0.5°, in → out | MB/s | blocks, --g1-angle 5 | "
+      "tangent lower bound | as fitted |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   fmt::print("{}", head);
   size_t wins = 0, rows = 0, violations = 0;
   for_each_printer_case(marlin, [&](const fs::path& f, const std::string& text, const CompressOptions& opt) {
@@ -280,10 +309,11 @@ int main(int argc, char** argv) {
     violations += (program > band) + (executed > band) + unforced;
     wins += aw && blocks <= aw;
     ++rows;
-    fmt::print("| {} | {} | {} | {} | {} | {} | {:.6f} | {:.6f} | {} | {:.3f} | {:.1f} | {} | {}{} | {} |\n",
+    fmt::print("| {} | {} | {} | {} | {} | {} | {:.6f} | {:.6f} | {} | {:.3f} | {} → {} | {:.1f} | {} | {}{} | {} |\n",
                f.filename().string(), band, aw ? std::to_string(aw) : "-", blocks,
                aw ? (blocks <= aw ? "yes" : "no") : "-", r.bytes_out, program, executed,
                r.comparison.smooth_joints_over_g1, r.comparison.max_smooth_kink_deg,
+               sharp_joints(text, marlin, opt.fit.g1_angle_deg), sharp_joints(r.output, marlin, opt.fit.g1_angle_deg),
                double(text.size()) / 1e6 / seconds, motion_blocks(r5.output), bound,
                aw && bound > aw ? " (> ArcWelder)" : "", fitted_bound);
   });
