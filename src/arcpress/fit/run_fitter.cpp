@@ -193,24 +193,25 @@ std::vector<Chosen> RunFitter::fit_kept() {
       continue;
     }
     // The chain is searched with both ends held to the directions of the fixed moves around
-    // the stretch. Where it kinks all the same, the end, then the start, is searched again
-    // free: the kink may then be taken there instead. Held, the last primitive could only be
-    // a move left as it was (two moves between an arc and a move of another width: two lines
-    // and three kinks, where one arc over both kinks twice); after a lone line, the chain
-    // along it could only go on as the input's moves. The chain with fewer kinks, those at
-    // its ends included, then fewer primitives, wins.
+    // the stretch. Where it kinks all the same, it is searched again with the end, the start,
+    // and both free: a kink may then be taken there instead. Held, the last primitive could
+    // only be a move left as it was (two moves between an arc and a move of another width: two
+    // lines and three kinks, where one arc over both kinks twice); after a lone line, the
+    // chain along it could only go on as the input's moves. The chain with fewer kinks, those
+    // at its ends included, then fewer primitives, wins.
     const std::optional<Vec2> before = in_tangent_, after = out_tangent_;
     struct Tried {
       std::vector<Chosen> chain;
-      size_t kinks = 0;
-      bool free_start = false, free_end = false;
+      size_t kinks = 0;  // forced, those at the ends included
     };
     auto attempt = [&](bool free_start, bool free_end) {
-      in_tangent_ = free_start ? std::nullopt : before;
-      out_tangent_ = free_end ? std::nullopt : after;
+      in_tangent_.reset();
+      out_tangent_.reset();
+      if (before && !free_start) in_tangent_ = *before;
+      if (after && !free_end) out_tangent_ = *after;
       lim_ = scan_limits();
       stretch_id_ = ++s_.stretches;
-      Tried t{{}, 0, free_start, free_end};
+      Tried t;
       t.chain = fit_stretch(a, limit, t.kinks);
       if (t.chain.empty()) return t;
       if (free_start && !joint_cone_.holds(*before, start_tangent(t.chain.front(), a))) {
@@ -224,8 +225,9 @@ std::vector<Chosen> RunFitter::fit_kept() {
     auto weigh = [&](Tried t) {
       if (!t.chain.empty() && std::pair(t.kinks, t.chain.size()) < std::pair(best.kinks, best.chain.size())) best = std::move(t);
     };
-    if (after && best.kinks > 0 && !best.chain.empty()) weigh(attempt(false, true));
-    if (before && best.kinks > 0 && !best.chain.empty() && !best.chain.front().kinked) weigh(attempt(true, best.free_end));
+    if (best.kinks > 0)
+      for (const auto& [free_start, free_end] : {std::pair(false, true), std::pair(true, false), std::pair(true, true)})
+        if ((!free_start || before) && (!free_end || after)) weigh(attempt(free_start, free_end));
     in_tangent_ = before;
     out_tangent_ = after;
     out.insert(out.end(), best.chain.begin(), best.chain.end());
