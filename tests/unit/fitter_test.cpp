@@ -70,6 +70,16 @@ Outcome compress_text(const std::string& text, FitOptions fit = {}, Dialect dial
   return o;
 }
 
+/// `text` compressed for the dialect file named `dialect`, in a band of `band_mm`, and found
+/// within it.
+Outcome compress_for(const std::string& text, const char* dialect, double band_mm = FitOptions{}.tolerance_mm) {
+  FitOptions fit;
+  fit.tolerance_mm = band_mm;
+  Outcome o = compress_text(text, fit, load_dialect_file(std::string(ARCPRESS_SOURCE_DIR "/dialects/") + dialect + ".toml"));
+  REQUIRE(o.r.within_band());
+  return o;
+}
+
 /// `first`, then `second` from its second point on (it starts where `first` ends).
 std::vector<Pt> joined(std::vector<Pt> first, const std::vector<Pt>& second) {
   first.insert(first.end(), second.begin() + 1, second.end());
@@ -1254,15 +1264,12 @@ TEST_CASE("after a lone line, two moves whose chain along it must kink later sta
   // is cut finely enough: one primitive, and one kink, of 6.5°.
   const std::string text =
       "G21\nG90\nM83\nG0 X0 Y12 Z0.2\nG1 X0 Y0 E0.4 F1500\nG1 X0 Y-0.77 E0.0257 F1400\nG1 X0.03 Y-0.906 E0.0046\n";
-  FitOptions f;
-  f.tolerance_mm = 0.025;
-  auto o = compress_text(text, f, load_dialect_file(ARCPRESS_SOURCE_DIR "/dialects/marlin.toml"));
+  auto o = compress_for(text, "marlin", 0.025);
   INFO(o.r.output);
   CHECK(o.arcs == 1);
   CHECK(o.lines == 0);
   CHECK(o.r.forced_kinks == 1);
   CHECK(o.r.comparison.max_smooth_kink_deg < 7);
-  CHECK(o.r.within_band());
 }
 
 TEST_CASE("a kink a chain cannot avoid moves to the lone move after it when that saves a primitive", "[fit][chain]") {
@@ -1274,14 +1281,11 @@ TEST_CASE("a kink a chain cannot avoid moves to the lone move after it when that
   const std::string text =
       "G21\nG90\nM83\nG0 X0 Y0 Z0.2\nG1 F1200\nG1 X0.008 Y-0.078 E0.0025\nG1 X0.378 Y-1.166 E0.0355\nG1 F1200\n"
       "G1 X0.748 Y-2.253 E0.0355\n";
-  FitOptions f;
-  f.tolerance_mm = 0.025;
-  auto o = compress_text(text, f, load_dialect_file(ARCPRESS_SOURCE_DIR "/dialects/marlin.toml"));
+  auto o = compress_for(text, "marlin", 0.025);
   INFO(o.r.output);
   CHECK(o.lines == 1);
   CHECK(o.r.forced_kinks == 1);
   CHECK(o.r.comparison.max_smooth_kink_deg < 1);
-  CHECK(o.r.within_band());
 }
 
 TEST_CASE("between two corners, a short move that turns into a long one is bent to meet it tangentially",
@@ -1350,12 +1354,6 @@ double rotary_error_deg(const std::vector<RotaryPt>& in, const std::string& outp
   }
   CHECK(from == in.size() - 1);
   return worst;
-}
-
-Outcome compress_for(const std::string& text, const char* dialect) {
-  Outcome o = compress_text(text, {}, load_dialect_file(std::string(ARCPRESS_SOURCE_DIR "/dialects/") + dialect + ".toml"));
-  REQUIRE(o.r.within_band());
-  return o;
 }
 
 }  // namespace
