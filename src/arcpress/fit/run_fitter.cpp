@@ -199,6 +199,12 @@ std::vector<Chosen> RunFitter::fit_kept() {
     // lines and three kinks, where one arc over both kinks twice); after a lone line, the
     // chain along it could only go on as the input's moves. The chain with fewer kinks, those
     // at its ends included, then fewer primitives, wins.
+    // The input's directions inside the stretch, which the searches aim for, are the same
+    // whichever end is held.
+    const bool search = o_.method == FitOptions::Method::Arcs || o_.method == FitOptions::Method::Global;
+    if (search || o_.method == FitOptions::Method::Greedy)
+      for (uint32_t v = a + 1; v < limit; ++v)
+        heading_[v] = search ? sided_tangent(v, a, limit) : input_tangent(v, a, limit);
     const std::optional<Vec2> before = in_tangent_, after = out_tangent_;
     struct Tried {
       std::vector<Chosen> chain;
@@ -239,9 +245,6 @@ std::vector<Chosen> RunFitter::fit_kept() {
 
 std::vector<Chosen> RunFitter::fit_stretch(uint32_t a, uint32_t limit, size_t& forced) {
   const bool search = o_.method == FitOptions::Method::Arcs || o_.method == FitOptions::Method::Global;
-  if (search || o_.method == FitOptions::Method::Greedy)
-    for (uint32_t v = a + 1; v < limit; ++v)
-      heading_[v] = search ? sided_tangent(v, a, limit) : input_tangent(v, a, limit);
   std::vector<Chosen> chain;
   if (o_.method == FitOptions::Method::Stream) {
     chain = stream_chain(a, limit, forced);

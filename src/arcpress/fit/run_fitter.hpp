@@ -124,8 +124,9 @@ class RunFitter : private FitAngles {
 
  private:
   std::vector<Chosen> fit_kept();
-  /// The chain over the stretch from `a` to `limit` (in_tangent_, out_tangent_ and the scan
-  /// limits set for it) by the options' method, `forced` counting its forced kinks.
+  /// The chain over the stretch from `a` to `limit` (in_tangent_, out_tangent_, the scan
+  /// limits and heading_ set for it) by the options' method, `forced` counting its forced
+  /// kinks.
   std::vector<Chosen> fit_stretch(uint32_t a, uint32_t limit, size_t& forced);
   /// A chain that still wiggles may be paying with S-bends, all the way along, for one joint
   /// the path cannot pass tangentially: a hook, where the input turns at a vertex by more
