@@ -538,13 +538,38 @@ TEST_CASE("a greedy chain that meets plum's inner tips one after another is mend
 }
 
 TEST_CASE("the global method never needs more primitives than the default search, and finds fewer where "
-          "one narrow place decides the chain", "[fit][search][global]") {
-  // Plum: between its inner tips the chain must meet each tip with nearly one tangent, which
-  // a beam ranking chains by reach can drop (y = x³, whose long flat tails many chains cross
-  // equally far, must not come out longer either).
+          "one narrow place decides a chain too long for the default's search over ranges of tangents",
+          "[fit][search][global]") {
+  // Plum at 0.001 mm: between its inner tips the chain must meet each tip with nearly one
+  // tangent, which a beam ranking chains by reach can drop, and its 74 primitives are more
+  // than the default searches over ranges of tangents (y = x³, whose long flat tails many
+  // chains cross equally far, must not come out longer either).
   FitOptions search, global;
   global.method = FitOptions::Method::Global;
-  CHECK(fewer_primitives({plum_points(), cubic_points()}, {0.01, 0.007}, search, global) >= 2);
+  CHECK(fewer_primitives({plum_points(), cubic_points()}, {0.007, 0.001}, search, global) >= 1);
+}
+
+TEST_CASE("where the beam's primitives each span many moves, the default searches ranges of tangents too, and "
+          "needs no more primitives than the global method on Xu's curves", "[fit][search][global]") {
+  // Bézier 1 at 0.005 mm: the beam keeps a few of the hundreds of places each of its
+  // primitives can end, and its chain had 6 where 5 do; y = x³ 10 where 9 do, plum at
+  // 0.01 mm 39 where 33 do.
+  for (double tol : {0.01, 0.005}) {
+    FitOptions search, global;
+    search.min_radius_mm = global.min_radius_mm = 0;
+    search.tolerance_mm = global.tolerance_mm = tol;
+    global.method = FitOptions::Method::Global;
+    for (const auto& pts : {bezier1_points(), cubic_points(), plum_points()}) {
+      auto d = compress_text(program(pts), search);
+      auto g = compress_text(program(pts), global);
+      INFO("tolerance " << tol << ", " << pts.size() << " points: " << d.arcs + d.lines << " blocks, the global method "
+                        << g.arcs + g.lines);
+      CHECK(d.arcs + d.lines <= g.arcs + g.lines);
+      CHECK(d.r.forced_kinks == 0);
+      CHECK(d.r.comparison.max_deviation_mm <= tol);
+      CHECK(d.r.comparison.max_smooth_kink_deg <= 0.5);
+    }
+  }
 }
 
 TEST_CASE("the default search does not wiggle: where its chain leaves a narrow place along a tangent it can only "
@@ -847,10 +872,11 @@ TEST_CASE("merging works between forced kinks too: a kink frees the tangent on b
 TEST_CASE("merging after the search: two primitives become one, three become two, joints stay tangent",
           "[fit][search]") {
   // Plum: sharp inner tips and fast curvature changes, where the chain search alone leaves
-  // neighbours that fewer primitives can replace.
+  // neighbours that fewer primitives can replace (at 0.001 mm, where the chain is too long
+  // for the search over ranges of tangents, which finds the fewest either way).
   FitOptions searched, merged;
   searched.merge = false;
-  CHECK(fewer_primitives({plum_points()}, {0.01, 0.005}, searched, merged) >= 1);
+  CHECK(fewer_primitives({plum_points()}, {0.01, 0.001}, searched, merged) >= 1);
 }
 
 TEST_CASE("with --spikes, a lone jag inside the band is noise, not a corner, and without, it is a corner", "[fit][spikes]") {

@@ -18,7 +18,7 @@ Vec2 direction_at(double angle) { return Vec2(std::cos(angle), std::sin(angle));
 
 }  // namespace
 
-std::vector<Chosen> RunFitter::range_chain(uint32_t a, uint32_t limit) const {
+std::vector<Chosen> RunFitter::range_chain(uint32_t a, uint32_t limit, double front_share) const {
   // The turn carried from one primitive's end tangents to the next one's starts (rad).
   const double joint = kJointShare * deg_to_rad(o_.g1_angle_deg);
   const double carried = kRangeJointShare * joint;
@@ -101,6 +101,11 @@ std::vector<Chosen> RunFitter::range_chain(uint32_t a, uint32_t limit) const {
     // Per vertex, the union of the layer's arrivals less what earlier layers reached: each
     // piece left is a state of the next layer.
     std::sort(arrivals.begin(), arrivals.end(), [](const Arrival& x, const Arrival& y) { return x.e < y.e; });
+    if (front_share > 0 && !arrivals.empty()) {
+      const uint32_t cut = front + uint32_t(front_share * double(arrivals.back().e - front));
+      arrivals.erase(arrivals.begin(), std::lower_bound(arrivals.begin(), arrivals.end(), cut,
+                                                        [](const Arrival& x, uint32_t e) { return x.e < e; }));
+    }
     std::vector<int> next;
     for (size_t i = 0; i < arrivals.size();) {
       const uint32_t e = arrivals[i].e;

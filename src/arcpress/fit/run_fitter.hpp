@@ -71,6 +71,20 @@ constexpr double kRangeSamplesPerDeg = 5;
 constexpr double kRangeJointShare = 0.95;
 /// Range search: exact checks per primitive the chain is read back with at most.
 constexpr size_t kRangeChecksPerPrimitive = 256;
+/// The default method also runs the range search on a stretch whose beam chain has no forced
+/// kink and at least kRangeMinPrimitives, at most kRangeMaxPrimitives primitives, each of
+/// kRangeMovesPerPrimitive moves or more on average: there a layer of the beam keeps a few of
+/// the many places a primitive can end, and over several joints the places it drops are the
+/// ones the fewest primitives need (Xu's bezier1 at 0.005 mm: 6 blocks, 5 with the search).
+/// Chains of shorter primitives, as printers' perimeters and most CAM passes come out, are
+/// left to the beam; with fewer primitives the merges after the beam already try the other
+/// joints; and the limit on primitives bounds the search's work.
+constexpr size_t kRangeMinPrimitives = 4;
+constexpr size_t kRangeMaxPrimitives = 64;
+constexpr double kRangeMovesPerPrimitive = 25;
+/// The default's range search makes states only of the ends in the far part of each layer's
+/// advance, past this share of it: half the work, and no more blocks on Xu's curves.
+constexpr double kRangeFrontShare = 0.5;
 
 /// The start tangents at a free start whose circles reach vertex e inside the band: their
 /// tangent-chord angles (radians, positive to the left of the chord) from lo to hi.
@@ -538,7 +552,9 @@ class RunFitter : private FitAngles {
   /// The chain is then read back from the end, each primitive checked exactly and joined
   /// within the joint's turn: where the searches that follow one tangent at a time miss the
   /// one start a chain of few primitives needs, this finds it. Empty when none is found.
-  std::vector<Chosen> range_chain(uint32_t a, uint32_t limit) const;
+  /// With `front_share` (the default's use), a layer's ends short of that share of its
+  /// advance past the furthest vertex before make no states.
+  std::vector<Chosen> range_chain(uint32_t a, uint32_t limit, double front_share = 0) const;
   static std::vector<Chosen> chain_to(const std::vector<Node>& nodes, int id);
   static Vec2 rotated(const Vec2& T, double rad) { return Turn(rad)(T); }
   /// The input's own directions at `a`, where the tangent is free: those of circles through
