@@ -286,14 +286,15 @@ std::vector<Chosen> RunFitter::fit_stretch(uint32_t a, uint32_t limit, size_t& f
     }
   };
   const bool global = o_.method == FitOptions::Method::Global;
-  if ((search && wiggles(chain)) || (global && chain.size() > 1)) consider(layered_chain(a, limit));
-  if (global && chain.size() > 1) consider(range_chain(a, limit));
-  // The default searches ranges of tangents too where its primitives are long (see
-  // kRangeMovesPerPrimitive).
-  const bool long_primitives = forced == 0 && chain.size() >= kRangeMinPrimitives &&
+  // Where the beam's primitives are long, ranges of tangents are searched too, the far part
+  // of each layer's advance (see kRangeMovesPerPrimitive); decided on the beam's chain, so
+  // that the global method runs every search the default does.
+  const bool long_primitives = search && forced == 0 && chain.size() >= kRangeMinPrimitives &&
                                chain.size() <= kRangeMaxPrimitives &&
                                double(limit - a) >= kRangeMovesPerPrimitive * double(chain.size());
-  if (o_.method == FitOptions::Method::Arcs && long_primitives) consider(range_chain(a, limit, kRangeFrontShare));
+  if ((search && wiggles(chain)) || (global && chain.size() > 1)) consider(layered_chain(a, limit));
+  if (global && chain.size() > 1) consider(range_chain(a, limit));
+  if (long_primitives) consider(range_chain(a, limit, kRangeFrontShare));
   if ((search || o_.method == FitOptions::Method::Greedy) && wiggles(chain)) untangle(a, limit, chain, forced);
   return chain;
 }
