@@ -18,14 +18,14 @@ Vec2 direction_at(double angle) { return Vec2(std::cos(angle), std::sin(angle));
 
 }  // namespace
 
-std::vector<Chosen> RunFitter::range_chain(uint32_t a, uint32_t limit, double front_share) const {
+std::vector<Chosen> RunFitter::range_chain(uint32_t a, uint32_t limit, size_t max_primitives, double front_share) const {
   // The turn carried from one primitive's end tangents to the next one's starts (rad).
   const double joint = kJointShare * deg_to_rad(o_.g1_angle_deg);
   const double carried = kRangeJointShare * joint;
   struct State {
     uint32_t v;
     double lo, hi;       // the start tangents' angles (rad) it may leave with
-    uint32_t reach = 0;  // the furthest end its scans reached, once expanded
+    uint32_t reach = 0;  // the furthest end its scans reached from the front on (else v), once expanded
   };
   std::vector<State> states;
   // Per vertex from `a`: the start angles the layers so far reached it with (merged).
@@ -45,32 +45,37 @@ std::vector<Chosen> RunFitter::range_chain(uint32_t a, uint32_t limit, double fr
   auto sample = [](const State& s, int j, int count) { return s.lo + (s.hi - s.lo) * j / (count - 1); };
   const size_t max_states = kMaxStatesPerVertex * size_t(limit - a) + 16;
   std::vector<std::vector<int>> layers{{0}};
-  struct Arrival {
-    uint32_t e;
-    double lo, hi;
-  };
-  std::vector<Arrival> arrivals;
+  // Per vertex from `a`, the end tangents (rad, as reached) the layer's primitives arrive
+  // with, widened by the joint's turn; and the vertices with any, in the order reached.
+  std::vector<std::vector<AngleRange>> arriving(limit - a + 1);
+  std::vector<uint32_t> arrived;
   std::vector<std::pair<int, int>> reached(limit - a + 1, {INT_MAX, -1});  // per end: first and last sample
   std::vector<uint32_t> ends;
   std::vector<AngleRange> here;
   int found = -1;  // the state of the last layer whose primitive reaches `limit`
   double found_lo = 0, found_hi = 0;
   uint32_t front = a;  // the furthest vertex the layers so far reached
-  while (found < 0 && !layers.back().empty()) {
-    arrivals.clear();
+  while (found < 0 && !layers.back().empty() && layers.size() <= max_primitives) {
     for (int id : layers.back()) {
       const State s = states[size_t(id)];
       // The ends each sample of the range reaches; those a range of samples reaches.
       const int count = samples(s);
       ends.clear();
-      for (int j = 0; j < count; ++j)
-        scan_ends(s.v, direction_at(sample(s, j, count)), limit, [&](const Candidate& c) {
+      // The samples in groups of at most kFanLanes, scanned together.
+      const int groups = (count + kFanLanes - 1) / kFanLanes, per_group = (count + groups - 1) / groups;
+      for (int j0 = 0; j0 < count; j0 += per_group) {
+        const size_t sorted = ends.size();  // (each group reports its ends in order)
+        const int lanes = std::min(per_group, count - j0);
+        Vec2 T[kFanLanes];
+        for (int l = 0; l < lanes; ++l) T[l] = direction_at(sample(s, j0 + l, count));
+        fan_ends(s.v, T, lanes, limit, front, [&](int l, const Candidate& c) {
           auto& r = reached[c.e - a];
           if (r.second < 0) ends.push_back(c.e);
-          r.first = std::min(r.first, j);
-          r.second = std::max(r.second, j);
+          r.first = std::min(r.first, j0 + l);
+          r.second = std::max(r.second, j0 + l);
         });
-      std::sort(ends.begin(), ends.end());
+        std::inplace_merge(ends.begin(), ends.begin() + std::ptrdiff_t(sorted), ends.end());
+      }
       states[size_t(id)].reach = ends.empty() ? s.v : ends.back();
       for (uint32_t e : ends) {
         auto& r = reached[e - a];
@@ -93,34 +98,39 @@ std::vector<Chosen> RunFitter::range_chain(uint32_t a, uint32_t limit, double fr
           }
           continue;
         }
-        if (e >= front) arrivals.push_back({e, end_lo - carried, end_hi + carried});
+        if (e >= front) {
+          if (arriving[e - a].empty()) arrived.push_back(e);
+          arriving[e - a].push_back({end_lo - carried, end_hi + carried});
+        }
       }
       if (found >= 0) break;
     }
     if (found >= 0) break;
     // Per vertex, the union of the layer's arrivals less what earlier layers reached: each
     // piece left is a state of the next layer.
-    std::sort(arrivals.begin(), arrivals.end(), [](const Arrival& x, const Arrival& y) { return x.e < y.e; });
-    if (front_share > 0 && !arrivals.empty()) {
-      const uint32_t cut = front + uint32_t(front_share * double(arrivals.back().e - front));
-      arrivals.erase(arrivals.begin(), std::lower_bound(arrivals.begin(), arrivals.end(), cut,
-                                                        [](const Arrival& x, uint32_t e) { return x.e < e; }));
-    }
+    std::sort(arrived.begin(), arrived.end());
+    const uint32_t cut = front_share > 0 && !arrived.empty()
+                             ? front + uint32_t(front_share * double(arrived.back() - front))
+                             : front;
     std::vector<int> next;
-    for (size_t i = 0; i < arrivals.size();) {
-      const uint32_t e = arrivals[i].e;
-      const double ref = reference(e);
-      here.clear();
-      for (; i < arrivals.size() && arrivals[i].e == e; ++i) {
-        const double lo = near_angle(arrivals[i].lo, ref);
-        here.push_back({lo, lo + (arrivals[i].hi - arrivals[i].lo)});
+    for (uint32_t e : arrived) {
+      std::vector<AngleRange>& in = arriving[e - a];
+      if (e >= cut) {
+        const double ref = reference(e);
+        here.clear();
+        for (const AngleRange& r : in) {
+          const double lo = near_angle(r.lo, ref);
+          here.push_back({lo, lo + (r.hi - r.lo)});
+        }
+        for (const AngleRange& r : take_new(here, taken[e - a])) {
+          states.push_back({e, r.lo, r.hi});
+          next.push_back(int(states.size()) - 1);
+        }
+        front = std::max(front, e);
       }
-      for (const AngleRange& r : take_new(here, taken[e - a])) {
-        states.push_back({e, r.lo, r.hi});
-        next.push_back(int(states.size()) - 1);
-      }
-      front = std::max(front, e);
+      in.clear();
     }
+    arrived.clear();
     if (states.size() > max_states) return {};
     layers.push_back(std::move(next));
   }

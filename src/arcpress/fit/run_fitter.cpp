@@ -293,8 +293,12 @@ std::vector<Chosen> RunFitter::fit_stretch(uint32_t a, uint32_t limit, size_t& f
                                chain.size() <= kRangeMaxPrimitives &&
                                double(limit - a) >= kRangeMovesPerPrimitive * double(chain.size());
   if ((search && wiggles(chain)) || (global && chain.size() > 1)) consider(layered_chain(a, limit));
-  if (global && chain.size() > 1) consider(range_chain(a, limit));
-  if (long_primitives) consider(range_chain(a, limit, kRangeFrontShare));
+  // (The global method's search goes on past the chain's length: a chain without a forced
+  // kink is taken over one with, however long, and one longer may still lose primitives to
+  // the merges. Where the default searches, the chain has no kink, and longer ones found
+  // merge no shorter on Xu's curves or the corpus.)
+  if (global && chain.size() > 1) consider(range_chain(a, limit, SIZE_MAX));
+  if (long_primitives) consider(range_chain(a, limit, chain.size() - 1, kRangeFrontShare));
   if ((search || o_.method == FitOptions::Method::Greedy) && wiggles(chain)) untangle(a, limit, chain, forced);
   return chain;
 }

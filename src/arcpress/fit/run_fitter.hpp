@@ -65,6 +65,8 @@ constexpr uint32_t kLayerGroups = 4;
 constexpr size_t kMaxStatesPerVertex = 64;
 /// Range search: tangents scanned per degree of a state's range of start tangents.
 constexpr double kRangeSamplesPerDeg = 5;
+/// The tangents fan_ends() scans together at most (the range search's samples, in groups).
+constexpr int kFanLanes = 16;
 /// Range search: the share of the joint allowance it carries from one primitive's end
 /// tangents to the next one's starts (the rest is room for a line's chord, which leaves off
 /// its scanned tangent, and for the start chosen between two samples).
@@ -197,10 +199,15 @@ class RunFitter : private FitAngles {
   /// scan() handing each end to `sink` in order, nothing stored.
   template <class Sink>
   void scan_ends(uint32_t a, const Vec2& T, uint32_t limit, Sink&& sink) const;
-  /// scan_ends() where every vertex of the run lies at one height (`level`: then no
-  /// primitive climbs, which the compiler can see) or not.
-  template <bool level, class Sink>
-  void scan_ends_in(uint32_t a, const Vec2& T, uint32_t limit, Sink& sink) const;
+  /// scan_ends() along each of `count` (<= kFanLanes) tangents T[0..count) at once, handing
+  /// `sink` (lane, candidate) for each end from `first_end` on: for each end in order, the
+  /// lanes in order.
+  template <class Sink>
+  void fan_ends(uint32_t a, const Vec2* T, int count, uint32_t limit, uint32_t first_end, Sink&& sink) const;
+  /// fan_ends() of at most `Lanes` tangents, where every vertex of the run lies at one
+  /// height (`level`: then no primitive climbs, which the compiler can see) or not.
+  template <bool level, int Lanes, class Sink>
+  void fan_ends_in(uint32_t a, const Vec2* T, int count, uint32_t limit, uint32_t first_end, Sink& sink) const;
   /// Builds and checks the primitive for candidate `c` from `a` along `T`.
   std::optional<Chosen> make(uint32_t a, const Vec2& T, const Candidate& c) const;
   /// Whether every extra axis that moves, carried linearly by path length from vertex a to
@@ -553,8 +560,9 @@ class RunFitter : private FitAngles {
   /// within the joint's turn: where the searches that follow one tangent at a time miss the
   /// one start a chain of few primitives needs, this finds it. Empty when none is found.
   /// With `front_share` (the default's use), a layer's ends short of that share of its
-  /// advance past the furthest vertex before make no states.
-  std::vector<Chosen> range_chain(uint32_t a, uint32_t limit, double front_share = 0) const;
+  /// advance past the furthest vertex before make no states. Only chains of at most
+  /// `max_primitives` are looked for: the search stops after that many layers.
+  std::vector<Chosen> range_chain(uint32_t a, uint32_t limit, size_t max_primitives, double front_share = 0) const;
   static std::vector<Chosen> chain_to(const std::vector<Node>& nodes, int id);
   static Vec2 rotated(const Vec2& T, double rad) { return Turn(rad)(T); }
   /// The input's own directions at `a`, where the tangent is free: those of circles through
