@@ -25,7 +25,7 @@ std::vector<Chosen> RunFitter::range_chain(uint32_t a, uint32_t limit, size_t ma
   struct State {
     uint32_t v;
     double lo, hi;       // the start tangents' angles (rad) it may leave with
-    uint32_t reach = 0;  // the furthest end its scans reached from the front on (else v), once expanded
+    uint32_t reach = 0;  // the furthest end its scans reached (v if none it looked at), once expanded
   };
   std::vector<State> states;
   // Per vertex from `a`: the start angles the layers so far reached it with (merged).
@@ -56,8 +56,12 @@ std::vector<Chosen> RunFitter::range_chain(uint32_t a, uint32_t limit, size_t ma
   double found_lo = 0, found_hi = 0;
   uint32_t front = a;  // the furthest vertex the layers so far reached
   while (found < 0 && !layers.back().empty() && layers.size() <= max_primitives) {
+    uint32_t furthest = front;  // the furthest vertex the layer's primitives arrive at so far
     for (int id : layers.back()) {
       const State s = states[size_t(id)];
+      // The ends short of the share of the layer's advance so far make no state (below):
+      // they are not looked at.
+      const uint32_t first_end = front + uint32_t(front_share * double(furthest - front));
       // The ends each sample of the range reaches; those a range of samples reaches.
       const int count = samples(s);
       ends.clear();
@@ -68,7 +72,7 @@ std::vector<Chosen> RunFitter::range_chain(uint32_t a, uint32_t limit, size_t ma
         const int lanes = std::min(per_group, count - j0);
         Vec2 T[kFanLanes];
         for (int l = 0; l < lanes; ++l) T[l] = direction_at(sample(s, j0 + l, count));
-        fan_ends(s.v, T, lanes, limit, front, [&](int l, const Candidate& c) {
+        fan_ends(s.v, T, lanes, limit, first_end, [&](int l, const Candidate& c) {
           auto& r = reached[c.e - a];
           if (r.second < 0) ends.push_back(c.e);
           r.first = std::min(r.first, j0 + l);
@@ -98,10 +102,9 @@ std::vector<Chosen> RunFitter::range_chain(uint32_t a, uint32_t limit, size_t ma
           }
           continue;
         }
-        if (e >= front) {
-          if (arriving[e - a].empty()) arrived.push_back(e);
-          arriving[e - a].push_back({end_lo - carried, end_hi + carried});
-        }
+        if (arriving[e - a].empty()) arrived.push_back(e);
+        furthest = std::max(furthest, e);
+        arriving[e - a].push_back({end_lo - carried, end_hi + carried});
       }
       if (found >= 0) break;
     }
