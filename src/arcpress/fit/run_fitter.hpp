@@ -156,7 +156,17 @@ class RunFitter : private FitAngles {
   /// mended only at its first wiggle, a greedy chain over plum crept through the rest in
   /// S-bends (sampled with 6 000 points and turned by 0.7 rad, at 0.005 mm: 667 blocks; 59
   /// now, with two kinks).
-  void untangle(uint32_t a, uint32_t limit, std::vector<Chosen>& chain, size_t& forced, int depth = 0) const;
+  void untangle(uint32_t a, uint32_t limit, std::vector<Chosen>& chain, size_t& forced) const;
+  /// The chain a restart at vertex v fits after a break, before it is mended, and its forced
+  /// kinks: the levels of untangle() restart at the same vertices again and again (plum at
+  /// 0.005 mm: 20 restarts at 8 vertices), and a restart's chain depends on its vertex alone.
+  struct Restart {
+    uint32_t v;
+    std::vector<Chosen> chain;
+    size_t forced;
+  };
+  void untangle_at(uint32_t a, uint32_t limit, std::vector<Chosen>& chain, size_t& forced, int depth,
+                   std::vector<Restart>& restarts) const;
   /// The index of the first primitive of the first wiggle in `chain` (see wiggles()), or
   /// its size when none.
   size_t wiggle_start(const std::vector<Chosen>& chain) const;

@@ -2,6 +2,8 @@
 // Tangency repair: seed 000's G1 adjustment of a chain fitted without regard to its joints,
 // local merging of neighbouring primitives (tighten()), and breaking the tangent where a
 // chain can only follow the path in S-bends (untangle()).
+#include <algorithm>
+
 #include "arcpress/fit/run_fitter.hpp"
 
 namespace arcpress::fit_detail {
@@ -18,7 +20,13 @@ namespace arcpress::fit_detail {
 /// mended only at its first wiggle, a greedy chain over plum crept through the rest in
 /// S-bends (sampled with 6 000 points and turned by 0.7 rad, at 0.005 mm: 667 blocks; 59
 /// now, with two kinks).
-void RunFitter::untangle(uint32_t a, uint32_t limit, std::vector<Chosen>& chain, size_t& forced, int depth) const {
+void RunFitter::untangle(uint32_t a, uint32_t limit, std::vector<Chosen>& chain, size_t& forced) const {
+  std::vector<Restart> restarts;
+  untangle_at(a, limit, chain, forced, 0, restarts);
+}
+
+void RunFitter::untangle_at(uint32_t a, uint32_t limit, std::vector<Chosen>& chain, size_t& forced, int depth,
+                            std::vector<Restart>& restarts) const {
   const size_t first = wiggle_start(chain);
   std::vector<Chosen> best;
   size_t best_forced = forced;
@@ -27,19 +35,25 @@ void RunFitter::untangle(uint32_t a, uint32_t limit, std::vector<Chosen>& chain,
   for (size_t k = std::max<size_t>(first, 2) - 1; k <= first + 1 && k < chain.size(); ++k) {
     const uint32_t v = chain[k - 1].prim.end_vertex;  // the joint at the start of primitive k
     if (chain[k].kinked || hard_[v]) continue;
-    size_t rest_forced = 0;
-    GreedyWalk greedy(*this, v, limit);
-    greedy.tangent.reset();
-    std::vector<Chosen> rest;
-    if (o_.method == FitOptions::Method::Greedy) {
-      greedy.finish();
-      rest = std::move(greedy.chain);
-      rest_forced = greedy.kinks();
-    } else {
-      rest = beam_stretch(v, limit, greedy, rest_forced);
+    auto known = std::find_if(restarts.begin(), restarts.end(), [&](const Restart& r) { return r.v == v; });
+    if (known == restarts.end()) {
+      Restart r{v, {}, 0};
+      GreedyWalk greedy(*this, v, limit);
+      greedy.tangent.reset();
+      if (o_.method == FitOptions::Method::Greedy) {
+        greedy.finish();
+        r.chain = std::move(greedy.chain);
+        r.forced = greedy.kinks();
+      } else {
+        r.chain = beam_stretch(v, limit, greedy, r.forced);
+      }
+      restarts.push_back(std::move(r));
+      known = restarts.end() - 1;
     }
+    std::vector<Chosen> rest = known->chain;
+    size_t rest_forced = known->forced;
     if (rest.empty()) continue;
-    if (depth < kUntangleDepth && wiggles(rest)) untangle(v, limit, rest, rest_forced, depth + 1);
+    if (depth < kUntangleDepth && wiggles(rest)) untangle_at(v, limit, rest, rest_forced, depth + 1, restarts);
     const size_t after = chain.size() - k;
     if (2 * rest.size() > after || rest.size() + kKinkWorth > after) continue;
     rest.front().kinked = true;
