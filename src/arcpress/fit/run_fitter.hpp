@@ -165,6 +165,7 @@ class RunFitter : private FitAngles {
     std::vector<Chosen> chain;
     size_t forced;
   };
+  /// untangle() `depth` levels down, with the restarts fitted so far in the same call.
   void untangle_at(uint32_t a, uint32_t limit, std::vector<Chosen>& chain, size_t& forced, int depth,
                    std::vector<Restart>& restarts) const;
   /// The index of the first primitive of the first wiggle in `chain` (see wiggles()), or
