@@ -120,6 +120,38 @@ TEST_CASE("output comes out before the input ends, and all of a big program is n
   CHECK(s.forced_cuts == 0);  // a printer program has a retraction or a travel often enough
 }
 
+TEST_CASE("the first pieces are small and each is twice the one before, so that a short program is shared among "
+          "the threads",
+          "[stream]") {
+  CHECK(piece_bytes(0) == kFirstPieceBytes);
+  for (size_t i = 1; i < 12; ++i) CHECK(piece_bytes(i) == std::min(2 * piece_bytes(i - 1), kPieceBytes));
+  CHECK(piece_bytes(1000) == kPieceBytes);
+  // Short passes, each after a travel (a move no chain crosses): a piece ends at the first
+  // travel past its size. 150 KB, as a slicer writes a small part: four pieces of 16, 32,
+  // 64 and the rest, where pieces of kPieceBytes alone would make two.
+  std::string text = "G21 G90 M83\nG0 X0 Y0 Z0.2\n";
+  for (int pass = 0; text.size() < 150000; ++pass) {
+    const double y = 0.4 * pass;
+    text += fmt::format("G0 X0 Y{:.3f}\n", y);
+    for (int k = 1; k <= 20; ++k)
+      text += fmt::format("G1 X{:.3f} Y{:.3f} E0.02\n", 2.0 * k, y + 0.2 * std::sin(0.3 * k));
+  }
+  CompressOptions opt;
+  opt.threads = 2;
+  DiagnosticSink sink("pieces");
+  Compressor c("pieces", opt, sink);
+  c.push(text);
+  c.finish();
+  CHECK(c.pieces() == 4);
+  std::string out;
+  c.take(out);
+  CHECK(c.result().ok);
+  CHECK(c.result().within_band());
+  // The same text on one thread, pushed a line at a time.
+  opt.threads = 1;
+  CHECK(stream_lines(text, opt).output == out);
+}
+
 TEST_CASE("a path that goes on for longer than a piece may hold is cut at a vertex and still kept in the band",
           "[stream]") {
   const std::string text = spiral(60000);  // about 1.3 MB of one smooth path, five pieces' worth

@@ -167,11 +167,11 @@ struct Compressor::Impl {
     if (!cur) open_piece();
     Program& p = cur->program;
     Interpretation& in = cur->in;
-    // Past kPieceBytes the piece ends after the first move that ends chains; past
+    // Past piece_bytes() the piece ends after the first move that ends chains; past
     // kCornerPieceBytes also before a move that starts at a corner (where a chain ends too,
     // though the corner rule then judges the vertices beside it without their neighbours
     // across the cut).
-    const bool ending = p.text.size() >= kPieceBytes;
+    const bool ending = p.text.size() >= piece_bytes(cur->index);
     Mark mark;
     if (ending)
       mark = {p.text.size(), p.blocks.size(), p.words.size(), in.moves.size(), in.frames.size(), in.unplaced.size(),
