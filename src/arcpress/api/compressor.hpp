@@ -4,17 +4,16 @@
 //
 // Bytes pushed in are cut into whole lines, lexed and read by the modal interpreter on the
 // caller's thread, and gathered into pieces (piece.hpp) of about kPieceBytes (the first
-// few smaller, piece_bytes()): a piece ends
-// after the first move no fit may join (a rapid, a retraction, a move with a comment or
-// from an unknown position...) once it holds that much, so a chain of runs is never cut
-// there and the fit is the one the whole program would get; past kCornerPieceBytes it may
-// also end before a move that starts at a corner, and a path that goes on for kMaxPieceBytes
-// without either is cut at a vertex (a forced cut, counted in the result). Each
-// closed piece is fitted, written and checked on a worker thread; finished pieces are
-// released in program order. At most kPiecesInFlight pieces per worker wait or are worked
-// on, so memory does not grow with the program: push() waits for the oldest while they are
-// that many. The text is the same for any number of threads and any way the bytes are cut
-// into pushes.
+// few smaller, piece_bytes()): a piece ends after the first move no fit may join (a rapid,
+// a retraction, a move with a comment or from an unknown position...) once it holds that
+// much, so a chain of runs is never cut there and the fit is the one the whole program
+// would get; past kCornerPieceBytes it may also end before a move that starts at a corner,
+// and a path that goes on for kMaxPieceBytes without either is cut at a vertex (a forced
+// cut, counted in the result). Each closed piece is fitted, written and checked on a
+// worker thread; finished pieces are released in program order. At most kPiecesInFlight
+// pieces per worker wait or are worked on, so memory does not grow with the program: push()
+// waits for the oldest while they are that many. The text is the same for any number of
+// threads and any way the bytes are cut into pushes.
 #include <algorithm>
 #include <cstddef>
 #include <exception>
@@ -28,9 +27,10 @@ namespace arcpress {
 
 /// Input bytes a piece gathers before it may end at the next move no fit joins.
 inline constexpr size_t kPieceBytes = size_t(1) << 17;
-/// ... the first piece, and each piece after it twice as many as the one before, up to
-/// kPieceBytes: the workers start on a program while its first lines are still being read,
-/// and a short one is shared among them (a slicer's 150 KB program is four pieces, not two).
+/// The input bytes the first piece gathers before it may end; each after it gathers twice
+/// as many as the one before, up to kPieceBytes. The workers start on a program while its
+/// first lines are still being read, and share a short one (a slicer's 150 KB program is
+/// four pieces, not two).
 inline constexpr size_t kFirstPieceBytes = size_t(1) << 14;
 /// The input bytes piece `index` (0 for the first) gathers before it may end.
 inline constexpr size_t piece_bytes(size_t index) {
