@@ -167,7 +167,8 @@ size_t min_g1_primitive_count(std::span<const Vec2> pts, double band_mm, double 
   };
   struct State {
     size_t v;
-    double mid;  // rad: the tangents mid ± half
+    double mid;    // rad: the tangents mid ± width, the piece of the range that arrived
+    double width;  // rad, at most half (a state reaching past what arrived keeps chains that are not there)
   };
   std::vector<std::vector<Range>> taken(n + 1), arriving(n + 1);
   std::vector<size_t> touched;
@@ -176,7 +177,7 @@ size_t min_g1_primitive_count(std::span<const Vec2> pts, double band_mm, double 
     for (const Range& r : ranges) {
       const int pieces = std::max(1, int(std::ceil((r.hi - r.lo) / (2 * half))));
       const double step = (r.hi - r.lo) / pieces;
-      for (int k = 0; k < pieces; ++k) next.push_back({v, r.lo + (k + 0.5) * step});
+      for (int k = 0; k < pieces; ++k) next.push_back({v, r.lo + (k + 0.5) * step, step / 2});
     }
   };
   {
@@ -206,8 +207,8 @@ size_t min_g1_primitive_count(std::span<const Vec2> pts, double band_mm, double 
     for (const State& st : layer) {
       const size_t i = st.v;
       const Vec2 T0(std::cos(st.mid), std::sin(st.mid)), N0 = left_normal(T0);
-      sides[0].box(half, 0, 1e9);
-      sides[1].box(half, -1e9, 0);
+      sides[0].box(st.width, 0, 1e9);
+      sides[1].box(st.width, -1e9, 0);
       // The half-planes a point u (from vertex i) puts on (δ, k): both sides of the band, or
       // (a move's middle) the inner side only.
       auto bound = [&](Polygon& poly, const Vec2& u, bool outer, bool inner) {
@@ -242,7 +243,7 @@ size_t min_g1_primitive_count(std::span<const Vec2> pts, double band_mm, double 
         // The circle through vertex j, k |d|² = 2 d·N, and at most half a turn (T·d >= 0).
         const double chord = std::atan2(d.y(), d.x());
         const double rel = near_angle(chord - st.mid, 0);
-        const double lo = std::max(-half, rel - kPi / 2), hi = std::min(half, rel + kPi / 2);
+        const double lo = std::max(-st.width, rel - kPi / 2), hi = std::min(st.width, rel + kPi / 2);
         if (lo > hi) continue;
         const double dn = d.dot(N0), dt = d.dot(T0), allow = 2 * std::sqrt(dd) * bend + slack;
         Range off{kPi, -kPi};

@@ -41,8 +41,9 @@ struct EndTangents {
 /// `g1_angle_deg` of `joins` where they are given. Found breadth first over (vertex, tangent)
 /// states, each tangent range taken once, by the first layer that reaches it; the
 /// curvatures that keep the vertices in the band are bounded by half-planes over a tangent
-/// range of a quarter degree (the circle's bend over it allowed for), so a range is kept
-/// whenever some tangent in it could be, and the count is still a lower bound.
+/// range of at most a quarter degree, a piece of the range that arrived at the vertex (the
+/// circle's bend over it allowed for), so a range is kept whenever some tangent in it could
+/// be, and the count is still a lower bound.
 /// A primitive ends at each vertex of `ends`, and the next one leaves within the G1 angle
 /// of its end tangent.
 size_t min_g1_primitive_count(std::span<const Vec2> pts, double band_mm, double g1_angle_deg,
