@@ -102,13 +102,16 @@ void RunFitter::consider(uint32_t a, const Vec2& T, uint32_t limit, std::optiona
 
 /// Start of a smooth stretch (or after a forced kink): try a few start tangents read off
 /// the input, and the one into the second move, and keep the one whose primitive reaches
-/// furthest.
+/// furthest. (One that reaches `limit` on course scores what no later one can beat.)
 Chosen RunFitter::best_free(uint32_t a, uint32_t limit) const {
   std::optional<Chosen> best;
   Score best_score;
   input_tangents(a, limit, s_.free_starts);
   if (auto T = into_next(a, limit)) s_.free_starts.push_back(*T);
-  for (const Vec2& T : s_.free_starts) consider(a, T, limit, best, best_score);
+  for (const Vec2& T : s_.free_starts) {
+    consider(a, T, limit, best, best_score);
+    if (best && best_score.on_course && best_score.reach >= limit && best_score.end >= limit) break;
+  }
   if (best) return *best;
   return input_move(a);
 }
