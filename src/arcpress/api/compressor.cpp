@@ -171,7 +171,7 @@ struct Compressor::Impl {
     // kCornerPieceBytes also before a move that starts at a corner (where a chain ends too,
     // though the corner rule then judges the vertices beside it without their neighbours
     // across the cut).
-    const bool ending = p.text.size() >= piece_bytes(cur->index);
+    const bool ending = p.text.size() >= gather_bytes;
     Mark mark;
     if (ending)
       mark = {p.text.size(), p.blocks.size(), p.words.size(), in.moves.size(), in.frames.size(), in.unplaced.size(),
@@ -236,6 +236,7 @@ struct Compressor::Impl {
       spare.reset();
     }
     cur->index = pieces++;
+    gather_bytes = piece_bytes(cur->index);
     cur->program.name = name;
     reserve_piece(cur->program, cur->in);
     cur->start = reader.state();
@@ -399,6 +400,7 @@ struct Compressor::Impl {
   std::unique_ptr<Piece> spare; // the last piece released, whose buffers the next one reads into
   uint32_t line = 0;
   size_t pieces = 0, bytes_read = 0, forced = 0, lines_out = 0, limit = 1, pool_size = 0;
+  size_t gather_bytes = kPieceBytes;  ///< piece_bytes() of the piece being read
   bool centre_mode_set = false;
   bool failed = false;
   bool finished = false;
