@@ -1314,6 +1314,79 @@ TEST_CASE("a kink a chain cannot avoid moves to the lone move after it when that
   CHECK(o.r.comparison.max_smooth_kink_deg < 1);
 }
 
+namespace {
+/// One piece of a path drawn by turtle: a turn on the spot (degrees, left positive), a line
+/// (mm) or an arc (radius mm, sweep degrees, left positive), the last two in `moves` equal moves.
+struct Piece {
+  enum Kind { Turn, Line, Arc } kind;
+  double a, b = 0;
+  int moves = 0;
+};
+
+/// The path from the origin, heading `heading_deg`, through `pieces`.
+std::vector<Pt> turtle_path(double heading_deg, std::initializer_list<Piece> pieces) {
+  std::vector<Pt> pts{{0, 0, 0}};
+  double heading = deg_to_rad(heading_deg);
+  for (const Piece& p : pieces) {
+    const Pt from = pts.back();
+    if (p.kind == Piece::Turn) {
+      heading += deg_to_rad(p.a);
+    } else if (p.kind == Piece::Line) {
+      for (int i = 1; i <= p.moves; ++i)
+        pts.push_back({from.x + std::cos(heading) * p.a * i / p.moves, from.y + std::sin(heading) * p.a * i / p.moves, 0});
+    } else {
+      const double sweep = deg_to_rad(p.b), side = sweep > 0 ? 1 : -1;
+      const double cx = from.x - std::sin(heading) * p.a * side, cy = from.y + std::cos(heading) * p.a * side;
+      const double a0 = std::atan2(from.y - cy, from.x - cx);
+      for (int i = 1; i <= p.moves; ++i)
+        pts.push_back({cx + p.a * std::cos(a0 + sweep * i / p.moves), cy + p.a * std::sin(a0 + sweep * i / p.moves), 0});
+      heading += sweep;
+    }
+  }
+  return pts;
+}
+}  // namespace
+
+TEST_CASE("where the tangent must break, it breaks where the chain after it does best, not where the chain "
+          "before it gave out",
+          "[fit][search]") {
+  // A line of 7.6 mm in 40 moves, a turn of 13° to the left (no corner, and more than the
+  // 0.01 mm band can round off), a clockwise arc of 11.2 mm radius over 105° in 49 moves,
+  // another 13° to the left, and a line of 5.8 mm in 44 moves, printed to 3 decimals. No
+  // tangent chain passes either joint. The chains that keep the tangent longest creep past
+  // the first joint in short arcs and give out a few moves into the arc, and a kink there
+  // left six short arcs before the long one (9 blocks); a vertex or two back, where a
+  // shorter chain of the stalled search arrives, the chain after the kink is one arc.
+  const auto pts = turtle_path(90, {{Piece::Line, 7.6, 0, 40}, {Piece::Turn, 13}, {Piece::Arc, 11.2, -105, 49},
+                                    {Piece::Turn, 13}, {Piece::Line, 5.8, 0, 44}});
+  auto o = compress_text(program(pts, "G17", 3));
+  INFO(o.r.output);
+  CHECK(o.lines == 2);
+  CHECK(o.arcs == 1);
+  CHECK(o.r.forced_kinks == 2);
+  CHECK(o.r.comparison.max_deviation_mm <= 0.01);
+}
+
+TEST_CASE("a chain mended where it wiggles is weighed by the kinks it replaces: where the chain after the joint "
+          "kinks already, fewer primitives are enough",
+          "[fit][search]") {
+  // Arcs and lines joined by turns of 3.5 to 18°, none a corner, two of them more than the
+  // 0.01 mm band can round off; printed to 3 decimals. Past the first of those two, the
+  // search's chain wiggles, and kinks further on. Started again where the wiggle begins,
+  // with a kink there, the rest is 3 primitives where the chain had 5, with no kink of its
+  // own: the kink moves, and none is added. Counted as one more kink, the restart would
+  // have had to save kKinkWorth primitives besides, and the fit stayed at 16 blocks.
+  const auto pts = turtle_path(70, {{Piece::Arc, 19.4, 21, 62}, {Piece::Turn, -13.4}, {Piece::Line, 5, 0, 16},
+                                    {Piece::Turn, 10}, {Piece::Line, 3.4, 0, 8}, {Piece::Turn, 17.8},
+                                    {Piece::Arc, 9.7, -117, 44}, {Piece::Turn, 11}, {Piece::Line, 1.6, 0, 7},
+                                    {Piece::Turn, -3.5}, {Piece::Arc, 19.6, 103, 119}});
+  auto o = compress_text(program(pts, "G17", 3));
+  INFO(o.r.output);
+  CHECK(o.arcs + o.lines <= 12);
+  CHECK(o.r.forced_kinks <= 2);
+  CHECK(o.r.comparison.max_deviation_mm <= 0.01);
+}
+
 TEST_CASE("between two corners, a short move that turns into a long one is bent to meet it tangentially",
           "[fit][search]") {
   // Infill from a slicer (PrusaSlicer 2.5's bunny, 3 decimals): at 144.851 and 143.255 the

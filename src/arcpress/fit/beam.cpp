@@ -15,15 +15,48 @@ namespace arcpress::fit_detail {
 /// greedy chain (read off `greedy` up to its first kink, or chosen again when null) is
 /// always kept. When no chain goes on tangentially, the one reaching furthest is
 /// returned (empty when none leaves `a`), and the caller takes a kink there.
-std::vector<Chosen> RunFitter::beam_chain(uint32_t a, uint32_t limit, GreedyWalk* greedy) const {
+std::vector<Chosen> RunFitter::beam_chain(uint32_t a, uint32_t limit, GreedyWalk* greedy,
+                                          std::span<const Seed> seeds) const {
   std::vector<Node>& nodes = s_.nodes;
   std::vector<int>& layer = s_.layer;
   std::vector<int>& next = s_.next;
+  std::vector<std::pair<int, uint32_t>>& root_seeds = s_.root_seeds;
   nodes.clear();
   layer.clear();
-  roots(a, limit, s_.roots);
-  for (const Vec2& T : s_.roots) nodes.push_back({{}, -1, a, T});
-  for (int i = 0; i < static_cast<int>(nodes.size()); ++i) layer.push_back(i);
+  root_seeds.clear();
+  if (seeds.empty()) {
+    roots(a, limit, s_.roots);
+    for (const Vec2& T : s_.roots) nodes.push_back({{}, -1, a, T});
+    for (int i = 0; i < static_cast<int>(nodes.size()); ++i) layer.push_back(i);
+  }
+  // Seeds join the beam in the layer of their prefix's length; the greedy chain starts from
+  // the last (-3: not yet).
+  size_t depth = seeds.empty() ? 0 : seeds.front().prefix.size();
+  size_t next_seed = 0;
+  int guide_root = seeds.empty() ? 0 : -1;
+  auto join = [&] {
+    for (; next_seed < seeds.size() && seeds[next_seed].prefix.size() == depth; ++next_seed) {
+      roots(seeds[next_seed].v, limit, s_.roots);
+      if (next_seed + 1 == seeds.size() && !s_.roots.empty()) guide_root = static_cast<int>(nodes.size());
+      for (const Vec2& T : s_.roots) {
+        root_seeds.push_back({static_cast<int>(nodes.size()), uint32_t(next_seed)});
+        layer.push_back(static_cast<int>(nodes.size()));
+        nodes.push_back({{}, -1, seeds[next_seed].v, T});
+      }
+    }
+  };
+  // The chain that ends at node `id`, with its seed's prefix.
+  auto whole = [&](int id) {
+    std::vector<Chosen> c = chain_to(nodes, id);
+    if (seeds.empty() || c.empty()) return c;
+    int root = id;
+    while (nodes[root].parent >= 0) root = nodes[root].parent;
+    const auto at = std::lower_bound(root_seeds.begin(), root_seeds.end(), std::pair(root, uint32_t(0)));
+    const std::vector<Chosen>& prefix = seeds[at->second].prefix;
+    c.front().kinked = true;
+    c.insert(c.begin(), prefix.begin(), prefix.end());
+    return c;
+  };
   const double bin_rad = deg_to_rad(std::min(o_.g1_angle_deg, 2 * kFinestJointTurnDeg)) / 8;
   const size_t width = o_.beam_width;
   // Candidates are scored first and checked exactly only when the beam keeps them.
@@ -37,19 +70,22 @@ std::vector<Chosen> RunFitter::beam_chain(uint32_t a, uint32_t limit, GreedyWalk
   std::vector<int8_t>& straight = s_.straight;  // per vertex from `a`: straight_ahead(), -1 not yet known
   straight.assign(limit - a + 1, -1);
   int furthest = -1;
-  int guide = -1;  // the node the greedy chain would be at: the beam never does worse
+  int guide = seeds.empty() ? -1 : -3;  // the node the greedy chain would be at: the beam never does worse
   size_t step = 0;
-  while (!layer.empty()) {
+  while (!layer.empty() || next_seed < seeds.size()) {
+    join();
+    if (guide == -3 && guide_root >= 0) guide = -1;
     made.clear();
     // The greedy chain's next primitive: read off `greedy` (whose first kink ends it) when
     // given, else chosen again.
     std::optional<Chosen> g;
     if (guide == -1) {
-      guide = layer.front();
+      guide = guide_root;
+      const uint32_t v = nodes[guide].v;
       if (greedy) {
         if (const Chosen* c = greedy->at(0); c && !c->kinked) g = *c;
       } else {
-        g = arrives_along(a) ? best_near(a, *in_tangent_, limit) : std::optional<Chosen>(best_free(a, limit));
+        g = arrives_along(v) ? best_near(v, *in_tangent_, limit) : std::optional<Chosen>(best_free(v, limit));
       }
     } else if (guide >= 0) {
       if (greedy) {
@@ -86,7 +122,7 @@ std::vector<Chosen> RunFitter::beam_chain(uint32_t a, uint32_t limit, GreedyWalk
           if (cd.e >= limit) {
             if (auto c = made_from(nd, T, cd)) {
               nodes.push_back({*c, i, c->prim.end_vertex, c->end_tangent});
-              return chain_to(nodes, static_cast<int>(nodes.size()) - 1);
+              return whole(static_cast<int>(nodes.size()) - 1);
             }
             continue;
           }
@@ -106,10 +142,10 @@ std::vector<Chosen> RunFitter::beam_chain(uint32_t a, uint32_t limit, GreedyWalk
     if (g) {
       nodes.push_back({*g, guide, g->prim.end_vertex, g->end_tangent});
       guide = static_cast<int>(nodes.size()) - 1;
-      if (g->prim.end_vertex >= limit) return chain_to(nodes, guide);
+      if (g->prim.end_vertex >= limit) return whole(guide);
       next.push_back(guide);
       if (furthest < 0 || nodes[furthest].v < g->prim.end_vertex) furthest = guide;
-    } else {
+    } else if (guide != -3) {
       guide = -2;
     }
     // A chain one primitive short of `limit` along its own end tangent ends the search in the
@@ -125,7 +161,7 @@ std::vector<Chosen> RunFitter::beam_chain(uint32_t a, uint32_t limit, GreedyWalk
       auto c = made_from(nd, nd.T, *cd);
       if (!c) return std::nullopt;
       nodes.push_back({*c, id, c->prim.end_vertex, c->end_tangent});
-      return chain_to(nodes, static_cast<int>(nodes.size()) - 1);
+      return whole(static_cast<int>(nodes.size()) - 1);
     };
     if (guide >= 0)
       if (auto done = finish(guide)) return *done;
@@ -215,8 +251,9 @@ std::vector<Chosen> RunFitter::beam_chain(uint32_t a, uint32_t limit, GreedyWalk
     keep_best(width / 2 + kFurthestEnds, [](const Score& x) { return Fields{0, x.end, x.reach}; });
     keep_best(width, [](const Score& x) { return Fields{x.on_course, x.reach, x.end}; });
     layer.swap(next);
+    ++depth;
   }
-  return furthest < 0 ? std::vector<Chosen>{} : chain_to(nodes, furthest);
+  return furthest < 0 ? std::vector<Chosen>{} : whole(furthest);
 }
 
 /// The one-primitive finish from vertex `v` along exactly `T` to `limit`, as the scan
@@ -253,24 +290,73 @@ std::optional<Chosen> RunFitter::made_from(const Node& nd, const Vec2& T, const 
 }
 
 /// The beam search's chain from `a` to `limit`. Where no chain goes on tangentially, the
-/// tangent breaks at the furthest one's end (counted in `forced`) and the search restarts.
+/// tangent breaks and the search starts again from the seeds kink_seeds() finds.
 std::vector<Chosen> RunFitter::beam_stretch(uint32_t a, uint32_t limit, GreedyWalk& greedy, size_t& forced) const {
-  std::vector<Chosen> chain;
-  while (a < limit) {
-    // After the first part, the tangent breaks where the chain before could not go on; the
-    // first part breaks it only when nothing leaves along the incoming tangent.
-    bool breaks = !chain.empty();
-    auto part = beam_chain(a, limit, chain.empty() ? &greedy : nullptr);
-    if (part.empty()) {
-      part.push_back(best_free(a, limit));
-      breaks = breaks || arrives_along(a);
-    }
-    part.front().kinked = breaks;
-    if (breaks) ++forced;
-    chain.insert(chain.end(), part.begin(), part.end());
-    a = part.back().prim.end_vertex;
+  std::vector<Chosen> part = beam_chain(a, limit, &greedy);
+  if (part.empty()) {  // (the first part breaks the tangent only when nothing leaves along it)
+    part.push_back(best_free(a, limit));
+    part.front().kinked = arrives_along(a);
+    forced += part.front().kinked;
   }
-  return chain;
+  std::vector<Seed> seeds, next;
+  while (part.back().prim.end_vertex < limit) {
+    kink_seeds(part, seeds, next);
+    seeds.swap(next);
+    ++forced;
+    uint32_t lowest = limit;
+    for (const Seed& sd : seeds) lowest = std::min(lowest, sd.v);
+    std::vector<Chosen> after = beam_chain(lowest, limit, nullptr, seeds);
+    if (after.empty()) {  // nothing leaves any seed: the one where the chain stalled
+      after = seeds.back().prefix;
+      after.push_back(best_free(seeds.back().v, limit));
+      after.back().kinked = true;
+    }
+    part.swap(after);
+  }
+  return part;
+}
+
+void RunFitter::kink_seeds(const std::vector<Chosen>& part, std::span<const Seed> seeds, std::vector<Seed>& out) const {
+  const std::vector<Node>& nodes = s_.nodes;
+  const uint32_t end = part.back().prim.end_vertex;
+  const uint32_t from = end > kKinkSeedMoves ? end - kKinkSeedMoves : 0;
+  // Per node, its chain's length with the prefix of its seed, and the root it grew from.
+  std::vector<size_t> length(nodes.size());
+  std::vector<int> root(nodes.size());
+  std::vector<int> shortest(end - from, -1);  // per vertex from `from`: the node with the shortest chain
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    const Node& nd = nodes[i];
+    if (nd.parent < 0) {
+      root[i] = int(i);
+      length[i] = 0;
+      if (!seeds.empty()) {
+        const auto at = std::lower_bound(s_.root_seeds.begin(), s_.root_seeds.end(), std::pair(int(i), uint32_t(0)));
+        length[i] = seeds[at->second].prefix.size();
+      }
+      continue;
+    }
+    root[i] = root[nd.parent];
+    length[i] = length[nd.parent] + 1;
+    if (nd.v < from || nd.v >= end || length[i] > part.size()) continue;
+    int& s = shortest[nd.v - from];
+    if (s < 0 || length[i] < length[size_t(s)]) s = int(i);
+  }
+  out.clear();
+  for (int id : shortest) {
+    if (id < 0) continue;
+    Seed sd{nodes[id].v, {}};
+    if (!seeds.empty()) {
+      const auto at = std::lower_bound(s_.root_seeds.begin(), s_.root_seeds.end(), std::pair(root[id], uint32_t(0)));
+      sd.prefix = seeds[at->second].prefix;
+    }
+    std::vector<Chosen> own = chain_to(nodes, id);
+    if (!seeds.empty()) own.front().kinked = true;  // (it left its seed after a kink)
+    sd.prefix.insert(sd.prefix.end(), own.begin(), own.end());
+    out.push_back(std::move(sd));
+  }
+  // Shortest prefixes first; where the chain stalled, last (the greedy chain starts there).
+  std::stable_sort(out.begin(), out.end(), [](const Seed& x, const Seed& y) { return x.prefix.size() < y.prefix.size(); });
+  out.push_back({end, part});
 }
 
 }  // namespace arcpress::fit_detail

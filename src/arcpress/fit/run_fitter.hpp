@@ -45,6 +45,9 @@ constexpr size_t kKinkWorth = 4;
 constexpr int kUntangleDepth = 4;
 /// Candidates per primitive whose next step is looked at before choosing.
 constexpr int kLookahead = 6;
+/// How far back (in vertices) from where the beam stalled a forced kink may be placed: the
+/// restart's seeds (beam_stretch()).
+constexpr uint32_t kKinkSeedMoves = 4;
 /// Places in each layer of the beam for the chains whose last primitive ends furthest.
 constexpr size_t kFurthestEnds = 2;
 /// Bits of a vertex, and of a candidate's place, in the beam's one-integer ranking keys.
@@ -150,7 +153,8 @@ class RunFitter : private FitAngles {
   /// meets), so every chain that keeps the tangent leaves that vertex heading off the path.
   /// The tangent breaks instead at the joint where the first wiggle starts, or at the one
   /// before or after it, when that at least halves the primitives after the joint and saves
-  /// kKinkWorth of them for each kink it adds; the break is a forced kink. The chain after
+  /// kKinkWorth of them for each kink it adds, or, where the chain after the joint kinks as
+  /// often as the restart with its break, saves any; the break is a forced kink. The chain after
   /// the break may meet such a joint again further on (the next of plum's inner tips), so
   /// it is mended the same way, up to kUntangleDepth joints deep, before it is weighed:
   /// mended only at its first wiggle, a greedy chain over plum crept through the rest in
@@ -520,6 +524,7 @@ class RunFitter : private FitAngles {
     std::vector<std::pair<uint32_t, Vec2>> expanded;  // beam_chain()
     std::vector<uint64_t> order;                      // beam_chain()
     std::vector<int8_t> straight;                     // beam_chain()
+    std::vector<std::pair<int, uint32_t>> root_seeds;  // beam_chain(): (root node, its Seed)
     // The greedy steps' latest scans (GuideScan), in turn, and whether best_near() is taking one.
     std::array<GuideScan, 9> guide_scans;
     size_t guide_next = 0;
@@ -527,6 +532,12 @@ class RunFitter : private FitAngles {
     uint64_t stretches = 0;  // stretches begun on this thread (GuideScan::stretch)
   };
   static Scratch& thread_scratch();
+  /// A vertex where the chain may start again after a forced kink, and the chain that
+  /// reaches it from the start of beam_stretch()'s stretch (the kinks before it included).
+  struct Seed {
+    uint32_t v;
+    std::vector<Chosen> prefix;
+  };
   /// The G1 chain from `a` to `limit` with the fewest primitives a beam search finds. Layer k
   /// holds the chains of k primitives, at most `beam_width` of them, those reaching furthest
   /// (in the next step, or with this one) with distinct end tangents; each is extended along
@@ -537,7 +548,13 @@ class RunFitter : private FitAngles {
   /// greedy chain (read off `greedy` up to its first kink, or chosen again when null) is
   /// always kept. When no chain goes on tangentially, the one reaching furthest is
   /// returned (empty when none leaves `a`), and the caller takes a kink there.
-  std::vector<Chosen> beam_chain(uint32_t a, uint32_t limit, GreedyWalk* greedy) const;
+  /// With `seeds` (by prefix length, the last the one the greedy chain starts from), the
+  /// chain starts again after a kink at any of their vertices with a free tangent, each
+  /// joining the beam in the layer of its prefix's length, and is returned with its seed's
+  /// prefix, the first primitive after that marked kinked; `a` is then the lowest of their
+  /// vertices.
+  std::vector<Chosen> beam_chain(uint32_t a, uint32_t limit, GreedyWalk* greedy,
+                                 std::span<const Seed> seeds = {}) const;
   /// Whether the input runs straight from vertex v for kStraightAheadMm (or to `limit`): every
   /// vertex up to there within the band of the chord there.
   bool straight_ahead(uint32_t v, uint32_t limit) const;
@@ -546,8 +563,15 @@ class RunFitter : private FitAngles {
   /// line allowance, on top of the turn. (The beam's and the layered search's.)
   std::optional<Chosen> made_from(const Node& nd, const Vec2& T, const Candidate& cd) const;
   /// The beam search's chain from `a` to `limit`. Where no chain goes on tangentially, the
-  /// tangent breaks at the furthest one's end (counted in `forced`) and the search restarts.
+  /// tangent breaks (counted in `forced`) and the search starts again, from any vertex near
+  /// where the furthest chain stopped that a chain of the stalled beam reached with no more
+  /// primitives (kKinkSeedMoves): the break is placed where the chain after it does best,
+  /// not where the chain before it gave out.
   std::vector<Chosen> beam_stretch(uint32_t a, uint32_t limit, GreedyWalk& greedy, size_t& forced) const;
+  /// The seeds of beam_stretch()'s restart after the beam in s_.nodes stalled with `part`
+  /// (whose seeds were `seeds`, none for the first beam): per vertex within kKinkSeedMoves
+  /// before the end of `part`, the node with the shortest chain there, no longer than `part`.
+  void kink_seeds(const std::vector<Chosen>& part, std::span<const Seed> seeds, std::vector<Seed>& out) const;
   /// The G1 chain from `a` to `limit` with the fewest primitives, found breadth first over
   /// states (vertex, tangent leaving it): layer k holds the states k primitives reach, and
   /// each is expanded, along its tangent and along it turned by the joint's whole allowance

@@ -55,7 +55,12 @@ void RunFitter::untangle_at(uint32_t a, uint32_t limit, std::vector<Chosen>& cha
     if (rest.empty()) continue;
     if (depth < kUntangleDepth && wiggles(rest)) untangle_at(v, limit, rest, rest_forced, depth + 1, restarts);
     const size_t after = chain.size() - k;
-    if (2 * rest.size() > after || rest.size() + kKinkWorth > after) continue;
+    // (Where the chain after the joint has as many kinks as the restart brings, no kink is
+    // added: fewer primitives are enough.)
+    const size_t kinks_after = size_t(std::count_if(chain.begin() + static_cast<long>(k), chain.end(),
+                                                    [](const Chosen& c) { return c.kinked; }));
+    const bool adds_kink = 1 + rest_forced > kinks_after;
+    if (adds_kink && (2 * rest.size() > after || rest.size() + kKinkWorth > after)) continue;
     rest.front().kinked = true;
     std::vector<Chosen> made(chain.begin(), chain.begin() + static_cast<long>(k));
     made.insert(made.end(), rest.begin(), rest.end());
