@@ -299,10 +299,25 @@ std::vector<Chosen> RunFitter::beam_stretch(uint32_t a, uint32_t limit, GreedyWa
     forced += part.front().kinked;
   }
   std::vector<Seed> seeds, next;
+  // The primitives every seed's prefix starts with, moved here once rather than copied with
+  // each seed at each kink (prefixes, and `part`, are what follows them).
+  std::vector<Chosen> settled;
+  auto same = [](const Chosen& x, const Chosen& y) {
+    return x.prim.end_vertex == y.prim.end_vertex && x.prim.kind == y.prim.kind && x.prim.ccw == y.prim.ccw &&
+           x.prim.center == y.prim.center && x.end_tangent == y.end_tangent && x.kinked == y.kinked;
+  };
   while (part.back().prim.end_vertex < limit) {
     kink_seeds(part, seeds, next);
     seeds.swap(next);
     ++forced;
+    size_t common = seeds.front().prefix.size();
+    for (const Seed& sd : seeds) {
+      size_t k = 0;
+      while (k < common && k < sd.prefix.size() && same(sd.prefix[k], seeds.front().prefix[k])) ++k;
+      common = k;
+    }
+    settled.insert(settled.end(), seeds.front().prefix.begin(), seeds.front().prefix.begin() + long(common));
+    for (Seed& sd : seeds) sd.prefix.erase(sd.prefix.begin(), sd.prefix.begin() + long(common));
     uint32_t lowest = limit;
     for (const Seed& sd : seeds) lowest = std::min(lowest, sd.v);
     std::vector<Chosen> after = beam_chain(lowest, limit, nullptr, seeds);
@@ -313,7 +328,8 @@ std::vector<Chosen> RunFitter::beam_stretch(uint32_t a, uint32_t limit, GreedyWa
     }
     part.swap(after);
   }
-  return part;
+  settled.insert(settled.end(), part.begin(), part.end());
+  return settled;
 }
 
 void RunFitter::kink_seeds(const std::vector<Chosen>& part, std::span<const Seed> seeds, std::vector<Seed>& out) const {

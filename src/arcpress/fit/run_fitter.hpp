@@ -47,7 +47,7 @@ constexpr int kUntangleDepth = 4;
 constexpr int kLookahead = 6;
 /// How far back (in vertices) from where the beam stalled a forced kink may be placed: the
 /// restart's seeds (beam_stretch()).
-constexpr uint32_t kKinkSeedMoves = 4;
+constexpr uint32_t kKinkSeedMoves = 2;
 /// Places in each layer of the beam for the chains whose last primitive ends furthest.
 constexpr size_t kFurthestEnds = 2;
 /// Bits of a vertex, and of a candidate's place, in the beam's one-integer ranking keys.
