@@ -642,6 +642,37 @@ TEST_CASE("a rounded rectangle in G1 moves becomes its four lines and four fille
 }
 
 namespace {
+/// One piece of a path drawn by turtle: a turn on the spot (degrees, left positive), a line
+/// (mm) or an arc (radius mm, sweep degrees, left positive), the last two in `moves` equal moves.
+struct Piece {
+  enum Kind { Turn, Line, Arc } kind;
+  double a, b = 0;
+  int moves = 0;
+};
+
+/// The path from the origin, heading `heading_deg`, through `pieces`.
+std::vector<Pt> turtle_path(double heading_deg, const std::vector<Piece>& pieces) {
+  std::vector<Pt> pts{{0, 0, 0}};
+  double heading = deg_to_rad(heading_deg);
+  for (const Piece& p : pieces) {
+    const Pt from = pts.back();
+    if (p.kind == Piece::Turn) {
+      heading += deg_to_rad(p.a);
+    } else if (p.kind == Piece::Line) {
+      for (int i = 1; i <= p.moves; ++i)
+        pts.push_back({from.x + std::cos(heading) * p.a * i / p.moves, from.y + std::sin(heading) * p.a * i / p.moves, 0});
+    } else {
+      const double sweep = deg_to_rad(p.b), side = sweep > 0 ? 1 : -1;
+      const double cx = from.x - std::sin(heading) * p.a * side, cy = from.y + std::cos(heading) * p.a * side;
+      const double a0 = std::atan2(from.y - cy, from.x - cx);
+      for (int i = 1; i <= p.moves; ++i)
+        pts.push_back({cx + p.a * std::cos(a0 + sweep * i / p.moves), cy + p.a * std::sin(a0 + sweep * i / p.moves), 0});
+      heading += sweep;
+    }
+  }
+  return pts;
+}
+
 /// A path that starts heading along +X and, in turn, goes straight for each `{0, length}`
 /// and turns by `sweep_deg` on a circle of `radius` for each `{radius, sweep_deg}` (sweep
 /// positive to the left), each piece joined tangentially to the one before: straight pieces
@@ -649,28 +680,16 @@ namespace {
 /// (or `move_mm` long, where shorter), as CAM writes a contour.
 std::vector<Pt> drawn_contour(const std::vector<std::pair<double, double>>& pieces, double move_mm,
                               double chord_error_mm = 0.001) {
-  std::vector<Pt> pts{{0, 0, 0}};
-  double heading = 0;
+  std::vector<Piece> drawn;
   for (const auto& [radius, amount] : pieces) {
-    const Pt at = pts.back();
     if (radius == 0) {
-      const int n = std::max(1, int(std::ceil(amount / move_mm)));
-      for (int k = 1; k <= n; ++k)
-        pts.push_back({at.x + std::cos(heading) * amount * k / n, at.y + std::sin(heading) * amount * k / n, 0});
+      drawn.push_back({Piece::Line, amount, 0, std::max(1, int(std::ceil(amount / move_mm)))});
       continue;
     }
-    const double side = amount > 0 ? 1 : -1, sweep = deg_to_rad(std::abs(amount));
-    const double cx = at.x - std::sin(heading) * radius * side, cy = at.y + std::cos(heading) * radius * side;
-    const double a0 = std::atan2(at.y - cy, at.x - cx);
     const double step = std::min(2 * std::acos(1 - chord_error_mm / radius), move_mm / radius);
-    const int n = std::max(1, int(std::ceil(sweep / step)));
-    for (int k = 1; k <= n; ++k) {
-      const double a = a0 + side * sweep * k / n;
-      pts.push_back({cx + radius * std::cos(a), cy + radius * std::sin(a), 0});
-    }
-    heading += side * sweep;
+    drawn.push_back({Piece::Arc, radius, amount, std::max(1, int(std::ceil(deg_to_rad(std::abs(amount)) / step)))});
   }
-  return pts;
+  return turtle_path(0, drawn);
 }
 }  // namespace
 
@@ -1313,39 +1332,6 @@ TEST_CASE("a kink a chain cannot avoid moves to the lone move after it when that
   CHECK(o.r.forced_kinks == 1);
   CHECK(o.r.comparison.max_smooth_kink_deg < 1);
 }
-
-namespace {
-/// One piece of a path drawn by turtle: a turn on the spot (degrees, left positive), a line
-/// (mm) or an arc (radius mm, sweep degrees, left positive), the last two in `moves` equal moves.
-struct Piece {
-  enum Kind { Turn, Line, Arc } kind;
-  double a, b = 0;
-  int moves = 0;
-};
-
-/// The path from the origin, heading `heading_deg`, through `pieces`.
-std::vector<Pt> turtle_path(double heading_deg, std::initializer_list<Piece> pieces) {
-  std::vector<Pt> pts{{0, 0, 0}};
-  double heading = deg_to_rad(heading_deg);
-  for (const Piece& p : pieces) {
-    const Pt from = pts.back();
-    if (p.kind == Piece::Turn) {
-      heading += deg_to_rad(p.a);
-    } else if (p.kind == Piece::Line) {
-      for (int i = 1; i <= p.moves; ++i)
-        pts.push_back({from.x + std::cos(heading) * p.a * i / p.moves, from.y + std::sin(heading) * p.a * i / p.moves, 0});
-    } else {
-      const double sweep = deg_to_rad(p.b), side = sweep > 0 ? 1 : -1;
-      const double cx = from.x - std::sin(heading) * p.a * side, cy = from.y + std::cos(heading) * p.a * side;
-      const double a0 = std::atan2(from.y - cy, from.x - cx);
-      for (int i = 1; i <= p.moves; ++i)
-        pts.push_back({cx + p.a * std::cos(a0 + sweep * i / p.moves), cy + p.a * std::sin(a0 + sweep * i / p.moves), 0});
-      heading += sweep;
-    }
-  }
-  return pts;
-}
-}  // namespace
 
 TEST_CASE("where the tangent must break, it breaks where the chain after it does best, not where the chain "
           "before it gave out",
