@@ -337,9 +337,12 @@ void RunFitter::kink_seeds(const std::vector<Chosen>& part, std::span<const Seed
   const uint32_t end = part.back().prim.end_vertex;
   const uint32_t from = end > kKinkSeedMoves ? end - kKinkSeedMoves : 0;
   // Per node, its chain's length with the prefix of its seed, and the root it grew from.
-  std::vector<size_t> length(nodes.size());
-  std::vector<int> root(nodes.size());
-  std::vector<int> shortest(end - from, -1);  // per vertex from `from`: the node with the shortest chain
+  std::vector<size_t>& length = s_.chain_length;
+  std::vector<int>& root = s_.root_of;
+  std::vector<int>& shortest = s_.shortest;  // per vertex from `from`: the node with the shortest chain
+  length.resize(nodes.size());
+  root.resize(nodes.size());
+  shortest.assign(end - from, -1);
   for (size_t i = 0; i < nodes.size(); ++i) {
     const Node& nd = nodes[i];
     if (nd.parent < 0) {

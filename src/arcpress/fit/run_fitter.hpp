@@ -525,6 +525,8 @@ class RunFitter : private FitAngles {
     std::vector<uint64_t> order;                      // beam_chain()
     std::vector<int8_t> straight;                     // beam_chain()
     std::vector<std::pair<int, uint32_t>> root_seeds;  // beam_chain(): (root node, its Seed)
+    std::vector<size_t> chain_length;                  // kink_seeds(), per node
+    std::vector<int> root_of, shortest;                // kink_seeds(), per node and per vertex
     // The greedy steps' latest scans (GuideScan), in turn, and whether best_near() is taking one.
     std::array<GuideScan, 9> guide_scans;
     size_t guide_next = 0;
