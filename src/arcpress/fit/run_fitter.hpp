@@ -535,7 +535,8 @@ class RunFitter : private FitAngles {
   };
   static Scratch& thread_scratch();
   /// A vertex where the chain may start again after a forced kink, and the chain that
-  /// reaches it from the start of beam_stretch()'s stretch (the kinks before it included).
+  /// reaches it (the kinks before it included) past what beam_stretch() has settled: the
+  /// primitives every seed of a restart starts with.
   struct Seed {
     uint32_t v;
     std::vector<Chosen> prefix;
