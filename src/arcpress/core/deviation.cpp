@@ -493,19 +493,29 @@ std::optional<double> chords_deviation_bound(std::span<const Vec3> pts, const Ar
   double bound2 = 0;
   size_t j = 0, k = 0;
   double lo = 0;
+  // The piece before's segment and chord, and its points at its end (this piece's start).
+  size_t last_j = SIZE_MAX, last_k = SIZE_MAX;
+  Vec2 last_p{0, 0}, last_q{0, 0};
   for (;;) {
     while (j + 1 < m && t[j + 1] <= lo) ++j;
     while (k + 1 < segments && u[k + 1] <= lo) ++k;
     const double hi = std::min(t[j + 1], u[k + 1]);
     const Vec2 a = vertex(j), b = vertex(j + 1), c0 = chord_end(k), c1 = chord_end(k + 1);
-    // At lo and at hi: each cut is a vertex's place or a chord end's, or both.
-    const Vec2 p_lo = t[j] == lo ? a : on_ray(a, b, c0), q_lo = u[k] == lo ? c0 : on_ray(c0, c1, a);
+    // At lo and at hi: each cut is a vertex's place or a chord end's, or both. Where the
+    // piece before ends on the same segment (a chord end's cut) or the same chord (a
+    // vertex's), its end points are this piece's start points, and the one measured
+    // against what has not changed was measured there already.
+    const bool same_segment = j == last_j && k == last_k + 1, same_chord = k == last_k && j == last_j + 1;
+    const Vec2 p_lo = t[j] == lo ? a : same_segment ? last_p : on_ray(a, b, c0);
+    const Vec2 q_lo = u[k] == lo ? c0 : same_chord ? last_q : on_ray(c0, c1, a);
     const Vec2 p_hi = t[j + 1] == hi ? b : on_ray(a, b, c1), q_hi = u[k + 1] == hi ? c1 : on_ray(c0, c1, b);
-    bound2 = std::max({bound2, distance(p_lo, c0, c1), distance(q_lo, a, b), distance(p_hi, c0, c1),
-                       distance(q_hi, a, b)});
+    if (!same_chord) bound2 = std::max(bound2, distance(p_lo, c0, c1));
+    if (!same_segment) bound2 = std::max(bound2, distance(q_lo, a, b));
+    bound2 = std::max({bound2, distance(p_hi, c0, c1), distance(q_hi, a, b)});
     if (bound2 > stop2) return std::sqrt(bound2) + 2 * kLengthEpsMm;
     if (hi >= 1) break;
     lo = hi;
+    last_j = j, last_k = k, last_p = p_hi, last_q = q_hi;
   }
   return std::sqrt(bound2) + 2 * kLengthEpsMm;
 }
