@@ -174,6 +174,23 @@ TEST_CASE("the chords a firmware moves along are bounded from the polyline both 
     };
     return std::max(one_way(a, b), one_way(b, a));
   };
+  // The arc through `pts` about `centre`, cut into `n` chords as a firmware cuts it: the
+  // bound lies no lower than the densely sampled distance both ways, and little above it.
+  auto bounded_as_sampled = [&](const std::vector<Vec3>& pts, const Vec2& centre, double sweep, uint32_t n) {
+    const ArcGeom g = ArcGeom::through(pts.front(), pts.back(), centre, sweep > 0);
+    std::vector<Vec3> chords;
+    std::vector<Vec2> ends;
+    for (uint32_t k = 0; k < n; ++k) chords.push_back(g.point_at(double(k) / n));
+    chords.push_back(pts.back());
+    for (uint32_t k = 1; k < n; ++k) ends.push_back(chords[k].head<2>());
+    const auto bound = chords_deviation_bound(pts, g, ends);
+    REQUIRE(bound);
+    const double step = 0.0005;
+    const double measured = sampled(pts, chords, step);
+    INFO("chords " << n);
+    CHECK(*bound >= measured - 1e-9);
+    CHECK(*bound <= measured + 0.25 * (measured + step));
+  };
   for (int trial = 0; trial < 200; ++trial) {
     const double r = 0.5 + 20 * unit(rng), sweep = (0.2 + 2.8 * unit(rng)) * (unit(rng) < 0.5 ? -1 : 1);
     const Vec2 centre(10 * unit(rng), 10 * unit(rng));
@@ -185,20 +202,8 @@ TEST_CASE("the chords a firmware moves along are bounded from the polyline both 
       const double a = a0 + sweep * i / m, rr = r + (i == 0 || i == m ? 0 : noise * (2 * unit(rng) - 1));
       pts.push_back({centre.x() + rr * std::cos(a), centre.y() + rr * std::sin(a), 1.0});
     }
-    const ArcGeom g = ArcGeom::through(pts.front(), pts.back(), centre, sweep > 0);
-    const uint32_t n = 1 + uint32_t(40 * unit(rng));
-    std::vector<Vec3> chords;
-    std::vector<Vec2> ends;
-    for (uint32_t k = 0; k < n; ++k) chords.push_back(g.point_at(double(k) / n));
-    chords.push_back(pts.back());
-    for (uint32_t k = 1; k < n; ++k) ends.push_back(chords[k].head<2>());
-    const auto bound = chords_deviation_bound(pts, g, ends);
-    REQUIRE(bound);
-    const double step = 0.0005;
-    const double measured = sampled(pts, chords, step);
-    INFO("trial " << trial << " r " << r << " sweep " << sweep << " chords " << n);
-    CHECK(*bound >= measured - 1e-9);
-    CHECK(*bound <= measured + 0.25 * (measured + step));
+    INFO("trial " << trial << " r " << r << " sweep " << sweep);
+    bounded_as_sampled(pts, centre, sweep, 1 + uint32_t(40 * unit(rng)));
   }
   // Where vertices lie at chord ends' angles, a cut is both at once (every chord end on a
   // vertex's ray, or every other one); a repeated vertex makes a piece of no length.
@@ -213,20 +218,8 @@ TEST_CASE("the chords a firmware moves along are bounded from the polyline both 
       pts.push_back({centre.x() + rr * std::cos(a), centre.y() + rr * std::sin(a), 1.0});
       if (i == m / 2) pts.push_back(pts.back());
     }
-    const ArcGeom g = ArcGeom::through(pts.front(), pts.back(), centre, sweep > 0);
-    const uint32_t n = uint32_t(trial % 2 ? m : m / 2);
-    std::vector<Vec3> chords;
-    std::vector<Vec2> ends;
-    for (uint32_t k = 0; k < n; ++k) chords.push_back(g.point_at(double(k) / n));
-    chords.push_back(pts.back());
-    for (uint32_t k = 1; k < n; ++k) ends.push_back(chords[k].head<2>());
-    const auto bound = chords_deviation_bound(pts, g, ends);
-    REQUIRE(bound);
-    const double step = 0.0005;
-    const double measured = sampled(pts, chords, step);
-    INFO("cuts together, trial " << trial << " r " << r << " sweep " << sweep << " chords " << n);
-    CHECK(*bound >= measured - 1e-9);
-    CHECK(*bound <= measured + 0.25 * (measured + step));
+    INFO("cuts together, trial " << trial << " r " << r << " sweep " << sweep);
+    bounded_as_sampled(pts, centre, sweep, uint32_t(trial % 2 ? m : m / 2));
   }
   // A helix or a whole turn is not measured this way.
   const ArcGeom full = ArcGeom::through({1, 0, 0}, {1, 0, 0}, {0, 0}, true);
