@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "arcpress/api/arcpress.hpp"
@@ -233,4 +234,83 @@ TEST_CASE("a block of more than 65535 words keeps its block as it is, with its p
   CHECK(r.output.find("\n" + crowded) != std::string::npos);
   DiffOptions dopt;
   CHECK(test::diff_texts(text, run + tail + "M2\n", dopt).verdict(dopt.tolerance_mm) != ProgramDiff::Verdict::Same);
+}
+
+namespace {
+/// Whether `b` holds the blocks and words of `a`, field by field, but for the values of the
+/// words of the blocks in `shifted`, which lie `shift` above a's.
+void require_same_program(const Program& a, const Program& b, const std::vector<size_t>& shifted, double shift) {
+  REQUIRE(a.blocks.size() == b.blocks.size());
+  for (size_t i = 0; i < a.blocks.size(); ++i) {
+    const Block &x = a.blocks[i], &y = b.blocks[i];
+    INFO("block " << i << ": " << a.raw(x));
+    CHECK(x.begin == y.begin);
+    CHECK(x.length == y.length);
+    CHECK(x.line == y.line);
+    CHECK(x.eol_length == y.eol_length);
+    CHECK(x.kind == y.kind);
+    CHECK(x.block_delete == y.block_delete);
+    CHECK(x.has_comment == y.has_comment);
+    CHECK(x.has_checksum == y.has_checksum);
+    CHECK(x.has_expr == y.has_expr);
+    REQUIRE(x.word_count == y.word_count);
+    const bool moved = std::find(shifted.begin(), shifted.end(), i) != shifted.end();
+    for (size_t k = 0; k < x.word_count; ++k) {
+      const Word &u = a.words_begin(x)[k], &v = b.words_begin(y)[k];
+      CHECK(u.letter == v.letter);
+      CHECK(u.value + (moved ? shift : 0.0) == v.value);
+      CHECK(u.col == v.col);
+      CHECK(u.length == v.length);
+      CHECK(u.is_expr == v.is_expr);
+      CHECK(u.decimals == v.decimals);
+      CHECK(u.has_point == v.has_point);
+      CHECK(u.flag == v.flag);
+    }
+  }
+}
+}  // namespace
+
+TEST_CASE("lines said to be copies of another program's blocks take over its words where their bytes are the "
+          "block's, and lex like the text elsewhere, diagnostics included",
+          "[lex]") {
+  DiagnosticSink in_sink;
+  const std::string input = "\xEF\xBB\xBFG21 G90\r\n/N10 g1 x1.5 Y-2 (cut) *57\r\nG1 X2 Y3 ; on\r\nG1 X@3\r\n"
+                            "M117 Printing...\r\nG1 X[1+2] Y#5\r\nG1 X4 Y5\r\n";
+  Program source = lex_text(input, in_sink);
+  REQUIRE(source.blocks.size() == 7);
+  REQUIRE(source.blocks[3].kind == BlockKind::Opaque);
+  REQUIRE(in_sink.reported() == 1);
+  // Every word of the source 1000 higher than read: a line that takes its block's words over
+  // shows it.
+  for (Word& w : source.words) w.value += 1000;
+  // An output that copies the input's lines with new lines between, and line 7 as its own
+  // last line without its end of line. Each copy names its block; lexed all the same are the
+  // first line (a byte-order mark is skipped there only), the line whose lexing was reported
+  // (so that it is reported again), and two lines that are not their block's bytes.
+  std::string out;
+  std::vector<CopiedLine> copies;
+  auto copy = [&](uint32_t block, std::string_view text) {
+    copies.push_back({out.size(), block});
+    out += text;
+  };
+  copy(0, "\xEF\xBB\xBFG21 G90\r\n");
+  copy(1, "/N10 g1 x1.5 Y-2 (cut) *57\n");  // taken: the same line, another end of line
+  out += "G2 X1 Y1 I0.5 J0\r\n";
+  copy(2, "G1 X2 Y3 ; on\r\n");         // taken
+  copy(3, "G1 X@3\r\n");
+  copy(4, "M117 Printing...\r\n");      // taken
+  copy(5, "G1 X[1+2] Y#5\r\n");         // taken
+  copy(2, "G1 X2 Y4 ; on\r\n");
+  copy(6, "G1 X4 Y5 \r\n");
+  out += "G3 X0 Y0 R1\n";
+  copy(6, "G1 X4 Y5");                   // taken
+  DiagnosticSink lexed_sink, copied_sink;
+  const Program lexed = lex("out.nc", out, lexed_sink);
+  const Program copied = lex("out.nc", out, copied_sink, source, copies);
+  require_same_program(lexed, copied, {1, 3, 5, 6, 10}, 1000);
+  CHECK(lexed_sink.reported() == 1);
+  CHECK(copied_sink.reported() == 1);
+  // With no copies named, the text is lexed as it is.
+  DiagnosticSink plain_sink;
+  require_same_program(lexed, lex("out.nc", out, plain_sink, source, {}), {}, 0);
 }

@@ -117,6 +117,7 @@ class Emitter {
         return;
       }
     }
+    if (stats_) stats_->copied.push_back({out_.size(), uint32_t(&b - p_.blocks.data())});
     out_.append(raw);
     out_.append(p_.eol(b));
   }

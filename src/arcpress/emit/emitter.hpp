@@ -34,6 +34,9 @@ struct EmitStats {
   std::vector<uint32_t> rule_joints;
   /// Per run: the 1-based output lines its blocks take, first and last.
   std::vector<std::pair<uint32_t, uint32_t>> run_lines;
+  /// The output's lines written as byte copies of input blocks, in order (reading the
+  /// output back takes their words over: lex()).
+  std::vector<CopiedLine> copied;
 };
 
 /// Program-wide habits of the input that new blocks copy: G01 or G1, whole numbers as "1." or "1".

@@ -58,6 +58,13 @@ struct Block {
   bool has_expr = false;      ///< a word value is an expression or parameter
 };
 
+/// A line of one program's text that is a byte copy of a block of another program (an
+/// output's line copied from its input): where the line starts in the text, and the block.
+struct CopiedLine {
+  size_t offset = 0;
+  uint32_t block = 0;
+};
+
 /// A lexed program: the bytes, the blocks and all words (blocks index into `words`).
 struct Program {
   std::string name;  ///< file name for diagnostics

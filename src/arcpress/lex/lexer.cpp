@@ -314,8 +314,10 @@ class LineLexer {
 
 }  // namespace
 
-void lex_line(Program& p, size_t begin, size_t end, uint32_t line, DiagnosticSink& sink) {
-  const std::string& t = p.text;
+namespace {
+
+/// The block of the line at [begin, end) of `t` (its "\n" or "\r\n" apart), no words yet.
+Block line_block(const std::string& t, size_t begin, size_t end, uint32_t line, uint32_t first_word) {
   Block b;
   b.line = line;
   b.begin = uint32_t(begin);
@@ -329,22 +331,55 @@ void lex_line(Program& p, size_t begin, size_t end, uint32_t line, DiagnosticSin
     }
   }
   b.length = uint32_t(content_end - begin);
-  b.first_word = uint32_t(p.words.size());
+  b.first_word = first_word;
+  return b;
+}
+
+/// Adds the line at [begin, end) as a copy of `from`, a block of `source`, if its bytes are
+/// that block's and lexing it again could differ in nothing: false where it must be lexed.
+bool take_copy(Program& p, size_t begin, size_t end, uint32_t line, const Program& source, const Block& from) {
+  if (line == 1 || from.line == 1 || from.kind == BlockKind::Opaque) return false;
+  Block b = line_block(p.text, begin, end, line, uint32_t(p.words.size()));
+  if (b.length != from.length || std::string_view(p.text).substr(begin, b.length) != source.raw(from)) return false;
+  b.word_count = from.word_count;
+  b.kind = from.kind;
+  b.block_delete = from.block_delete;
+  b.has_comment = from.has_comment;
+  b.has_checksum = from.has_checksum;
+  b.has_expr = from.has_expr;
+  p.words.insert(p.words.end(), source.words_begin(from), source.words_end(from));
   p.blocks.push_back(b);
+  return true;
+}
+
+}  // namespace
+
+void lex_line(Program& p, size_t begin, size_t end, uint32_t line, DiagnosticSink& sink) {
+  p.blocks.push_back(line_block(p.text, begin, end, line, uint32_t(p.words.size())));
   LineLexer(p, p.blocks.back(), sink).run();
 }
 
 Program lex(std::string name, std::string text, DiagnosticSink& sink) {
+  return lex(std::move(name), std::move(text), sink, Program{}, {});
+}
+
+Program lex(std::string name, std::string text, DiagnosticSink& sink, const Program& source,
+            std::span<const CopiedLine> copies) {
   Program p;
   p.name = std::move(name);
   p.text = std::move(text);
   p.blocks.reserve(p.text.size() / 24 + 1);
   p.words.reserve(p.text.size() / 6 + 1);
   uint32_t line = 0;
+  size_t c = 0;  // the next copy at or after the line
   for (size_t pos = 0; pos < p.text.size();) {
     const size_t nl = p.text.find('\n', pos);
     const size_t end = nl == std::string::npos ? p.text.size() : nl + 1;
-    lex_line(p, pos, end, ++line, sink);
+    ++line;
+    while (c < copies.size() && copies[c].offset < pos) ++c;
+    const bool copied = c < copies.size() && copies[c].offset == pos && copies[c].block < source.blocks.size() &&
+                        take_copy(p, pos, end, line, source, source.blocks[copies[c].block]);
+    if (!copied) lex_line(p, pos, end, line, sink);
     pos = end;
   }
   return p;

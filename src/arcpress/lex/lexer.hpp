@@ -2,6 +2,7 @@
 #pragma once
 // Lexer stage: bytes -> blocks. Never drops a byte: every line becomes a Block whose raw
 // text is kept; what is not understood is marked Opaque and reported once per code.
+#include <span>
 #include <string_view>
 
 #include "arcpress/core/diagnostic.hpp"
@@ -12,6 +13,15 @@ namespace arcpress {
 /// Lexes `text` (any line endings: LF, CRLF, none at the end) into a Program.
 /// Diagnostics (codes E-LEX-*) go to `sink`; lexing always completes.
 Program lex(std::string name, std::string text, DiagnosticSink& sink);
+
+/// lex(), where the lines `copies` names (in order of their offsets) are said to be byte
+/// copies of blocks of `source`: each such line whose bytes are that block's takes over its
+/// words, kind and flags instead of being lexed again. Lexing reads nothing but a line's own
+/// bytes, so the program is the one lex() makes; the lines not copied, those whose bytes
+/// differ, blocks whose lexing reported a problem (so that every diagnostic is reported
+/// again) and first lines (a byte-order mark) are lexed.
+Program lex(std::string name, std::string text, DiagnosticSink& sink, const Program& source,
+            std::span<const CopiedLine> copies);
 
 /// Lexes the one line of `program.text` at offsets [begin, end) (with its "\n", unless it is
 /// the program's last line and has none) into a new block numbered `line`, for a program
