@@ -279,6 +279,23 @@ TEST_CASE("a swapped M-code is reported even where the paths agree", "[diff]") {
   CHECK_FALSE(d.same(0.01));
 }
 
+TEST_CASE("non-motion blocks are compared by their M, T and S words, dwell and comment, in any case and spacing; "
+          "one more on either side is counted", "[diff]") {
+  const std::string a = "G21 G90\nM3 S1000 (spindle on)\nG1 X10 F100\nM5\nG4 P1\nT2 M6\nM2\n";
+  const std::string b = "G21 G90\nm3  s1000 (SPINDLE ON)\nG1 X10 F100\nM5\nG4 P2\nT2 M6\nM2\nM30\n";
+  ProgramDiff d = diff_of(a, b);
+  CHECK(d.max_deviation_mm == 0.0);
+  CHECK(d.a.non_motion == 5);
+  CHECK(d.b.non_motion == 6);
+  CHECK(d.non_motion_differences == 2);
+  REQUIRE(d.findings.size() == 2);
+  CHECK(d.findings[0] == "non-motion block differs: A line 5 'G4 P1', B line 5 'G4 P2'");
+  CHECK(d.findings[1] == "non-motion blocks (M, T, S, dwell, comments): 5 in A, 6 in B");
+  CHECK_FALSE(d.same(0.01));
+  CHECK(diff_of(a, a).non_motion_differences == 0);
+  CHECK(diff_of(b, b).same(0.01));
+}
+
 TEST_CASE("changed extrusion and feed are reported", "[diff]") {
   std::string a = "G21 G90 M82\nG0 X0 Y0 Z0.2\nG1 X10 Y0 E1.0 F1200\nG1 X10 Y10 E2.0\nG0 Z1\n";
   std::string more_e = "G21 G90 M82\nG0 X0 Y0 Z0.2\nG1 X10 Y0 E1.0 F1200\nG1 X10 Y10 E2.1\nG0 Z1\n";

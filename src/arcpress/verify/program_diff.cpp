@@ -35,17 +35,19 @@ constexpr double kSameCentreShare = 1e-12;
 /// little, few enough that two or more threads have shares to take.
 constexpr size_t kShareSegments = 65536;
 
-/// The key by which non-motion blocks are compared: their M, T, S words, a dwell, and
-/// their comment, so that units, spacing and modal G-codes do not count; for blocks that
-/// are not ordinary words (`%`, flow control, macros, host commands), their whole text.
-std::string non_motion_key(const Program& p, const Block& b) {
-  std::string key;
+/// The key by which non-motion blocks are compared, written into `key`: their M, T, S
+/// words, a dwell, and their comment, so that units, spacing and modal G-codes do not count;
+/// for blocks that are not ordinary words (`%`, flow control, macros, host commands), their
+/// whole text.
+void non_motion_key(const Program& p, const Block& b, std::string& key) {
+  key.clear();
   if (b.kind != BlockKind::Code && b.kind != BlockKind::Empty) {
     // Tape marks, flow control, macros, host commands, blocks not understood: their text.
     std::string_view raw = p.raw(b);
     while (!raw.empty() && std::isspace(static_cast<unsigned char>(raw.back()))) raw.remove_suffix(1);
     while (!raw.empty() && std::isspace(static_cast<unsigned char>(raw.front()))) raw.remove_prefix(1);
-    return std::string(raw);
+    key.assign(raw);
+    return;
   }
   bool dwell = false;
   for (auto* w = p.words_begin(b); w != p.words_end(b); ++w) {
@@ -66,29 +68,66 @@ std::string non_motion_key(const Program& p, const Block& b) {
     }
   }
   for (char& c : key) c = char(std::toupper(static_cast<unsigned char>(c)));
-  return key;
 }
 
-struct NonMotion {
-  std::vector<std::string> keys;
-  std::vector<uint32_t> lines;
-};
+/// Whether non_motion_key() of the block is not empty, without building it.
+bool has_non_motion_key(const Program& p, const Block& b) {
+  if (b.kind != BlockKind::Code && b.kind != BlockKind::Empty)
+    return p.raw(b).find_first_not_of(" \t\r\n\f\v") != std::string_view::npos;
+  for (auto* w = p.words_begin(b); w != p.words_end(b); ++w)
+    if (w->letter == 'M' || w->letter == 'T' || w->letter == 'S' ||
+        (w->letter == 'G' && !w->is_expr && w->code10() == 40))
+      return true;
+  return b.has_comment && p.raw(b).find_first_of("(;") != std::string_view::npos;
+}
 
-NonMotion non_motion_of(const Program& p, const Interpretation& in) {
-  NonMotion n;
-  for (size_t bi = 0; bi < p.blocks.size(); ++bi) {
-    const Block& b = p.blocks[bi];
-    if (b.kind == BlockKind::Empty && !b.has_comment) continue;
-    if (bi < in.move_of_block.size() && in.move_of_block[bi] >= 0 && !b.has_comment) continue;
-    // (arcpress's own header comment is no part of the program.)
-    if (b.kind == BlockKind::Empty && is_arcpress_header(p.raw(b))) continue;
-    std::string key = non_motion_key(p, b);
-    if (key.empty()) continue;
-    n.keys.push_back(std::move(key));
-    n.lines.push_back(b.line);
+/// The non-motion blocks of a program in order, one at a time: a block's key is built, into
+/// the same buffer each time, only when asked for.
+class NonMotionBlocks {
+ public:
+  NonMotionBlocks(const Program& p, const Interpretation& in) : p_(p), in_(in) {}
+
+  /// Moves to the next non-motion block: false past the last. Then key() and line() are its.
+  bool next() {
+    for (; bi_ < p_.blocks.size(); ++bi_) {
+      const Block& b = p_.blocks[bi_];
+      if (b.kind == BlockKind::Empty && !b.has_comment) continue;
+      if (bi_ < in_.move_of_block.size() && in_.move_of_block[bi_] >= 0 && !b.has_comment) continue;
+      // (arcpress's own header comment is no part of the program.)
+      if (b.kind == BlockKind::Empty && is_arcpress_header(p_.raw(b))) continue;
+      if (!has_non_motion_key(p_, b)) continue;
+      block_ = &b;
+      line_ = b.line;
+      ++count_;
+      ++bi_;
+      return true;
+    }
+    return false;
   }
-  return n;
-}
+  const std::string& key() {
+    non_motion_key(p_, *block_, key_);
+    return key_;
+  }
+  /// Whether the block's key is `other`'s. Where the two blocks are the same bytes, without
+  /// building either: the lexer makes a block from its bytes alone, but for a first line's
+  /// byte-order mark.
+  bool same_key(NonMotionBlocks& other) {
+    const bool first_line = line_ == 1 || other.line_ == 1;
+    return (!first_line && p_.raw(*block_) == other.p_.raw(*other.block_)) || key() == other.key();
+  }
+  uint32_t line() const { return line_; }
+  /// The blocks next() has moved to.
+  size_t count() const { return count_; }
+
+ private:
+  const Program& p_;
+  const Interpretation& in_;
+  size_t bi_ = 0;
+  const Block* block_ = nullptr;
+  std::string key_;
+  uint32_t line_ = 0;
+  size_t count_ = 0;
+};
 
 /// The largest distances found so far, at most `size` places with distinct line pairs,
 /// largest first. Below floor() nothing can enter.
@@ -592,23 +631,25 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
                                      d.worst_feed.line_a, d.worst_feed.line_b));
 
   // Everything that is not geometry, in order.
-  NonMotion na = non_motion_of(a, ia), nb = non_motion_of(b, ib);
-  d.a.non_motion = na.keys.size();
-  d.b.non_motion = nb.keys.size();
-  size_t common = std::min(na.keys.size(), nb.keys.size());
+  NonMotionBlocks na(a, ia), nb(b, ib);
   bool first = true;
-  for (size_t k = 0; k < common; ++k) {
-    if (na.keys[k] == nb.keys[k]) continue;
+  bool more_a = na.next(), more_b = nb.next();
+  for (; more_a && more_b; more_a = na.next(), more_b = nb.next()) {
+    if (na.same_key(nb)) continue;
     ++d.non_motion_differences;
     if (first)
-      d.findings.push_back(fmt::format("non-motion block differs: A line {} '{}', B line {} '{}'", na.lines[k],
-                                       na.keys[k], nb.lines[k], nb.keys[k]));
+      d.findings.push_back(fmt::format("non-motion block differs: A line {} '{}', B line {} '{}'", na.line(),
+                                       na.key(), nb.line(), nb.key()));
     first = false;
   }
-  if (na.keys.size() != nb.keys.size()) {
-    d.non_motion_differences += std::max(na.keys.size(), nb.keys.size()) - common;
-    d.findings.push_back(fmt::format("non-motion blocks (M, T, S, dwell, comments): {} in A, {} in B", na.keys.size(),
-                                     nb.keys.size()));
+  while (more_a) more_a = na.next();
+  while (more_b) more_b = nb.next();
+  d.a.non_motion = na.count();
+  d.b.non_motion = nb.count();
+  if (na.count() != nb.count()) {
+    d.non_motion_differences += std::max(na.count(), nb.count()) - std::min(na.count(), nb.count());
+    d.findings.push_back(fmt::format("non-motion blocks (M, T, S, dwell, comments): {} in A, {} in B", na.count(),
+                                     nb.count()));
   }
   return d;
 }
