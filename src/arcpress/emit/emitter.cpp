@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <optional>
 
 #include "arcpress/core/deviation.hpp"
@@ -74,7 +75,10 @@ class Emitter {
     if (stats_) {  // bytes to lines, in one pass
       size_t line = 1, at = 0;
       auto line_of = [&](size_t offset) {
-        for (; at < offset && at < out_.size(); ++at) line += out_[at] == '\n';
+        const char* const to = out_.data() + std::min(offset, out_.size());
+        for (const char* p = out_.data() + at; p < to; ++p, ++line)
+          if (!(p = static_cast<const char*>(std::memchr(p, '\n', size_t(to - p))))) break;
+        at = std::max(at, size_t(to - out_.data()));
         return uint32_t(line);
       };
       for (const auto& [from, to] : spans) {
