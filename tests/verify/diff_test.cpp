@@ -279,7 +279,7 @@ TEST_CASE("a swapped M-code is reported even where the paths agree", "[diff]") {
   CHECK_FALSE(d.same(0.01));
 }
 
-TEST_CASE("non-motion blocks are compared by their M, T and S words, dwell and comment, in any case and spacing; "
+TEST_CASE("non-motion blocks are compared by their M, T and S words, dwell and comment, in any case and spacing, and "
           "one more on either side is counted", "[diff]") {
   const std::string a = "G21 G90\nM3 S1000 (spindle on)\nG1 X10 F100\nM5\nG4 P1\nT2 M6\nM2\n";
   const std::string b = "G21 G90\nm3  s1000 (SPINDLE ON)\nG1 X10 F100\nM5\nG4 P2\nT2 M6\nM2\nM30\n";
