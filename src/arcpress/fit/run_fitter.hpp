@@ -60,6 +60,10 @@ constexpr size_t kFarStartEnds = 2;
 constexpr double kStartRangeInset = 0.05;
 /// Splits of a stretch into two primitives checked exactly per start tangent when merging.
 constexpr size_t kSplitsTried = 12;
+/// tighten(): how many moves back a window that ends in an arc is tried ending instead, the
+/// line after it starting there (an arc that ran on past its fillet along a straight side:
+/// sqrt(2·R·band) is 28 moves of 0.05 mm at R = 40 mm and 0.025 mm).
+constexpr uint32_t kLineBackMoves = 32;
 /// Layered search: a layer keeps one state per tangent bin (this share of the G1 angle wide)
 /// in each of about kLayerGroups groups of vertices over the stretch the last layer advanced.
 constexpr double kTangentBinShare = 0.5;
@@ -453,7 +457,9 @@ class RunFitter : private FitAngles {
   /// move's direction where the chain ends at one. Turning an arc's
   /// start tangent by φ turns its end tangent by -φ (the end tangent is the start tangent
   /// reflected about the chord), so the turn that meets the next joint is solved for, and
-  /// only primitives that can meet it are checked exactly.
+  /// only primitives that can meet it are checked exactly. Where they end in an arc and a
+  /// line follows, they are also tried ending up to kLineBackMoves earlier, the line
+  /// starting there instead.
   void tighten(uint32_t a, std::vector<Chosen>& chain, const std::optional<Vec2>& incoming) const;
   /// One node of the beam and layered searches: the chain reached vertex `v` and leaves it along `T`.
   struct Node {

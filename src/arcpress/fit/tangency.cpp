@@ -228,81 +228,122 @@ void RunFitter::tighten_between_kinks(uint32_t a, std::vector<Chosen>& chain) co
 /// move's direction where the chain ends at one. Turning an arc's
 /// start tangent by φ turns its end tangent by -φ (the end tangent is the start tangent
 /// reflected about the chord), so the turn that meets the next joint is solved for, and
-/// only primitives that can meet it are checked exactly.
+/// only primitives that can meet it are checked exactly. Where they end in an arc and a
+/// line follows, they are also tried ending up to kLineBackMoves earlier, the line
+/// starting there instead.
 void RunFitter::tighten(uint32_t a, std::vector<Chosen>& chain, const std::optional<Vec2>& incoming) const {
   std::vector<Vec2>& starts = s_.starts;
   std::vector<Vec2>& firsts = s_.firsts;
   std::vector<Chosen> repl;
+  // The w primitives from chain[i] as w - 1 ending at vertex `to` and there meeting `out`
+  // (free when none), into `repl`: whether they were found.
+  auto merged = [&](size_t i, size_t w, uint32_t to, const std::optional<Vec2>& out) {
+    const uint32_t from = i == 0 ? a : chain[i - 1].prim.end_vertex;
+    // The tangent arriving at `from`: the previous primitive's, or at the start `incoming`.
+    const std::optional<Vec2> in = i > 0 ? std::optional<Vec2>(chain[i - 1].end_tangent) : incoming;
+    auto meets = [&](const Chosen& c) { return !out || turn_cone_.holds(c.end_tangent, *out); };
+    // Start tangents: the incoming one (turned below), or at the stretch's start the
+    // input's own directions; with a fixed next joint, the one ending exactly on it.
+    starts.clear();
+    if (in) {
+      starts.push_back(*in);
+    } else if (w == 2) {
+      // One primitive from `a` to `to`: its start lies in the range that reaches `to`
+      // (the chord first where the line does).
+      if (out) starts.push_back(reflected_end(from, *out, to));
+      if (const auto [lo, hi] = start_range(a, to); lo <= hi) {
+        if (lo <= 0 && 0 <= hi) starts.push_back((q(to) - q(a)).normalized());
+        for (double share : {0.5, kStartRangeInset, 1 - kStartRangeInset})
+          starts.push_back(range_start(a, {to, lo, hi}, share));
+      }
+    } else {
+      start_tangents(a, to, starts);
+    }
+    repl.clear();
+    for (const Vec2& T0 : starts) {
+      if (w == 2) {
+        std::optional<Vec2> T = in ? aimed(from, T0, to, out) : std::optional<Vec2>(T0);
+        if (!T || (!in && out && !turn_line_cone_.holds(reflected_end(from, T0, to), *out))) continue;
+        // (Where it would end heading first: most merges fail to meet the joint after.)
+        if (out && !near_turn_cone_.holds(end_along(from, *T, to), *out)) continue;
+        const auto cand = through_candidate(from, *T, to);
+        if (!cand) continue;
+        auto c = make(from, *T, *cand);
+        if (c && meets(*c)) repl = {*c};
+      } else {
+        firsts.clear();
+        if (in) {
+          firsts.push_back(T0);
+          firsts.push_back(half_left_(T0));
+          firsts.push_back(half_right_(T0));
+        } else {
+          firsts.push_back(T0);
+        }
+        for (const Vec2& T : firsts)
+          if (auto two = split_through(from, T, to, out, kSplitsTried)) {
+            repl = {two->first, two->second};
+            break;
+          }
+      }
+      if (!repl.empty()) return true;
+    }
+    return false;
+  };
   // After a merge at i, the joint before it may merge too: step back one.
   for (size_t i = 0; i + 1 < chain.size();) {
-    bool changed = false;
-    {
-      const uint32_t from = i == 0 ? a : chain[i - 1].prim.end_vertex;
-      for (size_t w : {size_t(2), size_t(3)}) {
-        if (i + w > chain.size()) break;
-        const uint32_t to = chain[i + w - 1].prim.end_vertex;
-        std::optional<Vec2> out;
-        if (i + w < chain.size()) {
-          out = start_tangent(chain[i + w], to);
-        } else if (to == stretch_end_) {
-          out = out_tangent_;
-        }
-        // The tangent arriving at `from`: the previous primitive's, or at the start `incoming`.
-        const std::optional<Vec2> in = i > 0 ? std::optional<Vec2>(chain[i - 1].end_tangent) : incoming;
-        auto meets = [&](const Chosen& c) { return !out || turn_cone_.holds(c.end_tangent, *out); };
-        // Start tangents: the incoming one (turned below), or at the stretch's start the
-        // input's own directions; with a fixed next joint, the one ending exactly on it.
-        starts.clear();
-        if (in) {
-          starts.push_back(*in);
-        } else if (w == 2) {
-          // One primitive from `a` to `to`: its start lies in the range that reaches `to`
-          // (the chord first where the line does).
-          if (out) starts.push_back(reflected_end(from, *out, to));
-          if (const auto [lo, hi] = start_range(a, to); lo <= hi) {
-            if (lo <= 0 && 0 <= hi) starts.push_back((q(to) - q(a)).normalized());
-            for (double share : {0.5, kStartRangeInset, 1 - kStartRangeInset})
-              starts.push_back(range_start(a, {to, lo, hi}, share));
-          }
-        } else {
-          start_tangents(a, to, starts);
-        }
-        repl.clear();
-        for (const Vec2& T0 : starts) {
-          if (w == 2) {
-            std::optional<Vec2> T = in ? aimed(from, T0, to, out) : std::optional<Vec2>(T0);
-            if (!T || (!in && out && !turn_line_cone_.holds(reflected_end(from, T0, to), *out))) continue;
-            // (Where it would end heading first: most merges fail to meet the joint after.)
-            if (out && !near_turn_cone_.holds(end_along(from, *T, to), *out)) continue;
-            const auto cand = through_candidate(from, *T, to);
-            if (!cand) continue;
-            auto c = make(from, *T, *cand);
-            if (c && meets(*c)) repl = {*c};
-          } else {
-            firsts.clear();
-            if (in) {
-              firsts.push_back(T0);
-              firsts.push_back(half_left_(T0));
-              firsts.push_back(half_right_(T0));
-            } else {
-              firsts.push_back(T0);
-            }
-            for (const Vec2& T : firsts)
-              if (auto two = split_through(from, T, to, out, kSplitsTried)) {
-                repl = {two->first, two->second};
-                break;
-              }
-          }
-          if (!repl.empty()) break;
-        }
-        if (repl.empty()) continue;
-        chain.erase(chain.begin() + i, chain.begin() + i + w);
-        chain.insert(chain.begin() + i, repl.begin(), repl.end());
-        changed = true;
+    size_t replaced = 0;  // primitives of the chain that `repl` takes the place of
+    for (size_t w : {size_t(2), size_t(3)}) {
+      if (i + w > chain.size()) break;
+      const uint32_t to = chain[i + w - 1].prim.end_vertex;
+      std::optional<Vec2> out;
+      if (i + w < chain.size()) {
+        out = start_tangent(chain[i + w], to);
+      } else if (to == stretch_end_) {
+        out = out_tangent_;
+      }
+      if (merged(i, w, to, out)) {
+        replaced = w;
         break;
       }
     }
-    i = changed ? (i > 0 ? i - 1 : 0) : i + 1;
+    // Where the window ends in an arc and a line follows, the arc may have run on past the
+    // end of its fillet along the straight side (the band lets it, for sqrt(2·R·band)), and
+    // no merge reaches back to the fillet while the window's far end stays there (a line, a
+    // fillet and a line in moves of 0.05 mm printed to 3 decimals, R = 20 mm at 0.025 mm: 4
+    // blocks, the second arc 4 moves past the fillet's end): the window is tried ending
+    // earlier, the line starting there instead, for as far back as the line keeps the band.
+    for (size_t w : {size_t(2), size_t(3)}) {
+      if (replaced || i + w >= chain.size()) break;
+      const Chosen& line = chain[i + w];
+      if (line.prim.kind != Primitive::Kind::Line || chain[i + w - 1].prim.kind != Primitive::Kind::Arc) continue;
+      const uint32_t to = chain[i + w - 1].prim.end_vertex, end = line.prim.end_vertex;
+      const uint32_t last_start = chain[i + w - 2].prim.end_vertex;
+      // The joint after the line, which a line turned by starting earlier must still meet.
+      std::optional<Vec2> after;
+      if (i + w + 1 < chain.size()) {
+        after = start_tangent(chain[i + w + 1], end);
+      } else if (end == stretch_end_) {
+        after = out_tangent_;
+      }
+      for (uint32_t t = to - 1; t > last_start + 1 && to - t <= kLineBackMoves; --t) {
+        const Vec2 chord = q(end) - q(t);
+        if (chord.squaredNorm() <= kLengthEpsMm * kLengthEpsMm) break;
+        const std::optional<Chosen> longer = through(t, chord.normalized(), end);
+        if (!longer || longer->prim.kind != Primitive::Kind::Line) break;  // past the straight side
+        if (after && !joint_cone_.holds(longer->end_tangent, *after)) continue;
+        if (!merged(i, w, t, start_tangent(*longer, t))) continue;
+        repl.push_back(*longer);
+        replaced = w + 1;
+        break;
+      }
+    }
+    if (replaced) {
+      chain.erase(chain.begin() + i, chain.begin() + i + replaced);
+      chain.insert(chain.begin() + i, repl.begin(), repl.end());
+      i = i > 0 ? i - 1 : 0;
+    } else {
+      ++i;
+    }
   }
 }
 
