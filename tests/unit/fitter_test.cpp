@@ -713,7 +713,7 @@ TEST_CASE("where the tangent is free, the search starts from the exact ranges of
 }
 
 TEST_CASE("a straight side, a fillet and a straight side written in fine moves come out as a line, an arc and "
-          "a line, in bands from 0.008 to 0.025 mm", "[fit][search]") {
+          "a line, in bands from 0.005 to 0.025 mm", "[fit][search]") {
   // Printed to 3 decimals. The longest arc runs on past the fillet's end along the straight
   // side, within the band, for up to sqrt(2·R·band) (0.88 mm, 18 moves of 0.05 mm, at
   // R = 40 mm and 0.01 mm), ending off the side's direction by more than a joint may turn
@@ -721,8 +721,10 @@ TEST_CASE("a straight side, a fillet and a straight side written in fine moves c
   // search's line runs a few moves into the fillet (the digits tilt the input's direction
   // there by tenths of a degree) and two arcs follow, the second past the fillet's end, the
   // merge after the search moves both joints back (R = 20 mm at 0.025 mm and at 0.0095 mm,
-  // R = 40 mm at 0.015 mm: 4 blocks without it).
-  for (double band : {0.008, 0.0095, 0.01, 0.015, 0.025})
+  // R = 40 mm at 0.015 mm: 4 blocks without it); where the arc's end is turned back towards
+  // the side by a line and a second line follows, the two become one line along its chord
+  // (R = 40 mm at 0.005 mm).
+  for (double band : {0.005, 0.008, 0.0095, 0.01, 0.015, 0.025})
     for (double radius : {2.0, 5.0, 10.0, 20.0, 40.0})
       for (double move : {0.05, 0.1, 0.2}) {
         FitOptions fit;

@@ -245,8 +245,16 @@ void RunFitter::tighten(uint32_t a, std::vector<Chosen>& chain, const std::optio
     // Start tangents: the incoming one (turned below), or at the stretch's start the
     // input's own directions; with a fixed next joint, the one ending exactly on it.
     starts.clear();
+    size_t aimed_starts = SIZE_MAX;  // starts from here on are taken as they are
     if (in) {
       starts.push_back(*in);
+      // A line leaves along its chord, which may turn from the arriving tangent by a
+      // joint's turn (two lines along a straight side, after an arc that ran on past its
+      // fillet with the first of them turned back towards the side).
+      const Vec2 chord = q(to) - q(from);
+      aimed_starts = starts.size();
+      if (w == 2 && chord.squaredNorm() > kLengthEpsMm * kLengthEpsMm && joint_cone_.holds(*in, chord.normalized()))
+        starts.push_back(chord.normalized());
     } else if (w == 2) {
       // One primitive from `a` to `to`: its start lies in the range that reaches `to`
       // (the chord first where the line does).
@@ -260,9 +268,10 @@ void RunFitter::tighten(uint32_t a, std::vector<Chosen>& chain, const std::optio
       start_tangents(a, to, starts);
     }
     repl.clear();
-    for (const Vec2& T0 : starts) {
+    for (size_t k = 0; k < starts.size(); ++k) {
+      const Vec2 T0 = starts[k];
       if (w == 2) {
-        std::optional<Vec2> T = in ? aimed(from, T0, to, out) : std::optional<Vec2>(T0);
+        std::optional<Vec2> T = in && k < aimed_starts ? aimed(from, T0, to, out) : std::optional<Vec2>(T0);
         if (!T || (!in && out && !turn_line_cone_.holds(reflected_end(from, T0, to), *out))) continue;
         // (Where it would end heading first: most merges fail to meet the joint after.)
         if (out && !near_turn_cone_.holds(end_along(from, *T, to), *out)) continue;
