@@ -298,19 +298,19 @@ void RunFitter::tighten(uint32_t a, std::vector<Chosen>& chain, const std::optio
     }
     return false;
   };
+  // The tangent the chain leaves vertex `v` along with chain[k]: its start, or past the
+  // chain's end a fixed move's direction where the stretch ends there (free when none).
+  auto leaving = [&](size_t k, uint32_t v) -> std::optional<Vec2> {
+    if (k < chain.size()) return start_tangent(chain[k], v);
+    return v == stretch_end_ ? out_tangent_ : std::nullopt;
+  };
   // After a merge at i, the joint before it may merge too: step back one.
   for (size_t i = 0; i + 1 < chain.size();) {
     size_t replaced = 0;  // primitives of the chain that `repl` takes the place of
     for (size_t w : {size_t(2), size_t(3)}) {
       if (i + w > chain.size()) break;
       const uint32_t to = chain[i + w - 1].prim.end_vertex;
-      std::optional<Vec2> out;
-      if (i + w < chain.size()) {
-        out = start_tangent(chain[i + w], to);
-      } else if (to == stretch_end_) {
-        out = out_tangent_;
-      }
-      if (merged(i, w, to, out)) {
+      if (merged(i, w, to, leaving(i + w, to))) {
         replaced = w;
         break;
       }
@@ -328,12 +328,7 @@ void RunFitter::tighten(uint32_t a, std::vector<Chosen>& chain, const std::optio
       const uint32_t to = chain[i + w - 1].prim.end_vertex, end = line.prim.end_vertex;
       const uint32_t last_start = chain[i + w - 2].prim.end_vertex;
       // The joint after the line, which a line turned by starting earlier must still meet.
-      std::optional<Vec2> after;
-      if (i + w + 1 < chain.size()) {
-        after = start_tangent(chain[i + w + 1], end);
-      } else if (end == stretch_end_) {
-        after = out_tangent_;
-      }
+      const std::optional<Vec2> after = leaving(i + w + 1, end);
       for (uint32_t t = to - 1; t > last_start + 1 && to - t <= kLineBackMoves; --t) {
         const Vec2 chord = q(end) - q(t);
         if (chord.squaredNorm() <= kLengthEpsMm * kLengthEpsMm) break;
