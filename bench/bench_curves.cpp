@@ -288,7 +288,7 @@ int main(int argc, char** argv) {
         fmt::print("{:<9} {:>6} {:>8.3f} {:>6} {:>6} {:>6} {:>9.1f} {:>5} {:>5} {:>6} {:>10.6f} {:>9.3f}° {:>8} {:>8.2f} {:>7} {:>9.2f} {:>7} {:>8} {:>8}\n", c.name,
                    c.samples, tol, r.stats.lines_out + r.stats.arcs_out, r.stats.arcs_out,
                    tol == 0.01 ? std::to_string(c.xu_arcs) : "", 0.200 * std::cbrt(1 / tol) * rate_integral, tol == 0.01 ? std::to_string(min_primitive_count(pts, tol)) : "", min_g1_primitive_count(pts, tol, opt.fit.g1_angle_deg),
-                   min_g1_primitive_count_as_fitted(pts, tol, opt.fit.g1_angle_deg),
+                   min_g1_primitive_count_as_fitted(pts, fit_options_for(opt.fit, opt.dialect, Frame{}, Plane::XY)),
                    r.comparison.max_deviation_mm,
                    r.comparison.max_smooth_kink_deg, r.forced_kinks, best, gl.stats.lines_out + gl.stats.arcs_out,
                    global_ms, g.stats.lines_out + g.stats.arcs_out,

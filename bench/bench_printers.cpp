@@ -182,8 +182,18 @@ size_t tangent_bound(const std::string& text, const Dialect& d, double band_mm, 
       }
       return std::nullopt;
     };
-    const auto g1_count = as_fitted ? min_g1_primitive_count_as_fitted : min_g1_primitive_count;
-    const auto c0_count = as_fitted ? min_primitive_count_as_fitted : min_primitive_count;
+    // (The fitter's band and angle are those of the dialect's options, at the default angle.)
+    FitOptions fitted;
+    fitted.tolerance_mm = band_mm;
+    fitted.g1_angle_deg = 0.5;
+    fitted = fit_options_for(fitted, d, Frame{}, Plane::XY);
+    auto g1_count = [&](std::span<const Vec2> piece, const EndTangents& ends, PrimitiveEnds at) {
+      return as_fitted ? min_g1_primitive_count_as_fitted(piece, fitted, ends, at)
+                       : min_g1_primitive_count(piece, band_mm, fitted.g1_angle_deg, ends, at);
+    };
+    auto c0_count = [&](std::span<const Vec2> piece, PrimitiveEnds at) {
+      return as_fitted ? min_primitive_count_as_fitted(piece, fitted, at) : min_primitive_count(piece, band_mm, at);
+    };
     std::vector<Vec2> piece;
     std::vector<uint8_t> piece_ends;  // must_end of the piece's vertices
     EndTangents ends;
@@ -194,8 +204,8 @@ size_t tangent_bound(const std::string& text, const Dialect& d, double band_mm, 
     auto flush = [&](uint32_t end_vertex) {
       if (piece.size() >= 2) {
         if (end_vertex < n && kept[end_vertex] && !split[end_vertex]) ends.end = kept_tangent(end_vertex, +1);
-        const size_t g = g1_count(piece, band_mm, 0.5, ends, piece_ends);
-        bound += g ? g : c0_count(piece, band_mm, piece_ends);
+        const size_t g = g1_count(piece, ends, piece_ends);
+        bound += g ? g : c0_count(piece, piece_ends);
       }
       piece.clear();
       ends = {};

@@ -4,7 +4,10 @@
 
 #include <cmath>
 #include <limits>
+#include <regex>
 #include <stdexcept>
+
+#include <fmt/format.h>
 
 #include "arcpress/api/arcpress.hpp"
 #include "arcpress/core/error.hpp"
@@ -46,5 +49,51 @@ TEST_CASE("diff_programs() refuses a band it cannot end its search at", "[api][o
     DiffOptions opt;
     opt.tolerance_mm = tol;
     CHECK_THROWS_AS(diff_programs(p, in, p, in, opt), std::invalid_argument);
+  }
+}
+
+TEST_CASE("the fitter keeps back twice what rounding a centre to the dialect's finest digits can move it: 1 % of the "
+          "band at the least, 3 % at the most and where the step is not known",
+          "[api][options][fit]") {
+  auto share = [](int max_decimals, double unit_mm, double band_mm) {
+    Dialect d;
+    d.mm.max = d.inch.max = max_decimals;
+    Frame frame;
+    frame.unit_mm = unit_mm;
+    FitOptions user;
+    user.tolerance_mm = band_mm;
+    return rounding_reserve_share(fit_options_for(user, d, frame, Plane::XY));
+  };
+  // A step of 10^-max in the frame's unit moves a centre rounded on both axes by up to 0.71
+  // of it; twice that, as a share of the band.
+  CHECK(share(6, 1.0, 0.01) == Approx(kMinRoundingReserve));        // 1.4e-6 mm: far below 1 %
+  CHECK(share(4, 1.0, 0.01) == Approx(2 * 0.71 * 1e-4 / 0.01));     // 1.42 %
+  CHECK(share(4, 1.0, 0.005) == Approx(2 * 0.71 * 1e-4 / 0.005));   // 2.84 %
+  CHECK(share(3, 1.0, 0.01) == Approx(kMaxRoundingReserve));        // 14 % would be more than the most kept
+  CHECK(share(4, 25.4, 0.01) == Approx(kMaxRoundingReserve));       // 10^-4 inch is 2.54 µm
+  CHECK(share(6, 25.4, 0.01) == Approx(kMinRoundingReserve));
+  FitOptions unknown;
+  CHECK(rounding_reserve_share(unknown) == kMaxRoundingReserve);
+  // What is kept back is what the printed arcs need: a circle written in fine moves comes out
+  // as arcs inside the band at each number of digits, its centres printed to no more.
+  std::string program = "G21 G90 G17\nG0 X10 Y0 Z0\nG1 F600\n";
+  for (int k = 1; k <= 720; ++k)
+    program += fmt::format("G1 X{:.4f} Y{:.4f}\n", 10 * std::cos(k * kPi / 360), 10 * std::sin(k * kPi / 360));
+  program += "M2\n";
+  for (int max_decimals : {3, 4, 5, 6}) {
+    CompressOptions opt;
+    opt.fit.tolerance_mm = 0.005;
+    opt.dialect.mm.centre = 3;
+    opt.dialect.mm.max = max_decimals;
+    DiagnosticSink sink;
+    const CompressResult r = compress("circle.nc", program, opt, sink);
+    INFO("centres to at most " << max_decimals << " decimals:\n" << r.output);
+    REQUIRE(r.ok);
+    CHECK(r.stats.arcs_out >= 2);
+    CHECK(r.stats.lines_out == 0);
+    CHECK(r.check.max_deviation_mm <= 0.005);
+    const std::regex centre_word("[IJ]-?[0-9]*\\.([0-9]+)");
+    for (auto w = std::sregex_iterator(r.output.begin(), r.output.end(), centre_word); w != std::sregex_iterator(); ++w)
+      CHECK((*w)[1].length() <= max_decimals);
   }
 }

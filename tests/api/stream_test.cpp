@@ -245,7 +245,9 @@ TEST_CASE("random programs long enough to be cut into pieces keep every promise,
     const Streamed chunks = stream(c.text, c.opt, [&] { return size(rng); });
     CHECK(chunks.output == whole.output);
     // The whole output, checked as one program, is inside the band, no farther from the
-    // input than the pieces' checks measured it (to the whole-path measure's precision).
+    // input than the pieces' checks measured it (to the whole-path measure's precision): on
+    // the programmed path, or where the firmware moves on chords on those, which may lie
+    // farther than the programmed path's move-by-move measure.
     if (!whole.ok || !whole.verified) continue;
     DiagnosticSink check_sink("random");
     CompressResult again;
@@ -254,6 +256,6 @@ TEST_CASE("random programs long enough to be cut into pieces keep every promise,
     const Interpretation ii = interpret(in, check_sink, c.opt.dialect);
     verify_output(in, ii, c.opt, again);  // (no runs given: every joint read in the output's plane)
     CHECK(again.within_band());
-    CHECK(again.check.max_deviation_mm <= whole.comparison.max_deviation_mm + again.check.arc_chord_mm);
+    CHECK(again.check.max_deviation_mm <= whole.check.max_deviation_mm + again.check.arc_chord_mm);
   }
 }

@@ -58,6 +58,14 @@ CompressResult fitted(const std::vector<Vec2>& raw, double tol_mm, FitOptions::M
   return compress("t.nc", program(raw), opt, sink);
 }
 
+/// The options fitted() fits with at `tol_mm`, as the default dialect sets them (its finest
+/// centre step decides the share of the band kept back for rounding).
+FitOptions fitted_options(double tol_mm) {
+  FitOptions o;
+  o.tolerance_mm = tol_mm;
+  return fit_options_for(o, Dialect{}, Frame{}, Plane::XY);
+}
+
 /// The lines and arcs `method` fits `raw` with at `tol_mm` (no smallest radius), after
 /// requiring that the check paired every move, that no joint broke and the band held.
 size_t tangent_fit_count(const std::vector<Vec2>& raw, double tol_mm, FitOptions::Method method) {
@@ -260,8 +268,8 @@ TEST_CASE("no fit has fewer primitives than the bound in the same band, whatever
     for (double tol : {0.05, 0.01, 0.002}) {
       const size_t bound = min_primitive_count(printed(raw), tol);
       const size_t g1_bound = min_g1_primitive_count(printed(raw), tol, FitOptions{}.g1_angle_deg);
-      const size_t fitted_bound = min_g1_primitive_count_as_fitted(printed(raw), tol, FitOptions{}.g1_angle_deg);
-      const size_t fitted_c0_bound = min_primitive_count_as_fitted(printed(raw), tol);
+      const size_t fitted_bound = min_g1_primitive_count_as_fitted(printed(raw), fitted_options(tol));
+      const size_t fitted_c0_bound = min_primitive_count_as_fitted(printed(raw), fitted_options(tol));
       for (auto method : {FitOptions::Method::Arcs, FitOptions::Method::Global, FitOptions::Method::Greedy,
                           FitOptions::Method::Stream, FitOptions::Method::Lowe}) {
         const CompressResult r = fitted(raw, tol, method);
@@ -289,7 +297,7 @@ TEST_CASE("on the loop at 0.005 mm, where following one tangent at a time misses
           "tangents find the fewest the fitter's band and joints allow, in the global method and in the default, "
           "whose primitives there span more than 25 moves each", "[fit][bound]") {
   const auto raw = loop_curve();
-  const size_t optimum = min_g1_primitive_count_as_fitted(printed(raw), 0.005, 0.5);
+  const size_t optimum = min_g1_primitive_count_as_fitted(printed(raw), fitted_options(0.005));
   const size_t global = tangent_fit_count(raw, 0.005, FitOptions::Method::Global);
   const size_t arcs = tangent_fit_count(raw, 0.005, FitOptions::Method::Arcs);
   const size_t greedy = tangent_fit_count(raw, 0.005, FitOptions::Method::Greedy);

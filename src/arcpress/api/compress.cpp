@@ -2,6 +2,7 @@
 #include "arcpress/api/arcpress.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include <fmt/format.h>
 
@@ -23,6 +24,9 @@ FitOptions fit_options_for(const FitOptions& user, const Dialect& d, const Frame
   o.min_arc_length_mm = std::max(user.min_arc_length_mm, d.min_arc_length_mm);
   o.min_arc_moves = std::max<uint32_t>(user.min_arc_moves, uint32_t(d.min_arc_moves));
   o.min_chord_mm = std::max(user.min_chord_mm, d.min_chord_mm);
+  // (Centres are printed in the frame's unit, to at most the dialect's decimals for it.)
+  const double step_mm = std::pow(10.0, -d.digits(frame.unit_mm != 1.0).max) * frame.unit_mm;
+  o.centre_step_mm = std::max(user.centre_step_mm, step_mm);
   return o;
 }
 

@@ -289,14 +289,14 @@ size_t min_g1_primitive_count(std::span<const Vec2> pts, double band_mm, double 
   return 0;
 }
 
-size_t min_g1_primitive_count_as_fitted(std::span<const Vec2> pts, double band_mm, double g1_angle_deg,
-                                        const EndTangents& joins, PrimitiveEnds ends) {
-  return min_g1_primitive_count(pts, band_mm * (1 - fit_detail::kRoundingReserve), g1_angle_deg * fit_detail::kJointShare,
-                                joins, ends);
+size_t min_g1_primitive_count_as_fitted(std::span<const Vec2> pts, const FitOptions& o, const EndTangents& joins,
+                                        PrimitiveEnds ends) {
+  return min_g1_primitive_count(pts, o.tolerance_mm * (1 - rounding_reserve_share(o)),
+                                o.g1_angle_deg * fit_detail::kJointShare, joins, ends);
 }
 
-size_t min_primitive_count_as_fitted(std::span<const Vec2> pts, double band_mm, PrimitiveEnds ends) {
-  return min_primitive_count(pts, band_mm * (1 - fit_detail::kRoundingReserve), ends);
+size_t min_primitive_count_as_fitted(std::span<const Vec2> pts, const FitOptions& o, PrimitiveEnds ends) {
+  return min_primitive_count(pts, o.tolerance_mm * (1 - rounding_reserve_share(o)), ends);
 }
 
 }  // namespace arcpress

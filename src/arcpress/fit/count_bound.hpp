@@ -12,6 +12,7 @@
 #include <span>
 
 #include "arcpress/core/geometry.hpp"
+#include "arcpress/fit/primitive.hpp"
 
 namespace arcpress {
 
@@ -49,16 +50,17 @@ struct EndTangents {
 size_t min_g1_primitive_count(std::span<const Vec2> pts, double band_mm, double g1_angle_deg,
                               const EndTangents& joins = {}, PrimitiveEnds ends = {});
 
-/// min_g1_primitive_count() for the band and the G1 angle the fitter works to: it keeps a
-/// share of each back for rounding the printed arc centres (of the band, kRoundingReserve;
-/// of the angle at a joint, all but kJointShare), so no fit of the same polyline without a
-/// forced kink has fewer primitives. Where this lies above the full bound, the difference
-/// is what the reserves cost, not what the search misses.
-size_t min_g1_primitive_count_as_fitted(std::span<const Vec2> pts, double band_mm, double g1_angle_deg,
-                                        const EndTangents& joins = {}, PrimitiveEnds ends = {});
+/// min_g1_primitive_count() for the band and the G1 angle the fitter works to under `o`
+/// (its tolerance_mm, g1_angle_deg and centre_step_mm): it keeps a share of each back for
+/// rounding the printed arc centres (of the band, rounding_reserve_share(); of the angle at a
+/// joint, all but kJointShare), so no fit of the same polyline without a forced kink has
+/// fewer primitives. Where this lies above the full bound, the difference is what the
+/// reserves cost, not what the search misses.
+size_t min_g1_primitive_count_as_fitted(std::span<const Vec2> pts, const FitOptions& o, const EndTangents& joins = {},
+                                        PrimitiveEnds ends = {});
 
-/// min_primitive_count() in the band the fitter works to: no fit of the same polyline has
-/// fewer primitives, kinked or not.
-size_t min_primitive_count_as_fitted(std::span<const Vec2> pts, double band_mm, PrimitiveEnds ends = {});
+/// min_primitive_count() in the band the fitter works to under `o`: no fit of the same
+/// polyline has fewer primitives, kinked or not.
+size_t min_primitive_count_as_fitted(std::span<const Vec2> pts, const FitOptions& o, PrimitiveEnds ends = {});
 
 }  // namespace arcpress

@@ -22,7 +22,7 @@ using fit_detail::RunFitter;
 double normal_axis_spread_mm(const FitOptions& o) {
   // A vertex and the height carried between two vertices of the stretch both lie within its
   // spread, so the height check of make_arc() holds at every vertex.
-  return o.helical ? o.tolerance_mm * (1.0 - fit_detail::kRoundingReserve) * fit_detail::kHeightShare : 0.0;
+  return o.helical ? o.tolerance_mm * (1.0 - rounding_reserve_share(o)) * fit_detail::kHeightShare : 0.0;
 }
 
 namespace {

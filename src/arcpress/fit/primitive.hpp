@@ -2,6 +2,7 @@
 #pragma once
 // The fitter's vocabulary: a run is replaced by primitives (lines and arcs) whose end points
 // are vertices of the run, so positions, E and extra axes at every joint are the input's own.
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -36,6 +37,10 @@ struct FitOptions {
   Method method = Method::Arcs;
   bool arcs = true;                ///< false: lines only (the controller takes no arcs here)
   double tolerance_mm = 0.01;      ///< max distance between fitted path and input path, both ways
+  /// The finest step (mm) the target controller reads an arc centre to (its most decimals):
+  /// the fitter keeps back what rounding a centre to it can cost (rounding_reserve_share()).
+  /// 0: not known, the most is kept back.
+  double centre_step_mm = 0.0;
   double g1_angle_deg = 0.5;       ///< max tangent change at a joint where the input is smooth
   double corner_angle_deg = 30.0;  ///< an input turn sharper than this is a corner kept sharp
   double min_radius_mm = 0.05;     ///< smaller arcs become lines
@@ -74,9 +79,21 @@ struct FitOptions {
   bool operator==(const FitOptions&) const = default;
 };
 
+/// The share of the band the fitter keeps back for rounding printed arc centres: twice the
+/// furthest a centre rounded to `centre_step_mm` on both axes moves (0.71 of a step), as a
+/// share of the band, at least kMinRoundingReserve and at most kMaxRoundingReserve (also
+/// where the step is not known). The emitter tries the dialect's decimals up to its finest,
+/// and at each the centres round the fitted one, and checks each rounded arc in the band.
+inline constexpr double kMinRoundingReserve = 0.01;
+inline constexpr double kMaxRoundingReserve = 0.03;
+inline double rounding_reserve_share(const FitOptions& o) {
+  if (!(o.centre_step_mm > 0) || !(o.tolerance_mm > 0)) return kMaxRoundingReserve;
+  return std::clamp(2 * 0.71 * o.centre_step_mm / o.tolerance_mm, kMinRoundingReserve, kMaxRoundingReserve);
+}
+
 /// The share of the band by which a one-sided band's check lets the input lie on the wrong
 /// side of the output: the fitter keeps the primitives on their side exactly and this share
-/// of the band for the rounding of arc centres to the printed digits (its kRoundingReserve).
+/// of the band for the rounding of arc centres to the printed digits (rounding_reserve_share()).
 inline constexpr double kBandSideRoundingShare = 0.03;
 
 /// The methods' names as --method writes them, in the order of FitOptions::Method.

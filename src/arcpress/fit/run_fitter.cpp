@@ -52,7 +52,7 @@ RunFitter::RunFitter(const Interpretation& in, const Run& run, const FitOptions&
       for (int x : extra_) extra_values_.push_back(vertex(v)[x]);
   }
   arcs_ = o.arcs && (o.extra_axes || extra_.empty());
-  eps_ = o.tolerance_mm * (1.0 - kRoundingReserve);
+  eps_ = o.tolerance_mm * (1.0 - rounding_reserve_share(o));
   hard_.assign(n_ + 1, 0);
   heading_.assign(n_ + 1, std::nullopt);
   soft_.assign(n_ + 1, 0);
@@ -244,7 +244,7 @@ std::vector<Chosen> RunFitter::fit_kept() {
 }
 
 std::vector<Chosen> RunFitter::fit_stretch(uint32_t a, uint32_t limit, size_t& forced) {
-  const bool search = o_.method == FitOptions::Method::Arcs || o_.method == FitOptions::Method::Global;
+  bool search = o_.method == FitOptions::Method::Arcs || o_.method == FitOptions::Method::Global;
   std::vector<Chosen> chain;
   if (o_.method == FitOptions::Method::Stream) {
     chain = stream_chain(a, limit, forced);
@@ -255,7 +255,20 @@ std::vector<Chosen> RunFitter::fit_stretch(uint32_t a, uint32_t limit, size_t& f
     // joined tangentially; longer ones, and those it could only cover with a forced
     // kink, are searched again, and the chain with fewer kinks, then fewer primitives,
     // wins. The greedy chain is walked only as far as the search and that choice need.
+    // The greedy method takes the greedy chain, but where it wiggles (see untangle()): its
+    // look-ahead, a primitive deep, can lead it into a narrow place (plum's inner tips at
+    // 0.01 mm with 1 % of the band kept back) that it leaves only by S-bends, or by a kink of
+    // 36° once untangled. There the stretch is fitted as the default fits it, aiming for the
+    // input's directions read from each side (sided_tangent()).
     GreedyWalk greedy(*this, a, limit);
+    if (o_.method == FitOptions::Method::Greedy) {
+      greedy.finish();
+      search = wiggles(greedy.chain);
+      if (search) {
+        for (uint32_t v = a + 1; v < limit; ++v) heading_[v] = sided_tangent(v, a, limit);
+        greedy.restart(a);
+      }
+    }
     const bool searched = search && o_.beam_width > 1 && (greedy.longer_than(2) || greedy.kinks() > 0);
     size_t beam_forced = 0;
     std::vector<Chosen> b;
@@ -299,7 +312,9 @@ std::vector<Chosen> RunFitter::fit_stretch(uint32_t a, uint32_t limit, size_t& f
   // merge no shorter on Xu's curves or the corpus.)
   if (global && chain.size() > 1) consider(range_chain(a, limit, SIZE_MAX));
   if (long_primitives) consider(range_chain(a, limit, chain.size() - 1, kRangeFrontShare));
-  if ((search || o_.method == FitOptions::Method::Greedy) && wiggles(chain)) untangle(a, limit, chain, forced);
+  if ((search || o_.method == FitOptions::Method::Greedy) && wiggles(chain)) untangle(a, limit, chain, forced, search);
+  if (search && o_.method == FitOptions::Method::Greedy)  // (the stretch's other attempts walk as the greedy method does)
+    for (uint32_t v = a + 1; v < limit; ++v) heading_[v] = input_tangent(v, a, limit);
   return chain;
 }
 

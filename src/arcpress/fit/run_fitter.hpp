@@ -23,9 +23,6 @@ namespace arcpress::fit_detail {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-/// Share of the tolerance kept back for rounding the printed arc centre (the emitter prints
-/// centres with enough digits that rounding moves them by less than this).
-constexpr double kRoundingReserve = 0.03;
 /// In-plane and normal-axis shares of the band when a primitive moves along the normal axis:
 /// 0.8² + 0.6² = 1, so the 3D distance stays inside the band.
 constexpr double kPlaneShare = 0.8;
@@ -60,10 +57,10 @@ constexpr size_t kFarStartEnds = 2;
 constexpr double kStartRangeInset = 0.05;
 /// Splits of a stretch into two primitives checked exactly per start tangent when merging.
 constexpr size_t kSplitsTried = 12;
-/// tighten(): how many moves back a window that ends in an arc is tried ending instead, the
-/// line after it starting there (an arc that ran on past its fillet along a straight side:
-/// sqrt(2·R·band) is 28 moves of 0.05 mm at R = 40 mm and 0.025 mm).
-constexpr uint32_t kLineBackMoves = 32;
+/// tighten(): how many moves back, and on, a window that ends in an arc is tried ending
+/// instead, the line after it starting there (an arc that ran on past its fillet along a
+/// straight side: sqrt(2·R·band) is 28 moves of 0.05 mm at R = 40 mm and 0.025 mm).
+constexpr uint32_t kLineShiftMoves = 32;
 /// Layered search: a layer keeps one state per tangent bin (this share of the G1 angle wide)
 /// in each of about kLayerGroups groups of vertices over the stretch the last layer advanced.
 constexpr double kTangentBinShare = 0.5;
@@ -163,8 +160,9 @@ class RunFitter : private FitAngles {
   /// it is mended the same way, up to kUntangleDepth joints deep, before it is weighed:
   /// mended only at its first wiggle, a greedy chain over plum crept through the rest in
   /// S-bends (sampled with 6 000 points and turned by 0.7 rad, at 0.005 mm: 667 blocks; 59
-  /// now, with two kinks).
-  void untangle(uint32_t a, uint32_t limit, std::vector<Chosen>& chain, size_t& forced) const;
+  /// now, with two kinks). The restarts are fitted by the search where `search`, else by the
+  /// greedy walk.
+  void untangle(uint32_t a, uint32_t limit, std::vector<Chosen>& chain, size_t& forced, bool search) const;
   /// The chain a restart at vertex v fits after a break, before it is mended, and its forced
   /// kinks: the levels of untangle() restart at the same vertices again and again (plum at
   /// 0.005 mm: 20 restarts at 8 vertices), and a restart's chain depends on its vertex alone.
@@ -174,7 +172,7 @@ class RunFitter : private FitAngles {
     size_t forced;
   };
   /// untangle() `depth` levels down, with the restarts fitted so far in the same call.
-  void untangle_at(uint32_t a, uint32_t limit, std::vector<Chosen>& chain, size_t& forced, int depth,
+  void untangle_at(uint32_t a, uint32_t limit, std::vector<Chosen>& chain, size_t& forced, bool search, int depth,
                    std::vector<Restart>& restarts) const;
   /// The index of the first primitive of the first wiggle in `chain` (see wiggles()), or
   /// its size when none.
@@ -353,6 +351,13 @@ class RunFitter : private FitAngles {
     /// The fewest primitives it can end with, walked as far as it is now: those it has, and
     /// one more unless it reached `limit`.
     size_t at_least() const { return chain.size() + (a < limit ? 1 : 0); }
+    /// Walks again from `start`, as new.
+    void restart(uint32_t start) {
+      a = start;
+      tangent = f.in_tangent_;
+      chain.clear();
+      forced = 0;
+    }
     /// Walks to `limit`.
     void finish() {
       while (a < limit) step();
@@ -438,6 +443,9 @@ class RunFitter : private FitAngles {
   /// `from` to `to` ends as close to `out` as it can (`in` itself without `out`); nothing
   /// when even the largest turn misses it.
   std::optional<Vec2> aimed(uint32_t from, const Vec2& in, uint32_t to, const std::optional<Vec2>& out) const;
+  /// The start at `from` whose primitive reaches `to` inside the band and that turns from
+  /// `in` by at most `turn_rad`: the middle of those that do both; none when none does.
+  std::optional<Vec2> start_within(uint32_t from, const Vec2& in, uint32_t to, double turn_rad) const;
   /// Two primitives from `from` to `to`, the first leaving along T, joined tangentially, the
   /// second turned within kTurnShare of the G1 angle to meet `out` (where given) within it.
   /// Splits whose second primitive can meet `out` are tried longest first; at most `tries`
@@ -458,8 +466,9 @@ class RunFitter : private FitAngles {
   /// start tangent by φ turns its end tangent by -φ (the end tangent is the start tangent
   /// reflected about the chord), so the turn that meets the next joint is solved for, and
   /// only primitives that can meet it are checked exactly. Where they end in an arc and a
-  /// line follows, they are also tried ending up to kLineBackMoves earlier, the line
-  /// starting there instead.
+  /// line follows, they are also tried ending up to kLineShiftMoves earlier or later, the
+  /// line starting there instead. The start of a single primitive is also taken from the
+  /// range of those that reach its end (start_within()), within the joint's turn.
   void tighten(uint32_t a, std::vector<Chosen>& chain, const std::optional<Vec2>& incoming) const;
   /// One node of the beam and layered searches: the chain reached vertex `v` and leaves it along `T`.
   struct Node {

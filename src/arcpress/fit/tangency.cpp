@@ -20,12 +20,13 @@ namespace arcpress::fit_detail {
 /// mended only at its first wiggle, a greedy chain over plum crept through the rest in
 /// S-bends (sampled with 6 000 points and turned by 0.7 rad, at 0.005 mm: 667 blocks; 59
 /// now, with two kinks).
-void RunFitter::untangle(uint32_t a, uint32_t limit, std::vector<Chosen>& chain, size_t& forced) const {
+void RunFitter::untangle(uint32_t a, uint32_t limit, std::vector<Chosen>& chain, size_t& forced, bool search) const {
   std::vector<Restart> restarts;
-  untangle_at(a, limit, chain, forced, 0, restarts);
+  untangle_at(a, limit, chain, forced, search, 0, restarts);
 }
 
-void RunFitter::untangle_at(uint32_t a, uint32_t limit, std::vector<Chosen>& chain, size_t& forced, int depth,
+void RunFitter::untangle_at(uint32_t a, uint32_t limit, std::vector<Chosen>& chain, size_t& forced, bool search,
+                            int depth,
                             std::vector<Restart>& restarts) const {
   const size_t first = wiggle_start(chain);
   std::vector<Chosen> best;
@@ -40,7 +41,7 @@ void RunFitter::untangle_at(uint32_t a, uint32_t limit, std::vector<Chosen>& cha
       Restart r{v, {}, 0};
       GreedyWalk greedy(*this, v, limit);
       greedy.tangent.reset();
-      if (o_.method == FitOptions::Method::Greedy) {
+      if (!search) {
         greedy.finish();
         r.chain = std::move(greedy.chain);
         r.forced = greedy.kinks();
@@ -53,7 +54,7 @@ void RunFitter::untangle_at(uint32_t a, uint32_t limit, std::vector<Chosen>& cha
     std::vector<Chosen> rest = known->chain;
     size_t rest_forced = known->forced;
     if (rest.empty()) continue;
-    if (depth < kUntangleDepth && wiggles(rest)) untangle_at(v, limit, rest, rest_forced, depth + 1, restarts);
+    if (depth < kUntangleDepth && wiggles(rest)) untangle_at(v, limit, rest, rest_forced, search, depth + 1, restarts);
     const size_t after = chain.size() - k;
     // (Where the chain after the joint has as many kinks as the restart brings, no kink is
     // added: fewer primitives are enough.)
@@ -64,7 +65,7 @@ void RunFitter::untangle_at(uint32_t a, uint32_t limit, std::vector<Chosen>& cha
     rest.front().kinked = true;
     std::vector<Chosen> made(chain.begin(), chain.begin() + static_cast<long>(k));
     made.insert(made.end(), rest.begin(), rest.end());
-    if (o_.merge && o_.method != FitOptions::Method::Greedy) tighten_between_kinks(a, made);
+    if (o_.merge && search) tighten_between_kinks(a, made);
     size_t made_forced = 0;
     for (const Chosen& c : made) made_forced += c.kinked;
     if (made.size() + kKinkWorth * made_forced < best_cost) {
@@ -229,18 +230,17 @@ void RunFitter::tighten_between_kinks(uint32_t a, std::vector<Chosen>& chain) co
 /// start tangent by φ turns its end tangent by -φ (the end tangent is the start tangent
 /// reflected about the chord), so the turn that meets the next joint is solved for, and
 /// only primitives that can meet it are checked exactly. Where they end in an arc and a
-/// line follows, they are also tried ending up to kLineBackMoves earlier, the line
-/// starting there instead.
+/// line follows, they are also tried ending up to kLineShiftMoves earlier or later, the
+/// line starting there instead. The start of a single primitive is also taken from the
+/// range of those that reach its end (start_within()), within the joint's turn.
 void RunFitter::tighten(uint32_t a, std::vector<Chosen>& chain, const std::optional<Vec2>& incoming) const {
   std::vector<Vec2>& starts = s_.starts;
   std::vector<Vec2>& firsts = s_.firsts;
   std::vector<Chosen> repl;
-  // The w primitives from chain[i] as w - 1 ending at vertex `to` and there meeting `out`
-  // (free when none), into `repl`: whether they were found.
-  auto merged = [&](size_t i, size_t w, uint32_t to, const std::optional<Vec2>& out) {
-    const uint32_t from = i == 0 ? a : chain[i - 1].prim.end_vertex;
-    // The tangent arriving at `from`: the previous primitive's, or at the start `incoming`.
-    const std::optional<Vec2> in = i > 0 ? std::optional<Vec2>(chain[i - 1].end_tangent) : incoming;
+  // w primitives as w - 1 from vertex `from`, arriving there along `in` (free when none), to
+  // vertex `to`, there meeting `out` (free when none), into `repl`: whether they were found.
+  auto merged_from = [&](uint32_t from, const std::optional<Vec2>& in, size_t w, uint32_t to,
+                         const std::optional<Vec2>& out) {
     auto meets = [&](const Chosen& c) { return !out || turn_cone_.holds(c.end_tangent, *out); };
     // Start tangents: the incoming one (turned below), or at the stretch's start the
     // input's own directions; with a fixed next joint, the one ending exactly on it.
@@ -268,17 +268,22 @@ void RunFitter::tighten(uint32_t a, std::vector<Chosen>& chain, const std::optio
       start_tangents(a, to, starts);
     }
     repl.clear();
+    // One primitive from `from` along T to `to`, into `repl` where it meets the joint after.
+    auto one = [&](const Vec2& T) {
+      // (Where it would end heading first: most merges fail to meet the joint after.)
+      if (out && !near_turn_cone_.holds(end_along(from, T, to), *out)) return false;
+      const auto cand = through_candidate(from, T, to);
+      if (!cand) return false;
+      auto c = make(from, T, *cand);
+      if (c && meets(*c)) repl = {*c};
+      return !repl.empty();
+    };
     for (size_t k = 0; k < starts.size(); ++k) {
       const Vec2 T0 = starts[k];
       if (w == 2) {
         std::optional<Vec2> T = in && k < aimed_starts ? aimed(from, T0, to, out) : std::optional<Vec2>(T0);
         if (!T || (!in && out && !turn_line_cone_.holds(reflected_end(from, T0, to), *out))) continue;
-        // (Where it would end heading first: most merges fail to meet the joint after.)
-        if (out && !near_turn_cone_.holds(end_along(from, *T, to), *out)) continue;
-        const auto cand = through_candidate(from, *T, to);
-        if (!cand) continue;
-        auto c = make(from, *T, *cand);
-        if (c && meets(*c)) repl = {*c};
+        one(*T);
       } else {
         firsts.clear();
         if (in) {
@@ -296,6 +301,16 @@ void RunFitter::tighten(uint32_t a, std::vector<Chosen>& chain, const std::optio
       }
       if (!repl.empty()) return true;
     }
+    // A long arc reaches `to` only from a narrow range of starts, which the arriving tangent,
+    // and the turn aimed at the joint after, may both miss by less than a joint may turn (a 2
+    // mm arc, then one of 40 mm over 90° in 0.05 mm moves printed to 3 decimals: its starts
+    // lie within 0.04° of the circle's tangent, and the 2 mm arc ends 0.05° off it). Last,
+    // the start in that range nearest its middle that the joint before allows (kTurnShare of
+    // the G1 angle where the joint after is to be met too, else kJointShare).
+    if (w == 2 && in) {
+      const double turn = deg_to_rad(o_.g1_angle_deg) * (out ? kTurnShare : kJointShare);
+      if (const auto T = start_within(from, *in, to, turn); T && one(*T)) return true;
+    }
     return false;
   };
   // The tangent the chain leaves vertex `v` along with chain[k]: its start, or past the
@@ -304,16 +319,16 @@ void RunFitter::tighten(uint32_t a, std::vector<Chosen>& chain, const std::optio
     if (k < chain.size()) return start_tangent(chain[k], v);
     return v == stretch_end_ ? out_tangent_ : std::nullopt;
   };
-  // After a merge at i, the joint before it may merge too: step back one.
-  for (size_t i = 0; i + 1 < chain.size();) {
-    size_t replaced = 0;  // primitives of the chain that `repl` takes the place of
+  // The primitives from chain[i] on merged into `repl`: how many of them it replaces (0: none
+  // merge). They start where chain[i] starts, along the tangent arriving there (the previous
+  // primitive's, or at the start `incoming`).
+  auto merge_at = [&](size_t i) -> size_t {
+    const uint32_t from = i == 0 ? a : chain[i - 1].prim.end_vertex;
+    const std::optional<Vec2> in = i > 0 ? std::optional<Vec2>(chain[i - 1].end_tangent) : incoming;
     for (size_t w : {size_t(2), size_t(3)}) {
       if (i + w > chain.size()) break;
       const uint32_t to = chain[i + w - 1].prim.end_vertex;
-      if (merged(i, w, to, leaving(i + w, to))) {
-        replaced = w;
-        break;
-      }
+      if (merged_from(from, in, w, to, leaving(i + w, to))) return w;
     }
     // Where the window ends in an arc and a line follows, the arc may have run on past the
     // end of its fillet along the straight side (the band lets it, for sqrt(2·R·band)), and
@@ -321,26 +336,36 @@ void RunFitter::tighten(uint32_t a, std::vector<Chosen>& chain, const std::optio
     // fillet and a line in moves of 0.05 mm printed to 3 decimals, R = 20 mm at 0.025 mm: 4
     // blocks, the second arc 4 moves past the fillet's end): the window is tried ending
     // earlier, the line starting there instead, for as far back as the line keeps the band.
+    // Then later, the line starting later: the arc may as well have stopped short of the
+    // fillet's end (R = 10 mm at 0.0095 mm: the line one move into the fillet, an arc from
+    // there that cannot follow it to its end, and a second arc two moves short of it).
     for (size_t w : {size_t(2), size_t(3)}) {
-      if (replaced || i + w >= chain.size()) break;
+      if (i + w >= chain.size()) break;
       const Chosen& line = chain[i + w];
       if (line.prim.kind != Primitive::Kind::Line || chain[i + w - 1].prim.kind != Primitive::Kind::Arc) continue;
       const uint32_t to = chain[i + w - 1].prim.end_vertex, end = line.prim.end_vertex;
       const uint32_t last_start = chain[i + w - 2].prim.end_vertex;
-      // The joint after the line, which a line turned by starting earlier must still meet.
+      // The joint after the line, which a line turned by starting elsewhere must still meet.
       const std::optional<Vec2> after = leaving(i + w + 1, end);
-      for (uint32_t t = to - 1; t > last_start + 1 && to - t <= kLineBackMoves; --t) {
-        const Vec2 chord = q(end) - q(t);
-        if (chord.squaredNorm() <= kLengthEpsMm * kLengthEpsMm) break;
-        const std::optional<Chosen> longer = through(t, chord.normalized(), end);
-        if (!longer || longer->prim.kind != Primitive::Kind::Line) break;  // past the straight side
-        if (after && !joint_cone_.holds(longer->end_tangent, *after)) continue;
-        if (!merged(i, w, t, start_tangent(*longer, t))) continue;
-        repl.push_back(*longer);
-        replaced = w + 1;
-        break;
-      }
+      for (const bool earlier : {true, false})
+        for (uint32_t k = 1; k <= kLineShiftMoves; ++k) {
+          const uint32_t t = earlier ? to - k : to + k;
+          if (earlier ? t <= last_start + 1 : t + 1 >= end) break;
+          const Vec2 chord = q(end) - q(t);
+          if (chord.squaredNorm() <= kLengthEpsMm * kLengthEpsMm) break;
+          const std::optional<Chosen> line_on = through(t, chord.normalized(), end);
+          if (!line_on || line_on->prim.kind != Primitive::Kind::Line) break;  // past the straight side
+          if (after && !joint_cone_.holds(line_on->end_tangent, *after)) continue;
+          if (!merged_from(from, in, w, t, start_tangent(*line_on, t))) continue;
+          repl.push_back(*line_on);
+          return w + 1;
+        }
     }
+    return 0;
+  };
+  // After a merge at i, the joint before it may merge too: step back one.
+  for (size_t i = 0; i + 1 < chain.size();) {
+    const size_t replaced = merge_at(i);
     if (replaced) {
       chain.erase(chain.begin() + i, chain.begin() + i + replaced);
       chain.insert(chain.begin() + i, repl.begin(), repl.end());

@@ -165,6 +165,19 @@ Vec2 RunFitter::range_start(uint32_t a, const StartRange& r, double share) const
   return Turn(r.lo + share * (r.hi - r.lo))((q(r.e) - q(a)).normalized());
 }
 
+/// The start at `from` whose primitive reaches `to` inside the band (start_range()) and that
+/// turns from `in` by at most `turn_rad`: the middle of the starts that do both; none when
+/// none does.
+std::optional<Vec2> RunFitter::start_within(uint32_t from, const Vec2& in, uint32_t to, double turn_rad) const {
+  const auto [lo, hi] = start_range(from, to);
+  if (lo > hi) return std::nullopt;
+  const Vec2 chord = (q(to) - q(from)).normalized();
+  const double at = std::atan2(cross2(chord, in), chord.dot(in));
+  const double low = std::max(lo, at - turn_rad), high = std::min(hi, at + turn_rad);
+  if (low > high) return std::nullopt;
+  return Turn((low + high) / 2)(chord);
+}
+
 /// The furthest vertex e after `a` (up to `limit`) whose chord from `a` passes within the
 /// band of every vertex between (furthest_reached()); `a` itself when the first move has
 /// no length in the plane.
