@@ -49,7 +49,9 @@ std::vector<Chosen> RunFitter::range_chain(uint32_t a, uint32_t limit, size_t ma
   // with, widened by the joint's turn; and the vertices with any, in the order reached.
   std::vector<std::vector<AngleRange>> arriving(limit - a + 1);
   std::vector<uint32_t> arrived;
-  std::vector<std::pair<int, int>> reached(limit - a + 1, {INT_MAX, -1});  // per end: first and last sample
+  // Per end: the lowest and highest start angle (rad) that reaches it.
+  constexpr std::pair<double, double> kNone{kInf, -kInf};
+  std::vector<std::pair<double, double>> reached(limit - a + 1, kNone);
   std::vector<uint32_t> ends;
   std::vector<AngleRange> here;
   int found = -1;  // the state of the last layer whose primitive reaches `limit`
@@ -65,6 +67,7 @@ std::vector<Chosen> RunFitter::range_chain(uint32_t a, uint32_t limit, size_t ma
       // The ends each sample of the range reaches; those a range of samples reaches.
       const int count = samples(s);
       ends.clear();
+      uint32_t best_end = 0;  // the furthest any sample reaches
       // The samples in groups of at most kFanLanes, scanned together.
       const int groups = (count + kFanLanes - 1) / kFanLanes, per_group = (count + groups - 1) / groups;
       for (int j0 = 0; j0 < count; j0 += per_group) {
@@ -74,17 +77,66 @@ std::vector<Chosen> RunFitter::range_chain(uint32_t a, uint32_t limit, size_t ma
         for (int l = 0; l < lanes; ++l) T[l] = direction_at(sample(s, j0 + l, count));
         fan_ends(s.v, T, lanes, limit, first_end, [&](int l, const Candidate& c) {
           auto& r = reached[c.e - a];
-          if (r.second < 0) ends.push_back(c.e);
-          r.first = std::min(r.first, j0 + l);
-          r.second = std::max(r.second, j0 + l);
+          if (r.second < r.first) ends.push_back(c.e);
+          r.first = std::min(r.first, sample(s, j0 + l, count));
+          r.second = std::max(r.second, sample(s, j0 + l, count));
+          best_end = std::max(best_end, c.e);
         });
         std::inplace_merge(ends.begin(), ends.begin() + std::ptrdiff_t(sorted), ends.end());
+      }
+      // The furthest ends of long arcs are reached from ranges narrower than the samples'
+      // spacing (plum at 0.005 mm: 44 blocks where the bound is 38, 39 with what follows).
+      // Each end's starts in the band are known exactly (start_range()): the furthest end a
+      // sample reached takes all those the state allows; past it, ends are tried by doubling
+      // steps while some start the state allows reaches them, then by halving between the
+      // last reached and the first not, and each one reached is taken. (They are kept only
+      // where a scan along the middle of the furthest one's starts offers it: the scan holds
+      // an end to every other limit, as the radius.)
+      auto exact = [&](uint32_t e) -> std::optional<std::pair<double, double>> {
+        const auto [rlo, rhi] = start_range(s.v, e);
+        if (rlo > rhi) return std::nullopt;
+        const double chord = near_angle(angle_of(q(e) - q(s.v)), 0.5 * (s.lo + s.hi));
+        const double from = std::max(s.lo, chord + rlo), upto = std::min(s.hi, chord + rhi);
+        if (from > upto) return std::nullopt;
+        return std::pair(from, upto);
+      };
+      if (best_end > 0) {
+        if (const auto x = exact(best_end)) {
+          auto& r = reached[best_end - a];
+          r = {std::min(r.first, x->first), std::max(r.second, x->second)};
+        }
+        const size_t sampled = ends.size();
+        auto take = [&](uint32_t e) {
+          const auto x = exact(e);
+          if (!x) return false;
+          reached[e - a] = *x;
+          ends.push_back(e);
+          return true;
+        };
+        uint32_t good = best_end, step = 1;
+        while (good + step <= limit && take(good + step)) good += step, step *= 2;
+        uint32_t bad = std::min(good + step, limit + 1);
+        while (bad - good > 1) {
+          const uint32_t mid = good + (bad - good) / 2;
+          (take(mid) ? good : bad) = mid;
+        }
+        std::sort(ends.begin() + std::ptrdiff_t(sampled), ends.end());
+        if (ends.size() > sampled) {
+          const uint32_t e = ends.back();
+          bool offered = false;
+          scan_ends(s.v, direction_at(0.5 * (reached[e - a].first + reached[e - a].second)), e,
+                    [&](const Candidate& c) { offered = offered || c.e == e; });
+          if (!offered) {
+            for (size_t k = sampled; k < ends.size(); ++k) reached[ends[k] - a] = kNone;
+            ends.resize(sampled);
+          }
+        }
       }
       states[size_t(id)].reach = ends.empty() ? s.v : ends.back();
       for (uint32_t e : ends) {
         auto& r = reached[e - a];
-        double lo = sample(s, r.first, count), hi = sample(s, r.second, count);
-        r = {INT_MAX, -1};
+        double lo = r.first, hi = r.second;
+        r = kNone;
         // An arc ends along its start tangent mirrored in the chord.
         const double chord = near_angle(angle_of(q(e) - q(s.v)), 0.5 * (lo + hi));
         const double end_lo = 2 * chord - hi, end_hi = 2 * chord - lo;
@@ -163,12 +215,22 @@ std::vector<Chosen> RunFitter::range_chain(uint32_t a, uint32_t limit, size_t ma
         hi = std::min(hi, wanted + joint);
         if (lo > hi) continue;
       }
+      // The starts that reach `to` inside the band are known exactly (start_range()): their
+      // middle first, where the state allows it, for the narrow ranges of long arcs.
+      std::vector<double> starts;
+      if (const auto [rlo, rhi] = start_range(s.v, to); rlo <= rhi) {
+        const double chord = near_angle(angle_of(q(to) - q(s.v)), 0.5 * (lo + hi));
+        const double from = std::max(lo, chord + rlo), upto = std::min(hi, chord + rhi);
+        if (from <= upto) starts.push_back(0.5 * (from + upto));
+      }
+      const size_t exact = starts.size();
       const int count = samples(s);
       const double mid = 0.5 * (lo + hi);
-      std::vector<double> starts{mid};
+      starts.push_back(mid);
       for (int j = 0; j < count; ++j)
         if (const double t = sample(s, j, count); t >= lo && t <= hi) starts.push_back(t);
-      std::sort(starts.begin(), starts.end(), [&](double x, double y) { return std::abs(x - mid) < std::abs(y - mid); });
+      std::sort(starts.begin() + std::ptrdiff_t(exact), starts.end(),
+                [&](double x, double y) { return std::abs(x - mid) < std::abs(y - mid); });
       for (double t : starts) {
         if (checks == 0) return false;
         --checks;
