@@ -92,14 +92,7 @@ std::vector<Chosen> RunFitter::range_chain(uint32_t a, uint32_t limit, size_t ma
       // last reached and the first not, and each one reached is taken. (They are kept only
       // where a scan along the middle of the furthest one's starts offers it: the scan holds
       // an end to every other limit, as the radius.)
-      auto exact = [&](uint32_t e) -> std::optional<std::pair<double, double>> {
-        const auto [rlo, rhi] = start_range(s.v, e);
-        if (rlo > rhi) return std::nullopt;
-        const double chord = near_angle(angle_of(q(e) - q(s.v)), 0.5 * (s.lo + s.hi));
-        const double from = std::max(s.lo, chord + rlo), upto = std::min(s.hi, chord + rhi);
-        if (from > upto) return std::nullopt;
-        return std::pair(from, upto);
-      };
+      auto exact = [&](uint32_t e) { return starts_within(s.v, e, s.lo, s.hi); };
       if (best_end > 0) {
         if (const auto x = exact(best_end)) {
           auto& r = reached[best_end - a];
@@ -218,11 +211,7 @@ std::vector<Chosen> RunFitter::range_chain(uint32_t a, uint32_t limit, size_t ma
       // The starts that reach `to` inside the band are known exactly (start_range()): their
       // middle first, where the state allows it, for the narrow ranges of long arcs.
       std::vector<double> starts;
-      if (const auto [rlo, rhi] = start_range(s.v, to); rlo <= rhi) {
-        const double chord = near_angle(angle_of(q(to) - q(s.v)), 0.5 * (lo + hi));
-        const double from = std::max(lo, chord + rlo), upto = std::min(hi, chord + rhi);
-        if (from <= upto) starts.push_back(0.5 * (from + upto));
-      }
+      if (const auto r = starts_within(s.v, to, lo, hi)) starts.push_back(0.5 * (r->first + r->second));
       const size_t exact = starts.size();
       const int count = samples(s);
       const double mid = 0.5 * (lo + hi);

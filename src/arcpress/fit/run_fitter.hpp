@@ -444,9 +444,9 @@ class RunFitter : private FitAngles {
   /// `from` to `to` ends as close to `out` as it can (`in` itself without `out`); nothing
   /// when even the largest turn misses it.
   std::optional<Vec2> aimed(uint32_t from, const Vec2& in, uint32_t to, const std::optional<Vec2>& out) const;
-  /// The start at `from` whose primitive reaches `to` inside the band and that turns from
-  /// `in` by at most `turn_rad`: the middle of those that do both; none when none does.
-  std::optional<Vec2> start_within(uint32_t from, const Vec2& in, uint32_t to, double turn_rad) const;
+  /// The directions (rad, near [lo, hi]) leaving vertex v whose primitive reaches vertex e
+  /// inside the band (start_range()) that lie within [lo, hi]; none when none does.
+  std::optional<std::pair<double, double>> starts_within(uint32_t v, uint32_t e, double lo, double hi) const;
   /// Two primitives from `from` to `to`, the first leaving along T, joined tangentially, the
   /// second turned within kTurnShare of the G1 angle to meet `out` (where given) within it.
   /// Splits whose second primitive can meet `out` are tried longest first; at most `tries`
@@ -469,7 +469,7 @@ class RunFitter : private FitAngles {
   /// only primitives that can meet it are checked exactly. Where they end in an arc and a
   /// line follows, they are also tried ending up to kLineShiftMoves earlier or later, the
   /// line starting there instead. The start of a single primitive is also taken from the
-  /// range of those that reach its end (start_within()), within the joint's turn.
+  /// range of those that reach its end (starts_within()), within the joint's turn.
   void tighten(uint32_t a, std::vector<Chosen>& chain, const std::optional<Vec2>& incoming) const;
   /// One node of the beam and layered searches: the chain reached vertex `v` and leaves it along `T`.
   struct Node {

@@ -232,7 +232,7 @@ void RunFitter::tighten_between_kinks(uint32_t a, std::vector<Chosen>& chain) co
 /// only primitives that can meet it are checked exactly. Where they end in an arc and a
 /// line follows, they are also tried ending up to kLineShiftMoves earlier or later, the
 /// line starting there instead. The start of a single primitive is also taken from the
-/// range of those that reach its end (start_within()), within the joint's turn.
+/// range of those that reach its end (starts_within()), within the joint's turn.
 void RunFitter::tighten(uint32_t a, std::vector<Chosen>& chain, const std::optional<Vec2>& incoming) const {
   std::vector<Vec2>& starts = s_.starts;
   std::vector<Vec2>& firsts = s_.firsts;
@@ -256,16 +256,16 @@ void RunFitter::tighten(uint32_t a, std::vector<Chosen>& chain, const std::optio
       if (w == 2 && chord.squaredNorm() > kLengthEpsMm * kLengthEpsMm && joint_cone_.holds(*in, chord.normalized()))
         starts.push_back(chord.normalized());
     } else if (w == 2) {
-      // One primitive from `a` to `to`: its start lies in the range that reaches `to`
+      // One primitive from `from` to `to`: its start lies in the range that reaches `to`
       // (the chord first where the line does).
       if (out) starts.push_back(reflected_end(from, *out, to));
-      if (const auto [lo, hi] = start_range(a, to); lo <= hi) {
-        if (lo <= 0 && 0 <= hi) starts.push_back((q(to) - q(a)).normalized());
+      if (const auto [lo, hi] = start_range(from, to); lo <= hi) {
+        if (lo <= 0 && 0 <= hi) starts.push_back((q(to) - q(from)).normalized());
         for (double share : {0.5, kStartRangeInset, 1 - kStartRangeInset})
-          starts.push_back(range_start(a, {to, lo, hi}, share));
+          starts.push_back(range_start(from, {to, lo, hi}, share));
       }
     } else {
-      start_tangents(a, to, starts);
+      start_tangents(from, to, starts);
     }
     repl.clear();
     // One primitive from `from` along T to `to`, into `repl` where it meets the joint after.
@@ -309,7 +309,11 @@ void RunFitter::tighten(uint32_t a, std::vector<Chosen>& chain, const std::optio
     // the G1 angle where the joint after is to be met too, else kJointShare).
     if (w == 2 && in) {
       const double turn = deg_to_rad(o_.g1_angle_deg) * (out ? kTurnShare : kJointShare);
-      if (const auto T = start_within(from, *in, to, turn); T && one(*T)) return true;
+      const double at = std::atan2(in->y(), in->x());
+      if (const auto r = starts_within(from, to, at - turn, at + turn)) {
+        const double t = 0.5 * (r->first + r->second);
+        if (one(Vec2(std::cos(t), std::sin(t)))) return true;
+      }
     }
     return false;
   };

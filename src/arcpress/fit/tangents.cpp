@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The input's own directions at a vertex (circles through its neighbours), and the start
 // tangents the searches try where the tangent is free.
+#include "arcpress/fit/angle_ranges.hpp"
 #include "arcpress/fit/run_fitter.hpp"
 
 namespace arcpress::fit_detail {
@@ -165,17 +166,16 @@ Vec2 RunFitter::range_start(uint32_t a, const StartRange& r, double share) const
   return Turn(r.lo + share * (r.hi - r.lo))((q(r.e) - q(a)).normalized());
 }
 
-/// The start at `from` whose primitive reaches `to` inside the band (start_range()) and that
-/// turns from `in` by at most `turn_rad`: the middle of the starts that do both; none when
-/// none does.
-std::optional<Vec2> RunFitter::start_within(uint32_t from, const Vec2& in, uint32_t to, double turn_rad) const {
-  const auto [lo, hi] = start_range(from, to);
-  if (lo > hi) return std::nullopt;
-  const Vec2 chord = (q(to) - q(from)).normalized();
-  const double at = std::atan2(cross2(chord, in), chord.dot(in));
-  const double low = std::max(lo, at - turn_rad), high = std::min(hi, at + turn_rad);
-  if (low > high) return std::nullopt;
-  return Turn((low + high) / 2)(chord);
+/// The directions (rad, near [lo, hi]) leaving vertex v whose primitive reaches vertex e
+/// inside the band (start_range()) that lie within [lo, hi]; none when none does.
+std::optional<std::pair<double, double>> RunFitter::starts_within(uint32_t v, uint32_t e, double lo, double hi) const {
+  const auto [rlo, rhi] = start_range(v, e);
+  if (rlo > rhi) return std::nullopt;
+  const Vec2 chord = q(e) - q(v);
+  const double at = near_angle(std::atan2(chord.y(), chord.x()), 0.5 * (lo + hi));
+  const double from = std::max(lo, at + rlo), upto = std::min(hi, at + rhi);
+  if (from > upto) return std::nullopt;
+  return std::pair(from, upto);
 }
 
 /// The furthest vertex e after `a` (up to `limit`) whose chord from `a` passes within the
