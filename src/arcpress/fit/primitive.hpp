@@ -92,9 +92,11 @@ inline double rounding_reserve_share(const FitOptions& o) {
 }
 
 /// The share of the band by which a one-sided band's check lets the input lie on the wrong
-/// side of the output: the fitter keeps the primitives on their side exactly and this share
-/// of the band for the rounding of arc centres to the printed digits (rounding_reserve_share()).
-inline constexpr double kBandSideRoundingShare = 0.03;
+/// side of the output: the fitter keeps the primitives on their side exactly, and the
+/// rounding of arc centres to the printed digits moves them by less than the share it keeps
+/// back (rounding_reserve_share()), at most this whatever the dialect (the check, as
+/// `arcpress diff`, need not know it).
+inline constexpr double kBandSideRoundingShare = kMaxRoundingReserve;
 
 /// The methods' names as --method writes them, in the order of FitOptions::Method.
 inline constexpr std::array<std::string_view, 6> kMethodNames{"keep", "arcs", "global", "greedy", "stream", "lowe"};
