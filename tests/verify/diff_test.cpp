@@ -357,6 +357,24 @@ TEST_CASE("a piece that bends off a short move stays paired with it rather than 
   CHECK(slow.max_feed_difference_pct == Approx(25.0));
 }
 
+TEST_CASE("a small arc beside a long plunge, in a band wider than the arc, is paired with its own move", "[diff]") {
+  // Both plunge 11 mm and circle at the bottom (radius 0.5 mm, F400); A ramps down in steps at
+  // F100, B in one line. In a 2 mm band B's arcs lie within the band of A's plunge, and
+  // head square to it: they are paired with A's own arcs, ahead, not with the plunge at
+  // F100 (which does not lie within the band of them).
+  auto program = [](const std::string& descent) {
+    return "G21 G90\nG0 X0 Y0 Z1\n" + descent +
+           "G3 X1 Y0.5 I0 J0.5 F400\nG3 X0 Y0.5 I-0.5 J0\nG3 X0.5 Y0 I0.5 J0\nG0 Z5\nM2\n";
+  };
+  std::string a = program("G1 Z-10 F100\nG1 X0.1 Z-10.2\nG1 X0.2 Z-10.4\nG1 X0.3 Z-10.6\nG1 X0.4 Z-10.8\nG1 X0.5 Z-11\n");
+  std::string b = program("G1 X0.5 Z-11 F100\n");
+  ProgramDiff d = diff_of(a, b, 2.0);
+  CHECK(d.max_deviation_mm < 2.0);
+  CHECK(d.max_feed_difference_pct == 0.0);
+  CHECK(d.findings.empty());
+  CHECK(d.same(2.0));
+}
+
 TEST_CASE("the same path in inches and in millimetres is the same", "[diff]") {
   std::string mm = "G21 G90\nG0 X0 Y0 Z0\nG1 X25.4 Y0 F254\nG2 X50.8 Y0 I12.7 J0\nM2\n";
   std::string inch = "G20 G90\nG0 X0 Y0 Z0\nG1 X1 Y0 F10\nG2 X2 Y0 I0.5 J0\nM2\n";

@@ -418,9 +418,21 @@ void compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, cons
       const uint32_t arc = pb.move_of[sb];
       const Vec3 from = xyz(ib.from(arc)), to = xyz(ib.moves[arc].to);
       auto within = [&](size_t k, const Vec3& p) { return (pa.nearest(k, p) - p).norm() <= tolerance_mm; };
+      // B's pieces of that arc, and whether p lies within the band of one of them.
+      size_t first = sb, last = sb;
+      while (first > 0 && pb.move_of[first - 1] == arc) --first;
+      while (last + 1 < pb.size() && pb.move_of[last + 1] == arc) ++last;
+      auto near_arc = [&](const Vec3& p) {
+        for (size_t s = first; s <= last; ++s)
+          if ((pb.nearest(s, p) - p).norm() <= tolerance_mm) return true;
+        return false;
+      };
+      // Both ways: the arc within the band of the move, and the move within the band of the
+      // arc (a small arc beside a long plunge, in a band wider than the arc, is not that
+      // plunge's).
       for (size_t k = cursor; k < std::min(pa.size(), cursor + 2) && found == pa.size(); ++k)
         if (in_section(k, sb) && directed(k) && cosine(k, db) >= 0 && within(k, mid) && within(k, from) &&
-            within(k, to))
+            within(k, to) && near_arc(pa.a(k)) && near_arc(pa.b(k)))
           found = k;
     }
     // The first steps of the window, then whether any segment lies within the band at all:
