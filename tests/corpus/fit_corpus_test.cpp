@@ -10,6 +10,7 @@
 
 #include "arcpress/api/arcpress.hpp"
 #include "arcpress/dialect/dialect_loader.hpp"
+#include "arcpress/dialect/program_flavor.hpp"
 #include "arcpress/lex/lexer.hpp"
 #include "support.hpp"
 
@@ -158,5 +159,31 @@ TEST_CASE("arcpress diff finds every printer corpus file the same as its output 
       CHECK(d.agrees(opt.fit.tolerance_mm));
       CHECK(d.max_feed_difference_pct == 0.0);
     }
+  }
+}
+
+TEST_CASE("arcpress diff finds every corpus file the same as its output in a band as wide as a printed line",
+          "[corpus][diff]") {
+  // At 0.2 mm the band reaches the neighbouring lines of a print and the travels that
+  // cross them: a printed move is compared with a printed one, a travel with a travel.
+  ARCPRESS_CORPUS_FILES_OR_SKIP(files)
+  for (const auto& f : files) {
+    const std::string text = test::read_file(f);
+    const std::optional<ProgramFlavor> flavor = program_flavor(text);
+    const std::string name = flavor && !flavor->dialect.empty() ? flavor->dialect : "rs274";
+    INFO(fmt::format("{} read as {}", f.string(), name));
+    const Dialect dialect = find_dialect(name, {ARCPRESS_SOURCE_DIR "/dialects"});
+    DiagnosticSink sink(f.string());
+    CompressOptions opt;
+    opt.dialect = dialect;
+    opt.fit.tolerance_mm = 0.2;
+    const CompressResult r = compress(f.string(), text, opt, sink);
+    REQUIRE(r.within_band());
+    DiffOptions dopt;
+    dopt.tolerance_mm = opt.fit.tolerance_mm;
+    const ProgramDiff d = test::diff_texts(text, r.output, dopt, dialect);
+    INFO(fmt::format("{}", fmt::join(d.findings, "; ")));
+    CHECK(d.agrees(opt.fit.tolerance_mm));
+    CHECK(d.max_feed_difference_pct == 0.0);
   }
 }

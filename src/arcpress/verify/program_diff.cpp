@@ -391,7 +391,13 @@ void compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, cons
   const bool same_sections = sections == pb.section_length_mm.size();
   std::vector<size_t> section_start(sections + 1, pa.size());
   for (size_t k = pa.size(); k-- > 0;) section_start[pa.section_of[k]] = k;
-  auto in_section = [&](size_t k, size_t sb) { return !same_sections || pa.section_of[k] == pb.section_of[sb]; };
+  // A move that extrudes is paired only with one that extrudes, a travel only with a travel:
+  // in a band as wide as a printed line, a travel crosses the lines printed after it.
+  auto prints = [](const Interpretation& in, uint32_t i) { return in.moves[i].to[kE] > in.from(i)[kE]; };
+  auto may_pair = [&](size_t k, size_t sb) {
+    return (!same_sections || pa.section_of[k] == pb.section_of[sb]) &&
+           prints(ia, pa.move_of[k]) == prints(ib, pb.move_of[sb]);
+  };
   // (An arc's closing step has no direction of its own: it is nobody's counterpart.)
   auto directed = [&](size_t k) { return pa.arc_of[k] != Path::kClosingStep; };
   size_t cursor = 0;
@@ -404,7 +410,7 @@ void compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, cons
     size_t found = pa.size();
     auto search = [&](size_t from, size_t to) {
       for (size_t k = from; k < std::min(pa.size(), to) && found == pa.size(); ++k)
-        if (in_section(k, sb) && directed(k) && (pa.nearest(k, mid) - mid).norm() <= tolerance_mm &&
+        if (may_pair(k, sb) && directed(k) && (pa.nearest(k, mid) - mid).norm() <= tolerance_mm &&
             cosine(k, db) >= along)
           found = k;
     };
@@ -431,7 +437,7 @@ void compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, cons
       // arc (a small arc beside a long plunge, in a band wider than the arc, is not that
       // plunge's).
       for (size_t k = cursor; k < std::min(pa.size(), cursor + 2) && found == pa.size(); ++k)
-        if (in_section(k, sb) && directed(k) && cosine(k, db) >= 0 && within(k, mid) && within(k, from) &&
+        if (may_pair(k, sb) && directed(k) && cosine(k, db) >= 0 && within(k, mid) && within(k, from) &&
             within(k, to) && near_arc(pa.a(k)) && near_arc(pa.b(k)))
           found = k;
     }
@@ -444,7 +450,7 @@ void compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, cons
     }
     if (found == pa.size()) {
       SegmentIndex::Nearest n = index_a.nearest(mid, uint32_t(std::min(cursor, pa.size() - 1)));
-      if (n.segment < cursor || !in_section(n.segment, sb) || !directed(n.segment) || n.distance_mm > tolerance_mm ||
+      if (n.segment < cursor || !may_pair(n.segment, sb) || !directed(n.segment) || n.distance_mm > tolerance_mm ||
           cosine(n.segment, db) < same_way)
         continue;
       found = n.segment;
