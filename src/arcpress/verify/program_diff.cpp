@@ -400,7 +400,27 @@ void compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, cons
   };
   // (An arc's closing step has no direction of its own: it is nobody's counterpart.)
   auto directed = [&](size_t k) { return pa.arc_of[k] != Path::kClosingStep; };
+  // A's segments in chunks of kChunk, each with the box its pieces lie in: a chunk whose box
+  // lies farther than the band from a point holds no segment within the band of it, so the
+  // window's scan passes it by (in a band as wide as a print's lines, most of the window).
+  constexpr size_t kChunk = 64;
+  struct Box {
+    Vec3 lo, hi;
+  };
+  std::vector<Box> boxes((pa.size() + kChunk - 1) / kChunk,
+                         Box{Vec3::Constant(HUGE_VAL), Vec3::Constant(-HUGE_VAL)});
+  for (size_t k = 0; k < pa.size(); ++k) {
+    const double off = pa.sagitta(k);  // a piece lies within its sagitta of its chord
+    Box& b = boxes[k / kChunk];
+    b.lo = b.lo.cwiseMin(pa.a(k).cwiseMin(pa.b(k)) - Vec3::Constant(off));
+    b.hi = b.hi.cwiseMax(pa.a(k).cwiseMax(pa.b(k)) + Vec3::Constant(off));
+  }
+  auto box_within = [&](size_t chunk, const Vec3& p) {
+    const Box& b = boxes[chunk];
+    return (p - p.cwiseMax(b.lo).cwiseMin(b.hi)).norm() <= tolerance_mm;
+  };
   size_t cursor = 0;
+  uint32_t near_hint = 0;  // the last nearest A segment: B's next middle lies near it
   for (size_t sb = 0; sb < pb.size(); ++sb) {
     Vec3 db = pb.b(sb) - pb.a(sb);
     // (An arc's closing step is measured with the arc's pieces, which carry its feed.)
@@ -409,10 +429,15 @@ void compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, cons
     Vec3 mid = pb.middle(sb);
     size_t found = pa.size();
     auto search = [&](size_t from, size_t to) {
-      for (size_t k = from; k < std::min(pa.size(), to) && found == pa.size(); ++k)
+      for (size_t k = from; k < std::min(pa.size(), to) && found == pa.size(); ++k) {
+        if (k % kChunk == 0 && !box_within(k / kChunk, mid)) {
+          k += kChunk - 1;
+          continue;
+        }
         if (may_pair(k, sb) && directed(k) && (pa.nearest(k, mid) - mid).norm() <= tolerance_mm &&
             cosine(k, db) >= along)
           found = k;
+      }
     };
     // The segment paired last, and the next, first; then, where a piece of a B arc runs off
     // both by more than the window's angle, the one the whole arc lies over (both its ends
@@ -445,15 +470,15 @@ void compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, cons
     // where none does (B strays from A there), the rest of the window holds no counterpart.
     if (found == pa.size()) search(cursor + 2, cursor + kWindowFirst);
     if (found == pa.size()) {
-      if (!index_a.any_within(mid, tolerance_mm)) continue;
+      const SegmentIndex::Nearest n = index_a.nearest(mid, near_hint);
+      near_hint = n.segment;
+      if (n.distance_mm > tolerance_mm) continue;
       search(cursor + kWindowFirst, cursor + kWindow);
-    }
-    if (found == pa.size()) {
-      SegmentIndex::Nearest n = index_a.nearest(mid, uint32_t(std::min(cursor, pa.size() - 1)));
-      if (n.segment < cursor || !may_pair(n.segment, sb) || !directed(n.segment) || n.distance_mm > tolerance_mm ||
-          cosine(n.segment, db) < same_way)
-        continue;
-      found = n.segment;
+      if (found == pa.size()) {
+        if (n.segment < cursor || !may_pair(n.segment, sb) || !directed(n.segment) || cosine(n.segment, db) < same_way)
+          continue;
+        found = n.segment;
+      }
     }
     cursor = found;
     uint32_t move_a = pa.move_of[found], move_b = pb.move_of[sb];

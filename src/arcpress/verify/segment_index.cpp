@@ -238,21 +238,4 @@ SegmentIndex::Nearest SegmentIndex::nearest(const Vec3& p, uint32_t hint) const 
   return n;
 }
 
-bool SegmentIndex::any_within(const Vec3& p, double radius_mm) const {
-  if (empty()) return false;
-  Impl& m = *impl_;
-  auto within = [&](uint32_t i) { return (m.nearest_point(p, i) - p).norm() <= radius_mm; };
-  // A piece lies within the slack of its chord: its chord within the radius and the slack.
-  const double reach = radius_mm + m.slack_mm;
-  if (!m.use_tree()) {
-    double until = reach;  // none once one is found
-    m.scan(p, until, [&](uint32_t i, const Vec3&, double dist) {
-      until = (m.on_piece ? within(i) : dist <= radius_mm) ? -1.0 : until;
-    });
-    return until < 0;
-  }
-  const std::vector<uint32_t>& near = m.in_box(p, reach);
-  return std::any_of(near.begin(), near.end(), within);
-}
-
 }  // namespace arcpress

@@ -47,10 +47,8 @@ class SegmentIndex {
   /// The nearest segment (or piece) to p. The search starts from segment `hint`'s distance,
   /// so it is fast when the hint is near p (e.g. the answer of the previous query along a
   /// path). Of several as near, the lowest-numbered: the answer is the same whatever came
-  /// before. Safe to call from several threads at once, as is any_within().
+  /// before. Safe to call from several threads at once.
   Nearest nearest(const Vec3& p, uint32_t hint) const;
-  /// Whether some segment (or piece) comes within `radius_mm` (mm) of p.
-  bool any_within(const Vec3& p, double radius_mm) const;
 
  private:
   struct Impl;
