@@ -42,6 +42,24 @@ std::vector<std::string> non_motion_lines(const std::string& text, size_t& plane
   return out;
 }
 
+/// `text` (corpus file `f`) compressed for `dialect` at `band_mm` stays inside the band, and
+/// arcpress diff finds it the same as the input there, the feed included.
+void compressed_agrees_with_diff(const std::filesystem::path& f, const std::string& text, const Dialect& dialect,
+                                 double band_mm) {
+  DiagnosticSink sink(f.string());
+  CompressOptions opt;
+  opt.dialect = dialect;
+  opt.fit.tolerance_mm = band_mm;
+  const CompressResult r = compress(f.string(), text, opt, sink);
+  REQUIRE(r.within_band());
+  DiffOptions dopt;
+  dopt.tolerance_mm = band_mm;
+  const ProgramDiff d = test::diff_texts(text, r.output, dopt, dialect);
+  INFO(fmt::format("{}", fmt::join(d.findings, "; ")));
+  CHECK(d.agrees(band_mm));
+  CHECK(d.max_feed_difference_pct == 0.0);
+}
+
 }  // namespace
 
 TEST_CASE("every corpus file compresses inside the band with its non-motion lines untouched, and every "
@@ -145,19 +163,7 @@ TEST_CASE("arcpress diff finds every printer corpus file the same as its output 
     for (const auto& f : files) {
       if (f.parent_path().filename() != "printer") continue;
       INFO(fmt::format("{} read as {}", f.string(), name));
-      const std::string text = test::read_file(f);
-      DiagnosticSink sink(f.string());
-      CompressOptions opt;
-      opt.dialect = dialect;
-      opt.fit.tolerance_mm = 0.05;
-      const CompressResult r = compress(f.string(), text, opt, sink);
-      REQUIRE(r.within_band());
-      DiffOptions dopt;
-      dopt.tolerance_mm = opt.fit.tolerance_mm;
-      const ProgramDiff d = test::diff_texts(text, r.output, dopt, dialect);
-      INFO(fmt::format("{}", fmt::join(d.findings, "; ")));
-      CHECK(d.agrees(opt.fit.tolerance_mm));
-      CHECK(d.max_feed_difference_pct == 0.0);
+      compressed_agrees_with_diff(f, test::read_file(f), dialect, 0.05);
     }
   }
 }
@@ -173,17 +179,6 @@ TEST_CASE("arcpress diff finds every corpus file the same as its output in a ban
     const std::string name = flavor && !flavor->dialect.empty() ? flavor->dialect : "rs274";
     INFO(fmt::format("{} read as {}", f.string(), name));
     const Dialect dialect = find_dialect(name, {ARCPRESS_SOURCE_DIR "/dialects"});
-    DiagnosticSink sink(f.string());
-    CompressOptions opt;
-    opt.dialect = dialect;
-    opt.fit.tolerance_mm = 0.2;
-    const CompressResult r = compress(f.string(), text, opt, sink);
-    REQUIRE(r.within_band());
-    DiffOptions dopt;
-    dopt.tolerance_mm = opt.fit.tolerance_mm;
-    const ProgramDiff d = test::diff_texts(text, r.output, dopt, dialect);
-    INFO(fmt::format("{}", fmt::join(d.findings, "; ")));
-    CHECK(d.agrees(opt.fit.tolerance_mm));
-    CHECK(d.max_feed_difference_pct == 0.0);
+    compressed_agrees_with_diff(f, text, dialect, 0.2);
   }
 }
