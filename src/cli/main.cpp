@@ -137,6 +137,7 @@ struct DiffArgs {
   unsigned threads = 0;
   bool executed = false;  ///< compare the paths the dialect's firmware moves along (arcs as its chords)
   std::string band_side = "both";  ///< measure on which side of A the moves of B lie
+  bool ignore_comments = false;    ///< leave comments out of the non-motion blocks compared
 };
 
 /// `arcpress diff A B`: any two programs, read the same way, compared by path, rapids,
@@ -172,6 +173,7 @@ int run_diff(const DiffArgs& d) {
   if (sa.error_count() + sb.error_count() > 0) return kExitInput;
   DiffOptions opt;
   opt.tolerance_mm = d.tolerance_mm;
+  opt.comments = !d.ignore_comments;
   opt.top = d.top;
   opt.threads = d.threads;
   // The block rate each demands, as written (before any arc is cut into chords).
@@ -328,6 +330,9 @@ int main(int argc, char** argv) {
                        "line), else rs274")
           ->type_name("NAME");
   diff_cmd->add_option("--dialect-file", diff.dialect_file, "Read both programs with this dialect file");
+  diff_cmd->add_flag("--ignore-comments", diff.ignore_comments,
+                     "Compare M, T, S and dwell blocks but not comments (another tool's output, with header "
+                     "comments of its own)");
   diff_cmd->add_flag("--executed", diff.executed,
                      "Compare the paths the dialect's firmware really moves along: every arc of both programs cut "
                      "into the chords of its [arcs.executed] rule");

@@ -375,6 +375,32 @@ TEST_CASE("a small arc beside a long plunge, in a band wider than the arc, is pa
   CHECK(d.same(2.0));
 }
 
+TEST_CASE("with comments left out, another tool's header comments are no difference, but M, T, S and dwells are",
+          "[diff]") {
+  const std::string a = "; sliced\nG21 G90 M83\nM104 S210\nG0 X0 Y0 Z0.2\n;TYPE:WALL\nG1 X10 Y0 E1 F1200\nG4 P100\nM107\n";
+  const std::string b = "; sliced\n; post-processed by another tool\nG21 G90 M83\nM104 S210\nG0 X0 Y0 Z0.2\n"
+                        ";TYPE:WALL (arcs)\nG1 X10 Y0 E1 F1200\nG4 P100\nM107\n";
+  DiffOptions opt;
+  opt.tolerance_mm = 0.01;
+  const ProgramDiff with = test::diff_texts(a, b, opt);
+  CHECK(with.comments_compared);
+  CHECK(with.non_motion_differences > 0);
+  CHECK_FALSE(with.same(0.01));
+  opt.comments = false;
+  const ProgramDiff without = test::diff_texts(a, b, opt);
+  CHECK_FALSE(without.comments_compared);
+  CHECK(without.non_motion_differences == 0);
+  CHECK(without.a.non_motion == 4);  // M83, M104 S210, G4 P100, M107
+  CHECK(without.same(0.01));
+  for (const auto& [was, changed] : {std::pair("M104 S210", "M104 S215"), std::pair("G4 P100", "G4 P200"),
+                                     std::pair("M107", "M106")}) {
+    std::string c = b;
+    c.replace(c.find(was), std::string(was).size(), changed);
+    INFO(changed);
+    CHECK_FALSE(test::diff_texts(a, c, opt).same(0.01));
+  }
+}
+
 TEST_CASE("the same path in inches and in millimetres is the same", "[diff]") {
   std::string mm = "G21 G90\nG0 X0 Y0 Z0\nG1 X25.4 Y0 F254\nG2 X50.8 Y0 I12.7 J0\nM2\n";
   std::string inch = "G20 G90\nG0 X0 Y0 Z0\nG1 X1 Y0 F10\nG2 X2 Y0 I0.5 J0\nM2\n";
@@ -412,6 +438,15 @@ TEST_CASE("arcpress diff on the command line: text, JSON, exit codes", "[diff][c
   auto ok = test::run_arcpress(fmt::format("diff {0}/a.nc {0}/b.nc --tolerance 0.02 --json", dir.string()));
   CHECK(ok.exit_code == 0);
   CHECK(ok.out.find("\"verdict\": \"same\"") != std::string::npos);
+  // Another tool's header comment: a difference, unless comments are left out.
+  test::write_file(dir / "c.nc", "(post-processed)\n" + zigzag());
+  auto commented = test::run_arcpress(fmt::format("diff {0}/a.nc {0}/c.nc", dir.string()));
+  CHECK(commented.exit_code == 1);
+  auto ignored = test::run_arcpress(fmt::format("diff {0}/a.nc {0}/c.nc --ignore-comments", dir.string()));
+  CHECK(ignored.exit_code == 0);
+  CHECK(ignored.out.find("non-motion blocks (M, T, S, dwell; comments not compared)") != std::string::npos);
+  auto ignored_json = test::run_arcpress(fmt::format("diff {0}/a.nc {0}/c.nc --ignore-comments --json", dir.string()));
+  CHECK(ignored_json.out.find("\"comments\": false") != std::string::npos);
 }
 
 TEST_CASE("the SVG plot's text stays inside the picture and off the drawing, however long the file names",

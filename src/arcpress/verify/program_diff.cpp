@@ -36,10 +36,10 @@ constexpr double kSameCentreShare = 1e-12;
 constexpr size_t kShareSegments = 65536;
 
 /// The key by which non-motion blocks are compared, written into `key`: their M, T, S
-/// words, a dwell, and their comment, so that units, spacing and modal G-codes do not count;
-/// for blocks that are not ordinary words (`%`, flow control, macros, host commands), their
-/// whole text.
-void non_motion_key(const Program& p, const Block& b, std::string& key) {
+/// words, a dwell, and their comment (with `comments`), so that units, spacing and modal
+/// G-codes do not count; for blocks that are not ordinary words (`%`, flow control, macros,
+/// host commands), their whole text.
+void non_motion_key(const Program& p, const Block& b, bool comments, std::string& key) {
   key.clear();
   if (b.kind != BlockKind::Code && b.kind != BlockKind::Empty) {
     // Tape marks, flow control, macros, host commands, blocks not understood: their text.
@@ -59,7 +59,7 @@ void non_motion_key(const Program& p, const Block& b, std::string& key) {
       key += p.raw(b, *w);
     }
   }
-  if (b.has_comment) {
+  if (comments && b.has_comment) {
     std::string_view raw = p.raw(b);
     size_t c = std::min(raw.find('('), raw.find(';'));
     if (c != std::string_view::npos) {
@@ -71,21 +71,21 @@ void non_motion_key(const Program& p, const Block& b, std::string& key) {
 }
 
 /// Whether non_motion_key() of the block is not empty, without building it.
-bool has_non_motion_key(const Program& p, const Block& b) {
+bool has_non_motion_key(const Program& p, const Block& b, bool comments) {
   if (b.kind != BlockKind::Code && b.kind != BlockKind::Empty)
     return p.raw(b).find_first_not_of(" \t\r\n\f\v") != std::string_view::npos;
   for (auto* w = p.words_begin(b); w != p.words_end(b); ++w)
     if (w->letter == 'M' || w->letter == 'T' || w->letter == 'S' ||
         (w->letter == 'G' && !w->is_expr && w->code10() == 40))
       return true;
-  return b.has_comment && p.raw(b).find_first_of("(;") != std::string_view::npos;
+  return comments && b.has_comment && p.raw(b).find_first_of("(;") != std::string_view::npos;
 }
 
 /// The non-motion blocks of a program in order, one at a time: a block's key is built, into
 /// the same buffer each time, only when asked for.
 class NonMotionBlocks {
  public:
-  NonMotionBlocks(const Program& p, const Interpretation& in) : p_(p), in_(in) {}
+  NonMotionBlocks(const Program& p, const Interpretation& in, bool comments) : p_(p), in_(in), comments_(comments) {}
 
   /// Moves to the next non-motion block: false past the last. Then key() and line() are its.
   bool next() {
@@ -95,7 +95,7 @@ class NonMotionBlocks {
       if (bi_ < in_.move_of_block.size() && in_.move_of_block[bi_] >= 0 && !b.has_comment) continue;
       // (arcpress's own header comment is no part of the program.)
       if (b.kind == BlockKind::Empty && is_arcpress_header(p_.raw(b))) continue;
-      if (!has_non_motion_key(p_, b)) continue;
+      if (!has_non_motion_key(p_, b, comments_)) continue;
       block_ = &b;
       line_ = b.line;
       ++count_;
@@ -105,7 +105,7 @@ class NonMotionBlocks {
     return false;
   }
   const std::string& key() {
-    non_motion_key(p_, *block_, key_);
+    non_motion_key(p_, *block_, comments_, key_);
     return key_;
   }
   /// Whether the block's key is `other`'s. Where the two blocks are the same bytes, without
@@ -122,6 +122,7 @@ class NonMotionBlocks {
  private:
   const Program& p_;
   const Interpretation& in_;
+  bool comments_;
   size_t bi_ = 0;
   const Block* block_ = nullptr;
   std::string key_;
@@ -674,7 +675,8 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
                                      d.worst_feed.line_a, d.worst_feed.line_b));
 
   // Everything that is not geometry, in order.
-  NonMotionBlocks na(a, ia), nb(b, ib);
+  NonMotionBlocks na(a, ia, opt.comments), nb(b, ib, opt.comments);
+  d.comments_compared = opt.comments;
   bool first = true;
   bool more_a = na.next(), more_b = nb.next();
   for (; more_a && more_b; more_a = na.next(), more_b = nb.next()) {
@@ -691,8 +693,8 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
   d.b.non_motion = nb.count();
   if (na.count() != nb.count()) {
     d.non_motion_differences += std::max(na.count(), nb.count()) - std::min(na.count(), nb.count());
-    d.findings.push_back(fmt::format("non-motion blocks (M, T, S, dwell, comments): {} in A, {} in B", na.count(),
-                                     nb.count()));
+    d.findings.push_back(fmt::format("non-motion blocks (M, T, S, dwell{}): {} in A, {} in B",
+                                     opt.comments ? ", comments" : "", na.count(), nb.count()));
   }
   return d;
 }

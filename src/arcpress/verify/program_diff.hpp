@@ -70,6 +70,11 @@ struct DiffOptions {
   /// compared as ever, and max_deviation_mm, worst and deviation_of_b are left at nothing
   /// for the caller to fill. Requires `feed` off (the feed is compared along the measure).
   bool measure_path = true;
+  /// Compare comments among the non-motion blocks. Off (`arcpress diff --ignore-comments`),
+  /// a block that is only a comment is no block to compare, and a comment beside M, T, S or
+  /// a dwell is not part of it: another tool's output, with its own header comments, can
+  /// then be checked against its input.
+  bool comments = true;
 };
 
 /// One place where the paths are apart.
@@ -124,6 +129,7 @@ struct ProgramDiff {
   double max_extrusion_difference_mm = 0;     ///< E total per section
   double max_extrusion_per_mm_difference_pct = 0;
   size_t non_motion_differences = 0;
+  bool comments_compared = true;        ///< DiffOptions::comments
   /// Human-readable findings that make the programs differ besides the distance, e.g.
   /// "non-motion block differs: A line 12 'M3 S1000', B line 12 'M4 S1000'".
   std::vector<std::string> findings;
