@@ -42,6 +42,7 @@ std::string zigzag(double moved_y_at_5 = 0.0, const std::string& spindle = "M3 S
 TEST_CASE("identical programs differ by nothing", "[diff]") {
   ProgramDiff d = diff_of(zigzag(), zigzag());
   CHECK(d.max_deviation_mm == 0.0);
+  CHECK(d.feed_compared_share == 1.0);
   CHECK(d.findings.empty());
   CHECK(d.same(0.01));
   CHECK(d.a.feed_moves == 11);
@@ -373,6 +374,12 @@ TEST_CASE("a small arc beside a long plunge, in a band wider than the arc, is pa
   CHECK(d.max_feed_difference_pct == 0.0);
   CHECK(d.findings.empty());
   CHECK(d.same(2.0));
+  // The first arc lies within 2 mm of the joint where the feed changes, so its feed is not
+  // compared, and the report says so: of B's 14.4 mm feed path, the descent (12 mm) and at
+  // most the two arcs after the first.
+  const double descent_mm = std::sqrt(0.5 * 0.5 + 12.0 * 12.0), arc_mm = kPi / 4, total_mm = descent_mm + 3 * arc_mm;
+  CHECK(d.feed_compared_share >= descent_mm / total_mm - 1e-9);
+  CHECK(d.feed_compared_share <= (total_mm - arc_mm) / total_mm + 1e-9);
 }
 
 TEST_CASE("with comments left out, another tool's header comments are no difference, but M, T, S and dwells are",

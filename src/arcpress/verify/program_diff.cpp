@@ -374,9 +374,10 @@ bool near_feed_change(const Interpretation& in, uint32_t i, const Vec3& p, doubl
 /// elsewhere in the program is thus not taken for it. Only when no such segment follows
 /// within a window is the nearest A segment anywhere taken, if it lies ahead and runs the
 /// same way; a B segment with no counterpart is not compared, nor one whose middle is within
-/// the band of a joint where A's or B's feed changes. `visit(a_move, b_move, point)`.
+/// the band of a joint where A's or B's feed changes. `visit(a_move, b_move, point)`. Returns
+/// the share of B's feed path (by length) whose feed was compared.
 template <class Visit>
-void compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, const Interpretation& ib,
+double compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, const Interpretation& ib,
                   const SegmentIndex& index_a, double tolerance_mm, Visit&& visit) {
   constexpr size_t kWindow = 4096;  // A segments searched ahead of the cursor
   constexpr size_t kWindowFirst = 64;  // ... before asking whether any lies within the band
@@ -422,10 +423,12 @@ void compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, cons
   };
   size_t cursor = 0;
   uint32_t near_hint = 0;  // the last nearest A segment: B's next middle lies near it
+  double length_mm = 0, compared_mm = 0;  // of B's pieces, all and those whose feed was compared
   for (size_t sb = 0; sb < pb.size(); ++sb) {
     Vec3 db = pb.b(sb) - pb.a(sb);
     // (An arc's closing step is measured with the arc's pieces, which carry its feed.)
     if (db.norm() <= kLengthEpsMm || pb.arc_of[sb] == Path::kClosingStep) continue;
+    length_mm += db.norm();
     if (same_sections) cursor = std::max(cursor, section_start[pb.section_of[sb]]);
     Vec3 mid = pb.middle(sb);
     size_t found = pa.size();
@@ -484,8 +487,11 @@ void compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, cons
     cursor = found;
     uint32_t move_a = pa.move_of[found], move_b = pb.move_of[sb];
     if (near_feed_change(ia, move_a, mid, tolerance_mm) || near_feed_change(ib, move_b, mid, tolerance_mm)) continue;
-    if (ia.moves[move_a].feed_mm_min > 0) visit(ia.moves[move_a], ib.moves[move_b], mid);
+    if (ia.moves[move_a].feed_mm_min <= 0) continue;
+    visit(ia.moves[move_a], ib.moves[move_b], mid);
+    compared_mm += db.norm();
   }
+  return length_mm > 0 ? compared_mm / length_mm : 1.0;
 }
 
 /// The feed paths' distance both ways, into `d` (see diff_programs()).
@@ -547,7 +553,7 @@ void measure_paths(const Program& a, const Interpretation& ia, const Path& pa, c
       for (size_t m = 0; m < d.deviation_of_b.size(); ++m) d.deviation_of_b[m] = std::max(d.deviation_of_b[m], dev[m]);
     d.max_deviation_mm = shares[0].max();
     d.worst = shares[0].take();
-    if (opt.feed) compare_feed(pa, ia, pb, ib, index_a, opt.tolerance_mm, [&](const Move& ma, const Move& mb, const Vec3& at) {
+    if (opt.feed) d.feed_compared_share = compare_feed(pa, ia, pb, ib, index_a, opt.tolerance_mm, [&](const Move& ma, const Move& mb, const Vec3& at) {
       double pct = 100.0 * std::abs(mb.feed_mm_min - ma.feed_mm_min) / ma.feed_mm_min;
       if (pct > d.max_feed_difference_pct) {
         d.max_feed_difference_pct = pct;

@@ -126,6 +126,10 @@ struct ProgramDiff {
   DiffPlace worst_entry;
   double max_feed_difference_pct = 0;   ///< F at B's moves against A's nearest move
   DiffPlace worst_feed;                 ///< deviation_mm holds nothing here; lines only
+  /// The share of B's feed path (by length) whose feed and S were compared with A's: not
+  /// within the band of a joint where either feed changes, and paired with a piece of A (in
+  /// a band wider than the path's own features, pairing by place finds none for some).
+  double feed_compared_share = 0;
   double max_extrusion_difference_mm = 0;     ///< E total per section
   double max_extrusion_per_mm_difference_pct = 0;
   size_t non_motion_differences = 0;
