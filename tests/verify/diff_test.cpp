@@ -367,7 +367,8 @@ TEST_CASE("a small arc beside a long plunge, in a band wider than the arc, is pa
     return "G21 G90\nG0 X0 Y0 Z1\n" + descent +
            "G3 X1 Y0.5 I0 J0.5 F400\nG3 X0 Y0.5 I-0.5 J0\nG3 X0.5 Y0 I0.5 J0\nG0 Z5\nM2\n";
   };
-  std::string a = program("G1 Z-10 F100\nG1 X0.1 Z-10.2\nG1 X0.2 Z-10.4\nG1 X0.3 Z-10.6\nG1 X0.4 Z-10.8\nG1 X0.5 Z-11\n");
+  std::string a =
+      program("G1 Z-10 F100\nG1 X0.1 Z-10.2\nG1 X0.2 Z-10.4\nG1 X0.3 Z-10.6\nG1 X0.4 Z-10.8\nG1 X0.5 Z-11\n");
   std::string b = program("G1 X0.5 Z-11 F100\n");
   ProgramDiff d = diff_of(a, b, 2.0);
   CHECK(d.max_deviation_mm < 2.0);
@@ -384,7 +385,8 @@ TEST_CASE("a small arc beside a long plunge, in a band wider than the arc, is pa
 
 TEST_CASE("with comments left out, another tool's header comments are no difference, but M, T, S and dwells are",
           "[diff]") {
-  const std::string a = "; sliced\nG21 G90 M83\nM104 S210\nG0 X0 Y0 Z0.2\n;TYPE:WALL\nG1 X10 Y0 E1 F1200\nG4 P100\nM107\n";
+  const std::string a =
+      "; sliced\nG21 G90 M83\nM104 S210\nG0 X0 Y0 Z0.2\n;TYPE:WALL\nG1 X10 Y0 E1 F1200\nG4 P100\nM107\n";
   const std::string b = "; sliced\n; post-processed by another tool\nG21 G90 M83\nM104 S210\nG0 X0 Y0 Z0.2\n"
                         ";TYPE:WALL (arcs)\nG1 X10 Y0 E1 F1200\nG4 P100\nM107\n";
   DiffOptions opt;

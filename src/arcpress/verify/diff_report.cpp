@@ -134,15 +134,16 @@ std::string diff_json(const ProgramDiff& d, const DiffNames& n, double tol) {
       "  \"max_deviation_mm\": {:.9f},\n  \"arc_precision_mm\": {:.9f},\n  \"worst\": [{}],\n"
       "  \"rapids\": {{\"max_end_point_distance_mm\": {:.9f}, \"worst\": {}}},\n"
       "  \"entries\": {{\"max_end_point_distance_mm\": {:.9f}, \"worst\": {}}},\n"
-      "  \"feed\": {{\"max_difference_percent\": {:.6f}, \"line_a\": {}, \"line_b\": {}, \"compared_share\": {:.6f}}},\n"
+      "  \"feed\": {{\"max_difference_percent\": {:.6f}, \"line_a\": {}, \"line_b\": {}, "
+      "\"compared_share\": {:.6f}}},\n"
       "  \"extrusion\": {{\"max_section_difference_mm\": {:.9f}, \"max_per_mm_difference_percent\": {:.6f}}},\n"
       "  \"non_motion\": {{\"blocks_a\": {}, \"blocks_b\": {}, \"differences\": {}, \"comments\": {}}},\n"
       "  \"differences\": [{}],\n  \"band_side\": {}\n}}\n",
       verdict_word(d.verdict(tol), false), tol, summary_json(d.a, n.a), summary_json(d.b, n.b), d.max_deviation_mm,
       d.arc_chord_mm, worst, d.max_rapid_mm, place_json(d.worst_rapid), d.max_entry_mm, place_json(d.worst_entry),
-      d.max_feed_difference_pct, d.worst_feed.line_a,
-      d.worst_feed.line_b, d.feed_compared_share, d.max_extrusion_difference_mm, d.max_extrusion_per_mm_difference_pct, d.a.non_motion,
-      d.b.non_motion, d.non_motion_differences, d.comments_compared, findings, side_json(d));
+      d.max_feed_difference_pct, d.worst_feed.line_a, d.worst_feed.line_b, d.feed_compared_share,
+      d.max_extrusion_difference_mm, d.max_extrusion_per_mm_difference_pct, d.a.non_motion, d.b.non_motion,
+      d.non_motion_differences, d.comments_compared, findings, side_json(d));
 }
 
 }  // namespace arcpress

@@ -553,7 +553,7 @@ void measure_paths(const Program& a, const Interpretation& ia, const Path& pa, c
       for (size_t m = 0; m < d.deviation_of_b.size(); ++m) d.deviation_of_b[m] = std::max(d.deviation_of_b[m], dev[m]);
     d.max_deviation_mm = shares[0].max();
     d.worst = shares[0].take();
-    if (opt.feed) d.feed_compared_share = compare_feed(pa, ia, pb, ib, index_a, opt.tolerance_mm, [&](const Move& ma, const Move& mb, const Vec3& at) {
+    auto feed_at = [&](const Move& ma, const Move& mb, const Vec3& at) {
       double pct = 100.0 * std::abs(mb.feed_mm_min - ma.feed_mm_min) / ma.feed_mm_min;
       if (pct > d.max_feed_difference_pct) {
         d.max_feed_difference_pct = pct;
@@ -565,7 +565,8 @@ void measure_paths(const Program& a, const Interpretation& ia, const Path& pa, c
                                          "B line {} S{}",
                                          a.blocks[ma.block].line, ma.spindle, b.blocks[mb.block].line, mb.spindle));
       }
-    });
+    };
+    if (opt.feed) d.feed_compared_share = compare_feed(pa, ia, pb, ib, index_a, opt.tolerance_mm, feed_at);
   } else if ((pa.size() == 0) != (pb.size() == 0)) {
     d.findings.push_back(fmt::format("only {} has feed moves", pa.size() == 0 ? "B" : "A"));
   }
