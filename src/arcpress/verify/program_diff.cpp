@@ -423,6 +423,9 @@ double compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, co
   };
   size_t cursor = 0;
   uint32_t near_hint = 0;  // the last nearest A segment: B's next middle lies near it
+  // B's pieces of the arc met last, [arc_first, arc_last]: found once an arc, not per piece.
+  uint32_t range_arc = UINT32_MAX;
+  size_t arc_first = 0, arc_last = 0;
   double length_mm = 0, compared_mm = 0;  // of B's pieces, all and those whose feed was compared
   for (size_t sb = 0; sb < pb.size(); ++sb) {
     Vec3 db = pb.b(sb) - pb.a(sb);
@@ -454,11 +457,14 @@ double compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, co
       const Vec3 from = xyz(ib.from(arc)), to = xyz(ib.moves[arc].to);
       auto within = [&](size_t k, const Vec3& p) { return (pa.nearest(k, p) - p).norm() <= tolerance_mm; };
       // B's pieces of that arc, and whether p lies within the band of one of them.
-      size_t first = sb, last = sb;
-      while (first > 0 && pb.move_of[first - 1] == arc) --first;
-      while (last + 1 < pb.size() && pb.move_of[last + 1] == arc) ++last;
+      if (arc != range_arc) {
+        range_arc = arc;
+        arc_first = arc_last = sb;
+        while (arc_first > 0 && pb.move_of[arc_first - 1] == arc) --arc_first;
+        while (arc_last + 1 < pb.size() && pb.move_of[arc_last + 1] == arc) ++arc_last;
+      }
       auto near_arc = [&](const Vec3& p) {
-        for (size_t s = first; s <= last; ++s)
+        for (size_t s = arc_first; s <= arc_last; ++s)
           if ((pb.nearest(s, p) - p).norm() <= tolerance_mm) return true;
         return false;
       };
@@ -570,6 +576,8 @@ void measure_paths(const Program& a, const Interpretation& ia, const Path& pa, c
   } else if ((pa.size() == 0) != (pb.size() == 0)) {
     d.findings.push_back(fmt::format("only {} has feed moves", pa.size() == 0 ? "B" : "A"));
   }
+  // (No feed path in B: nothing of it went uncompared.)
+  if (pb.size() == 0) d.feed_compared_share = 1.0;
 }
 
 }  // namespace
