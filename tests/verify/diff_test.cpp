@@ -375,12 +375,55 @@ TEST_CASE("a small arc beside a long plunge, in a band wider than the arc, is pa
   CHECK(d.max_feed_difference_pct == 0.0);
   CHECK(d.findings.empty());
   CHECK(d.same(2.0));
-  // The first arc lies within 2 mm of the joint where the feed changes, so its feed is not
-  // compared, and the report says so: of B's 14.4 mm feed path, the descent (12 mm) and at
-  // most the two arcs after the first.
-  const double descent_mm = std::sqrt(0.5 * 0.5 + 12.0 * 12.0), arc_mm = kPi / 4, total_mm = descent_mm + 3 * arc_mm;
-  CHECK(d.feed_compared_share >= descent_mm / total_mm - 1e-9);
-  CHECK(d.feed_compared_share <= (total_mm - arc_mm) / total_mm + 1e-9);
+  // The whole circle lies within 2 mm of the joint where the feed changes, so its feed is
+  // not compared, and the report says so: of B's 15.2 mm feed path, the descent (12 mm).
+  const double descent_mm = std::sqrt(0.5 * 0.5 + 12.0 * 12.0), circle_mm = kPi;
+  CHECK(d.feed_compared_share == Approx(descent_mm / (descent_mm + circle_mm)).epsilon(1e-3));  // (arcs by chords)
+  CHECK(d.feed_unpaired_mm == 0);
+}
+
+TEST_CASE("where moves are shorter than the band, a feed change a few moves away is as near as the next joint",
+          "[diff]") {
+  // Moves of 0.2 mm along X; the feed goes from F1000 to F1010 at X0.6 in A, and at `change`
+  // in B. Within a 1 mm band which of the moves around a change a point belongs to is
+  // ambiguous, so the feed there is not compared, however many joints away the change is.
+  auto program = [](double change) {
+    std::string t = "G21 G90\nG0 X0 Y0 Z0\n";
+    for (int k = 1; k <= 30; ++k) {
+      const double x = 0.2 * k;
+      t += fmt::format("G1 X{:.1f} F{}\n", x, x <= change + 1e-9 ? 1000 : 1010);
+    }
+    return t + "G0 Z5\nM2\n";
+  };
+  const std::string a = program(0.6);
+  ProgramDiff shifted = diff_of(a, program(1.4), 1.0);  // the change 0.8 mm further on
+  CHECK(shifted.max_feed_difference_pct == 0.0);
+  CHECK(shifted.same(1.0));
+  CHECK(shifted.feed_compared_share < 0.8);  // 2.4 of B's 6 mm lie within 1 mm of a change
+  // A change moved by more than the band is found.
+  ProgramDiff moved = diff_of(a, program(3.0), 1.0);
+  CHECK(moved.max_feed_difference_pct == Approx(100.0 * 10 / 1010));
+  CHECK(moved.verdict(1.0) == ProgramDiff::Verdict::Different);
+}
+
+TEST_CASE("a piece of B within the band of A that no piece of A can stand for leaves the check incomplete",
+          "[diff]") {
+  // B prints the same E over the first half of the line and travels the second half, where A
+  // prints: a travel is not paired with a move that prints, so the feed along the travel is
+  // not compared, and the check does not pass what it did not compare.
+  const std::string a = "G21 G90 M83\nG0 X0 Y0 Z0.2\nG1 X10 E1 F1200\nG0 Z5\nM2\n";
+  const std::string b = "G21 G90 M83\nG0 X0 Y0 Z0.2\nG1 X5 E1 F1200\nG1 X10\nG0 Z5\nM2\n";
+  ProgramDiff d = diff_of(a, b, 0.05);
+  CHECK(d.max_deviation_mm == 0.0);
+  CHECK(d.agrees(0.05));
+  CHECK(d.feed_unpaired_mm == Approx(5.0));
+  CHECK(d.feed_unpaired_line_b == 4);
+  CHECK(d.feed_compared_share == Approx(0.5));
+  CHECK(d.verdict(0.05) == ProgramDiff::Verdict::Incomplete);
+  // B as A: all of it paired.
+  ProgramDiff same = diff_of(a, a, 0.05);
+  CHECK(same.feed_unpaired_mm == 0);
+  CHECK(same.verdict(0.05) == ProgramDiff::Verdict::Same);
 }
 
 TEST_CASE("with comments left out, another tool's header comments are no difference, but M, T, S and dwells are",

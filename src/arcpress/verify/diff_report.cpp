@@ -100,10 +100,13 @@ std::string diff_text(const ProgramDiff& d, const DiffNames& n, double tol) {
     t += "\n";
   }
   t += fmt::format(
-      "feed: max {:.4f} % apart, compared along {:.1f} % of B's feed path; extrusion: max {:.5f} mm of E per section, "
-      "{:.3f} % per mm of path\n",
-      d.max_feed_difference_pct, 100 * d.feed_compared_share, d.max_extrusion_difference_mm,
-      d.max_extrusion_per_mm_difference_pct);
+      "feed: max {:.4f} % apart, compared along {:.1f} % of B's feed path{}; extrusion: max {:.5f} mm of E per "
+      "section, {:.3f} % per mm of path\n",
+      d.max_feed_difference_pct, 100 * d.feed_compared_share,
+      d.feed_unpaired_mm > 0 ? fmt::format(" ({:.3f} mm of it with no counterpart on A, first at B line {})",
+                                           d.feed_unpaired_mm, d.feed_unpaired_line_b)
+                             : std::string(),
+      d.max_extrusion_difference_mm, d.max_extrusion_per_mm_difference_pct);
   t += fmt::format("non-motion blocks (M, T, S, dwell{}): {} in A, {} in B, {} differ\n",
                    d.comments_compared ? ", comments" : "; comments not compared", d.a.non_motion, d.b.non_motion,
                    d.non_motion_differences);
@@ -117,10 +120,12 @@ std::string diff_text(const ProgramDiff& d, const DiffNames& n, double tol) {
                                    s->line_b ? fmt::format(", A line {}, B line {}", s->line_a, s->line_b) : "")
                      : fmt::format("band side {}: not measured: {}\n", side, s->why_not);
   }
-  t += fmt::format("{}: max deviation {:.6f} mm {} the {} mm band{}{}\n", verdict_word(d.verdict(tol), true),
+  t += fmt::format("{}: max deviation {:.6f} mm {} the {} mm band{}{}{}\n", verdict_word(d.verdict(tol), true),
                    d.max_deviation_mm, d.max_deviation_mm <= tol ? "within" : "outside", tol,
                    d.findings.empty() ? "" : fmt::format(", {} other difference(s)", d.findings.size()),
-                   unplaced == 0 ? "" : fmt::format(", {} feed move(s) not compared", unplaced));
+                   unplaced == 0 ? "" : fmt::format(", {} feed move(s) not compared", unplaced),
+                   d.feed_unpaired_mm == 0 ? "" : fmt::format(", the feed along {:.3f} mm of B's path not compared",
+                                                              d.feed_unpaired_mm));
   return t;
 }
 
@@ -135,13 +140,14 @@ std::string diff_json(const ProgramDiff& d, const DiffNames& n, double tol) {
       "  \"rapids\": {{\"max_end_point_distance_mm\": {:.9f}, \"worst\": {}}},\n"
       "  \"entries\": {{\"max_end_point_distance_mm\": {:.9f}, \"worst\": {}}},\n"
       "  \"feed\": {{\"max_difference_percent\": {:.6f}, \"line_a\": {}, \"line_b\": {}, "
-      "\"compared_share\": {:.6f}}},\n"
+      "\"compared_share\": {:.6f}, \"unpaired_mm\": {:.9f}, \"unpaired_line_b\": {}}},\n"
       "  \"extrusion\": {{\"max_section_difference_mm\": {:.9f}, \"max_per_mm_difference_percent\": {:.6f}}},\n"
       "  \"non_motion\": {{\"blocks_a\": {}, \"blocks_b\": {}, \"differences\": {}, \"comments\": {}}},\n"
       "  \"differences\": [{}],\n  \"band_side\": {}\n}}\n",
       verdict_word(d.verdict(tol), false), tol, summary_json(d.a, n.a), summary_json(d.b, n.b), d.max_deviation_mm,
       d.arc_chord_mm, worst, d.max_rapid_mm, place_json(d.worst_rapid), d.max_entry_mm, place_json(d.worst_entry),
-      d.max_feed_difference_pct, d.worst_feed.line_a, d.worst_feed.line_b, d.feed_compared_share,
+      d.max_feed_difference_pct, d.worst_feed.line_a, d.worst_feed.line_b, d.feed_compared_share, d.feed_unpaired_mm,
+      d.feed_unpaired_line_b,
       d.max_extrusion_difference_mm, d.max_extrusion_per_mm_difference_pct, d.a.non_motion, d.b.non_motion,
       d.non_motion_differences, d.comments_compared, findings, side_json(d));
 }

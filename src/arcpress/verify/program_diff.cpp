@@ -354,30 +354,53 @@ class Directed {
   size_t points_left_ = 0;
 };
 
-/// True when p lies within `radius_mm` of a joint of move i with a neighbouring feed move
-/// of another feed rate or S: which of the two moves p belongs to is ambiguous there.
+/// True when p lies within `radius_mm` of a joint where the feed rate or S changes between
+/// two feed moves, on the moves next to move i in the program that keep within that radius
+/// of p: which of them p belongs to is ambiguous there. (Where moves are shorter than the
+/// band, a change a few moves away is as near as the next joint.) Past kMaxJoints joints
+/// within the radius either way, as ambiguous.
 bool near_feed_change(const Interpretation& in, uint32_t i, const Vec3& p, double radius_mm) {
-  const Move& m = in.moves[i];
-  auto differs = [&](size_t j) {
-    return is_feed(in.moves[j].kind) && (in.moves[j].feed_mm_min != m.feed_mm_min || in.moves[j].spindle != m.spindle);
+  constexpr size_t kMaxJoints = 256;
+  auto changes = [&](size_t j, size_t k) {  // the joint from move j into move k
+    return is_feed(in.moves[j].kind) && is_feed(in.moves[k].kind) &&
+           (in.moves[j].feed_mm_min != in.moves[k].feed_mm_min || in.moves[j].spindle != in.moves[k].spindle);
   };
-  return (i > 0 && differs(i - 1) && (xyz(in.from(i)) - p).norm() <= radius_mm) ||
-         (i + 1 < in.moves.size() && differs(i + 1) && (xyz(m.to) - p).norm() <= radius_mm);
+  const size_t n = in.moves.size();
+  for (size_t k = i, joints = 0; k > 0 && is_feed(in.moves[k - 1].kind); --k) {
+    if ((xyz(in.from(uint32_t(k))) - p).norm() > radius_mm) break;
+    if (changes(k - 1, k) || ++joints > kMaxJoints) return true;
+  }
+  for (size_t k = i, joints = 0; k + 1 < n && is_feed(in.moves[k + 1].kind); ++k) {
+    if ((xyz(in.moves[k].to) - p).norm() > radius_mm) break;
+    if (changes(k, k + 1) || ++joints > kMaxJoints) return true;
+  }
+  return false;
 }
 
+/// What the feed check compared of B's feed path.
+struct FeedCompared {
+  double share = 1;           ///< by length, the share whose feed was compared
+  double unpaired_mm = 0;     ///< the length within the band of A with no counterpart on it
+  uint32_t unpaired_move = UINT32_MAX;  ///< the first B move with such a piece
+};
+
 /// Pairs each of B's segments with its counterpart on A for the feed check, in program
-/// order: at the middle of the B segment (away from the joints, where two moves meet), the
-/// counterpart is the first A segment from the last one paired on that lies within the band
-/// and runs roughly the same way (an arc in the band may cross the input's chords at some
-/// angle), or, for a piece of an arc that lies over the last one paired or the next, that
-/// one while the piece does not run against it. Travel that retraces a printed line
-/// elsewhere in the program is thus not taken for it. Only when no such segment follows
-/// within a window is the nearest A segment anywhere taken, if it lies ahead and runs the
-/// same way; a B segment with no counterpart is not compared, nor one whose middle is within
-/// the band of a joint where A's or B's feed changes. `visit(a_move, b_move, point)`. Returns
-/// the share of B's feed path (by length) whose feed was compared.
+/// order, at the middle of the B segment (away from the joints, where two moves meet). The
+/// counterpart is, of the A segments within the band of that middle, from the last one
+/// paired on: the one paired last or the next, where it runs roughly the same way (an arc in
+/// the band may cross the input's chords at some angle), or, for a piece of an arc that lies
+/// over one of them, that one while the piece does not run against it; else the nearest of
+/// those as far along A as the piece is along B, from where the last pair lay on both, give
+/// or take a band's width; else the first ahead within a window that runs roughly the same
+/// way, or the nearest anywhere if it lies ahead and runs the same way; else the nearest in
+/// the stretch of A, from the last pair on, that lies within the band of the piece's whole
+/// move. Travel that retraces a printed line elsewhere in the program, or a line printed a
+/// layer later within a wide band, is thus not taken for it. A B segment with no
+/// counterpart is not compared, and is counted where it lies within the band of A's path
+/// (beyond it, the path measure finds B different); nor is one whose middle is within the
+/// band of a joint where A's or B's feed changes. `visit(a_move, b_move, point)`.
 template <class Visit>
-double compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, const Interpretation& ib,
+FeedCompared compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, const Interpretation& ib,
                   const SegmentIndex& index_a, double tolerance_mm, Visit&& visit) {
   constexpr size_t kWindow = 4096;  // A segments searched ahead of the cursor
   constexpr size_t kWindowFirst = 64;  // ... before asking whether any lies within the band
@@ -421,19 +444,41 @@ double compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, co
     const Box& b = boxes[chunk];
     return (p - p.cwiseMax(b.lo).cwiseMin(b.hi)).norm() <= tolerance_mm;
   };
+  // How far along its path each segment starts (mm), on A and on B. B's path follows A's in
+  // order, a little shorter or longer where it cuts a corner or rounds one: where the last
+  // pair lay along both paths tells where along A the next B piece's counterpart lies.
+  auto along_path = [](const Path& p) {
+    std::vector<double> at(p.size() + 1, 0.0);
+    for (size_t k = 0; k < p.size(); ++k) at[k + 1] = at[k] + (p.b(k) - p.a(k)).norm();
+    return at;
+  };
+  const std::vector<double> along_a = along_path(pa), along_b = along_path(pb);
+  double shift_mm = 0;  // along A less along B, at the last pair (or the section's start)
   size_t cursor = 0;
   uint32_t near_hint = 0;  // the last nearest A segment: B's next middle lies near it
-  // B's pieces of the arc met last, [arc_first, arc_last]: found once an arc, not per piece.
-  uint32_t range_arc = UINT32_MAX;
-  size_t arc_first = 0, arc_last = 0;
+  // B's pieces of the move met last, [move_first, move_last]: found once a move, not per piece.
+  uint32_t range_move = UINT32_MAX;
+  size_t move_first = 0, move_last = 0;
   double length_mm = 0, compared_mm = 0;  // of B's pieces, all and those whose feed was compared
+  FeedCompared result;
+  auto unpaired = [&](size_t sb, double mm) {
+    result.unpaired_mm += mm;
+    result.unpaired_move = std::min(result.unpaired_move, pb.move_of[sb]);
+  };
   for (size_t sb = 0; sb < pb.size(); ++sb) {
     Vec3 db = pb.b(sb) - pb.a(sb);
     // (An arc's closing step is measured with the arc's pieces, which carry its feed.)
     if (db.norm() <= kLengthEpsMm || pb.arc_of[sb] == Path::kClosingStep) continue;
     length_mm += db.norm();
-    if (same_sections) cursor = std::max(cursor, section_start[pb.section_of[sb]]);
+    if (same_sections && (sb == 0 || pb.section_of[sb] != pb.section_of[sb - 1])) {
+      const size_t start_a = section_start[pb.section_of[sb]];
+      size_t start_b = sb;
+      while (start_b > 0 && pb.section_of[start_b - 1] == pb.section_of[sb]) --start_b;
+      cursor = std::max(cursor, start_a);
+      shift_mm = along_a[std::min(start_a, pa.size())] - along_b[start_b];
+    }
     Vec3 mid = pb.middle(sb);
+    const double mid_along_b = along_b[sb] + db.norm() / 2;
     size_t found = pa.size();
     auto search = [&](size_t from, size_t to) {
       for (size_t k = from; k < std::min(pa.size(), to) && found == pa.size(); ++k) {
@@ -452,29 +497,48 @@ double compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, co
     // heads up to 90° off it inside the band, and a later pass that crosses the arc at its
     // own heading is not the move it stands for.
     search(cursor, cursor + 2);
+    // B's pieces of its move, and whether p lies within the band of one of them.
+    if (const uint32_t move = pb.move_of[sb]; move != range_move) {
+      range_move = move;
+      move_first = move_last = sb;
+      while (move_first > 0 && pb.move_of[move_first - 1] == move) --move_first;
+      while (move_last + 1 < pb.size() && pb.move_of[move_last + 1] == move) ++move_last;
+    }
+    auto near_move = [&](const Vec3& p) {
+      for (size_t s = move_first; s <= move_last; ++s)
+        if ((pb.nearest(s, p) - p).norm() <= tolerance_mm) return true;
+      return false;
+    };
+    auto within = [&](size_t k, const Vec3& p) { return (pa.nearest(k, p) - p).norm() <= tolerance_mm; };
     if (found == pa.size() && pb.curved(sb)) {
       const uint32_t arc = pb.move_of[sb];
       const Vec3 from = xyz(ib.from(arc)), to = xyz(ib.moves[arc].to);
-      auto within = [&](size_t k, const Vec3& p) { return (pa.nearest(k, p) - p).norm() <= tolerance_mm; };
-      // B's pieces of that arc, and whether p lies within the band of one of them.
-      if (arc != range_arc) {
-        range_arc = arc;
-        arc_first = arc_last = sb;
-        while (arc_first > 0 && pb.move_of[arc_first - 1] == arc) --arc_first;
-        while (arc_last + 1 < pb.size() && pb.move_of[arc_last + 1] == arc) ++arc_last;
-      }
-      auto near_arc = [&](const Vec3& p) {
-        for (size_t s = arc_first; s <= arc_last; ++s)
-          if ((pb.nearest(s, p) - p).norm() <= tolerance_mm) return true;
-        return false;
-      };
       // Both ways: the arc within the band of the move, and the move within the band of the
       // arc (a small arc beside a long plunge, in a band wider than the arc, is not that
       // plunge's).
       for (size_t k = cursor; k < std::min(pa.size(), cursor + 2) && found == pa.size(); ++k)
         if (may_pair(k, sb) && directed(k) && cosine(k, db) >= 0 && within(k, mid) && within(k, from) &&
-            within(k, to) && near_arc(pa.a(k)) && near_arc(pa.b(k)))
+            within(k, to) && near_move(pa.a(k)) && near_move(pa.b(k)))
           found = k;
+    }
+    // The segment as far along A as the piece is along B (from where the last pair lay on
+    // both), or either beside it, where it lies within the band and does not run against
+    // the piece: an arc that rounds a corner in a band wider than the corner's moves heads
+    // more than the window's angle off each of them, and the first segment ahead that runs
+    // its way may be a line printed a layer or a pass later.
+    if (found == pa.size()) {
+      const double expected = mid_along_b + shift_mm;
+      size_t k = cursor;
+      while (k < pa.size() && k < cursor + kWindow && along_a[k + 1] < expected - tolerance_mm) ++k;
+      double nearest_mm = tolerance_mm;
+      for (size_t c = k; c < pa.size() && c < cursor + kWindow && along_a[c] <= expected + tolerance_mm; ++c) {
+        if (!may_pair(c, sb) || !directed(c)) continue;
+        const double dist = (pa.nearest(c, mid) - mid).norm();
+        if (dist <= nearest_mm) {
+          nearest_mm = dist;
+          found = c;
+        }
+      }
     }
     // The first steps of the window, then whether any segment lies within the band at all:
     // where none does (B strays from A there), the rest of the window holds no counterpart.
@@ -482,22 +546,45 @@ double compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, co
     if (found == pa.size()) {
       const SegmentIndex::Nearest n = index_a.nearest(mid, near_hint);
       near_hint = n.segment;
-      if (n.distance_mm > tolerance_mm) continue;
+      if (n.distance_mm > tolerance_mm) continue;  // (B strays from A: the path measure tells)
       search(cursor + kWindowFirst, cursor + kWindow);
-      if (found == pa.size()) {
-        if (n.segment < cursor || !may_pair(n.segment, sb) || !directed(n.segment) || cosine(n.segment, db) < same_way)
-          continue;
+      if (found == pa.size() && n.segment >= cursor && may_pair(n.segment, sb) && directed(n.segment) &&
+          cosine(n.segment, db) >= same_way)
         found = n.segment;
+    }
+    // Last, the stretch of A from the last pair on (or the segment after it) that lies within
+    // the band of B's move, which that move stands for: of its segments within the band of
+    // the piece, the nearest (a plunge written for a helix narrower than the band: A's path
+    // runs round while B's runs down, and as far along each).
+    if (found == pa.size()) {
+      double nearest_mm = tolerance_mm;
+      for (size_t k = cursor; k < std::min(pa.size(), cursor + kWindow); ++k) {
+        if (!near_move(pa.a(k)) || !near_move(pa.b(k))) {
+          if (k == cursor) continue;
+          break;
+        }
+        const double dist = (pa.nearest(k, mid) - mid).norm();
+        if (may_pair(k, sb) && directed(k) && dist <= nearest_mm) {
+          nearest_mm = dist;
+          found = k;
+        }
+      }
+      if (found == pa.size()) {
+        unpaired(sb, db.norm());
+        continue;
       }
     }
     cursor = found;
+    shift_mm = along_a[found] + std::min((pa.nearest(found, mid) - pa.a(found)).norm(), along_a[found + 1] - along_a[found]) -
+               mid_along_b;
     uint32_t move_a = pa.move_of[found], move_b = pb.move_of[sb];
     if (near_feed_change(ia, move_a, mid, tolerance_mm) || near_feed_change(ib, move_b, mid, tolerance_mm)) continue;
     if (ia.moves[move_a].feed_mm_min <= 0) continue;
     visit(ia.moves[move_a], ib.moves[move_b], mid);
     compared_mm += db.norm();
   }
-  return length_mm > 0 ? compared_mm / length_mm : 1.0;
+  result.share = length_mm > 0 ? compared_mm / length_mm : 1.0;
+  return result;
 }
 
 /// The feed paths' distance both ways, into `d` (see diff_programs()).
@@ -572,7 +659,12 @@ void measure_paths(const Program& a, const Interpretation& ia, const Path& pa, c
                                          a.blocks[ma.block].line, ma.spindle, b.blocks[mb.block].line, mb.spindle));
       }
     };
-    if (opt.feed) d.feed_compared_share = compare_feed(pa, ia, pb, ib, index_a, opt.tolerance_mm, feed_at);
+    if (opt.feed) {
+      const FeedCompared fc = compare_feed(pa, ia, pb, ib, index_a, opt.tolerance_mm, feed_at);
+      d.feed_compared_share = fc.share;
+      d.feed_unpaired_mm = fc.unpaired_mm;
+      if (fc.unpaired_move != UINT32_MAX) d.feed_unpaired_line_b = b.blocks[ib.moves[fc.unpaired_move].block].line;
+    }
   } else if ((pa.size() == 0) != (pb.size() == 0)) {
     d.findings.push_back(fmt::format("only {} has feed moves", pa.size() == 0 ? "B" : "A"));
   }

@@ -130,6 +130,11 @@ struct ProgramDiff {
   /// within the band of a joint where either feed changes, and paired with a piece of A (in
   /// a band wider than the path's own features, pairing by place finds none for some).
   double feed_compared_share = 0;
+  /// The length of B's feed path for which no piece of A qualifies as its counterpart, so
+  /// whose feed was not compared (mm), and the B line of the first such piece (0: none). A
+  /// check that leaves any out is incomplete.
+  double feed_unpaired_mm = 0;
+  uint32_t feed_unpaired_line_b = 0;
   double max_extrusion_difference_mm = 0;     ///< E total per section
   double max_extrusion_per_mm_difference_pct = 0;
   size_t non_motion_differences = 0;
@@ -158,7 +163,7 @@ struct ProgramDiff {
   std::optional<SideMeasure> band_side;
 
   bool compared_all() const {
-    return a.not_compared() + b.not_compared() == 0 && (!band_side || band_side->measured);
+    return a.not_compared() + b.not_compared() == 0 && feed_unpaired_mm == 0 && (!band_side || band_side->measured);
   }
   /// How much the measure of the paths may read short where big arcs' chords lie farther off
   /// them than its precision (0 for any ordinary program): counted against the band.
