@@ -49,8 +49,9 @@ constexpr const char* kDiffExitCodesHelp =
     "Exit codes:\n"
     "  0  SAME: every feed move of both programs was compared, and they agree within the band\n"
     "  1  DIFFERENT: what was compared differs (the worst place and its lines are listed)\n"
-    "  2  INCOMPLETE: some feed moves could not be placed and were not compared; or a usage\n"
-    "     error, or input that cannot be read\n"
+    "  2  INCOMPLETE: some feed moves could not be placed, or some of B's feed path had no\n"
+    "     counterpart in A to compare its feed with, and were not compared; or a usage error,\n"
+    "     or input that cannot be read\n"
     "  3  I/O error: a file could not be read or written\n";
 
 /// A floating option's check: a finite number in `range` (OptionRange, shared with the
