@@ -521,11 +521,11 @@ FeedCompared compare_feed(const Path& pa, const Interpretation& ia, const Path& 
             within(k, to) && near_move(pa.a(k)) && near_move(pa.b(k)))
           found = k;
     }
-    // The segment as far along A as the piece is along B (from where the last pair lay on
-    // both), or either beside it, where it lies within the band and does not run against
-    // the piece: an arc that rounds a corner in a band wider than the corner's moves heads
-    // more than the window's angle off each of them, and the first segment ahead that runs
-    // its way may be a line printed a layer or a pass later.
+    // Of the segments as far along A as the piece is along B (from where the last pair lay
+    // on both), give or take a band's width, the nearest within the band, whichever way it
+    // runs: an arc that rounds a corner of moves shorter than the band heads far off each of
+    // them, and the first segment ahead that runs its way may be a line printed a layer or a
+    // pass later.
     if (found == pa.size()) {
       const double expected = mid_along_b + shift_mm;
       size_t k = cursor;
@@ -575,8 +575,8 @@ FeedCompared compare_feed(const Path& pa, const Interpretation& ia, const Path& 
       }
     }
     cursor = found;
-    shift_mm = along_a[found] + std::min((pa.nearest(found, mid) - pa.a(found)).norm(), along_a[found + 1] - along_a[found]) -
-               mid_along_b;
+    const double into_mm = (pa.nearest(found, mid) - pa.a(found)).norm();  // along the A segment
+    shift_mm = along_a[found] + std::min(into_mm, along_a[found + 1] - along_a[found]) - mid_along_b;
     uint32_t move_a = pa.move_of[found], move_b = pb.move_of[sb];
     if (near_feed_change(ia, move_a, mid, tolerance_mm) || near_feed_change(ib, move_b, mid, tolerance_mm)) continue;
     if (ia.moves[move_a].feed_mm_min <= 0) continue;
