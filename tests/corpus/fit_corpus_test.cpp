@@ -200,3 +200,61 @@ TEST_CASE("arcpress diff finds every corpus file the same as its output in a ban
     compressed_agrees_with_diff(f, text, dialect, 1.0);
   }
 }
+
+TEST_CASE("a feed set 10 % lower on one block of the output is found at that block's line, in a band up to five "
+          "printed layers deep",
+          "[corpus][diff]") {
+  // Three places in each printer file's output whose input runs at one feed all round: the
+  // block's feed goes down, and the next block's is set back. (In ps271, PrusaSlicer 2.7
+  // changes the feed every few moves, and a block a band away from a change of the input's
+  // own feed is ambiguous: not compared, by design.)
+  ARCPRESS_CORPUS_FILES_OR_SKIP(files)
+  auto starts_motion = [](std::string_view l) {
+    return l.size() > 3 && l[0] == 'G' && l[1] >= '1' && l[1] <= '3' && l[2] == ' ';
+  };
+  for (const auto& f : files) {
+    if (f.parent_path().filename() != "printer" || f.filename() == "ps271_benchy.gcode") continue;
+    const std::string text = test::read_file(f);
+    const std::optional<ProgramFlavor> flavor = program_flavor(text);
+    const Dialect dialect = find_dialect(flavor && !flavor->dialect.empty() ? flavor->dialect : "rs274",
+                                         {ARCPRESS_SOURCE_DIR "/dialects"});
+    for (double band_mm : {0.05, 1.0}) {
+      DiagnosticSink sink(f.string());
+      CompressOptions opt;
+      opt.dialect = dialect;
+      opt.fit.tolerance_mm = band_mm;
+      const CompressResult r = compress(f.string(), text, opt, sink);
+      REQUIRE(r.within_band());
+      std::vector<std::string> lines;
+      for (size_t at = 0, end; at < r.output.size(); at = end + 1) {
+        end = std::min(r.output.find('\n', at), r.output.size());
+        lines.emplace_back(r.output.substr(at, end - at));
+      }
+      // Blocks that move along X or Y at the feed set before them, followed by another such.
+      std::vector<std::pair<size_t, double>> places;
+      double feed = 0;
+      for (size_t i = 0; i + 1 < lines.size(); ++i) {
+        const std::string& l = lines[i];
+        if (const size_t at = l.find('F'); at != std::string::npos && l[0] == 'G' && l.find(';') > at)
+          feed = std::stod(l.substr(at + 1));
+        if (feed > 0 && starts_motion(l) && starts_motion(lines[i + 1]) && l.find('F') == std::string::npos &&
+            lines[i + 1].find('F') == std::string::npos && l.find_first_of("XY") != std::string::npos)
+          places.emplace_back(i, feed);
+      }
+      REQUIRE(places.size() > 10);
+      for (double share : {0.3, 0.5, 0.7}) {
+        const auto [i, was] = places[size_t(share * double(places.size()))];
+        std::vector<std::string> changed = lines;
+        changed[i] += fmt::format(" F{:.3f}", 0.9 * was);
+        changed[i + 1] += fmt::format(" F{:.3f}", was);
+        INFO(fmt::format("{} at {} mm, line {}: {}", f.string(), band_mm, i + 1, changed[i]));
+        DiffOptions dopt;
+        dopt.tolerance_mm = band_mm;
+        const ProgramDiff d = test::diff_texts(text, fmt::format("{}", fmt::join(changed, "\n")), dopt, dialect);
+        CHECK(d.verdict(band_mm) == ProgramDiff::Verdict::Different);
+        CHECK(d.max_feed_difference_pct == Approx(10.0).epsilon(1e-3));
+        CHECK(d.worst_feed.line_b == i + 1);
+      }
+    }
+  }
+}

@@ -406,6 +406,22 @@ TEST_CASE("where moves are shorter than the band, a feed change a few moves away
   CHECK(moved.verdict(1.0) == ProgramDiff::Verdict::Different);
 }
 
+TEST_CASE("a feed that B changes on one block shorter than the band, where A's stays the same, is a difference",
+          "[diff]") {
+  // Which move a point stands for is ambiguous only near a change of A's feed: a change
+  // that B makes and A does not is found at its line, however wide the band.
+  auto program = [](int slow_move) {
+    std::string t = "G21 G90\nG0 X0 Y0 Z0\n";
+    for (int k = 1; k <= 30; ++k) t += fmt::format("G1 X{:.1f} F{}\n", 0.2 * k, k == slow_move ? 900 : 1000);
+    return t + "G0 Z5\nM2\n";
+  };
+  ProgramDiff d = diff_of(program(0), program(15), 1.0);
+  CHECK(d.max_feed_difference_pct == Approx(10.0));
+  CHECK(d.worst_feed.line_b == 17);  // "G1 X3.0 F900"
+  CHECK(d.verdict(1.0) == ProgramDiff::Verdict::Different);
+  CHECK(diff_of(program(0), program(0), 1.0).same(1.0));
+}
+
 TEST_CASE("a piece of B within the band of A that no piece of A can stand for leaves the check incomplete",
           "[diff]") {
   // B prints the same E over the first half of the line and travels the second half, where A

@@ -358,7 +358,9 @@ class Directed {
 /// two feed moves, on the moves next to move i in the program that keep within that radius
 /// of p: which of them p belongs to is ambiguous there. (Where moves are shorter than the
 /// band, a change a few moves away is as near as the next joint.) Past kMaxJoints joints
-/// within the radius either way, as ambiguous.
+/// within the radius either way, as ambiguous. Asked of A's moves only: where A's feed is
+/// the same all round p, any other feed B has there differs, however short the B move that
+/// sets it.
 bool near_feed_change(const Interpretation& in, uint32_t i, const Vec3& p, double radius_mm) {
   constexpr size_t kMaxJoints = 256;
   auto changes = [&](size_t j, size_t k) {  // the joint from move j into move k
@@ -385,20 +387,21 @@ struct FeedCompared {
 };
 
 /// Pairs each of B's segments with its counterpart on A for the feed check, in program
-/// order, at the middle of the B segment (away from the joints, where two moves meet). The
-/// counterpart is, of the A segments within the band of that middle, from the last one
-/// paired on: the one paired last or the next, where it runs roughly the same way (an arc in
-/// the band may cross the input's chords at some angle), or, for a piece of an arc that lies
-/// over one of them, that one while the piece does not run against it; else the nearest of
-/// those as far along A as the piece is along B, from where the last pair lay on both, give
-/// or take a band's width; else the first ahead within a window that runs roughly the same
-/// way, or the nearest anywhere if it lies ahead and runs the same way; else the nearest in
-/// the stretch of A, from the last pair on, that lies within the band of the piece's whole
-/// move. Travel that retraces a printed line elsewhere in the program, or a line printed a
-/// layer later within a wide band, is thus not taken for it. A B segment with no
-/// counterpart is not compared, and is counted where it lies within the band of A's path
-/// (beyond it, the path measure finds B different); nor is one whose middle is within the
-/// band of a joint where A's or B's feed changes. `visit(a_move, b_move, point)`.
+/// order, at the middle of the B segment (away from the joints, where two moves meet). Both
+/// paths are counted along from where they were last at the same place: a B move that starts
+/// on a vertex of A, or else the last pair. The counterpart is, of the A segments within the
+/// band of that middle and printing as it does: the nearest of those as far along A as the
+/// piece is along B, give or take a band's width, one that does not run against the piece
+/// first; else the one paired last or the next, where it runs roughly the same way, or, for
+/// a piece of an arc that lies over one of them, that one while the piece does not run
+/// against it; else the first ahead within a window that runs roughly the same way, or the
+/// nearest anywhere if it lies ahead and runs the same way; else the nearest in the stretch
+/// of A, from the last pair on, that lies within the band of the piece's whole move. Travel
+/// that retraces a printed line elsewhere in the program, or a line printed a layer later
+/// within a wide band, is thus not taken for it. A B segment with no counterpart is not
+/// compared, and is counted where it lies within the band of A's path (beyond it, the path
+/// measure finds B different); nor is one whose middle is within the band of a joint where
+/// A's feed changes (near_feed_change()). `visit(a_move, b_move, point)`.
 template <class Visit>
 FeedCompared compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, const Interpretation& ib,
                   const SegmentIndex& index_a, double tolerance_mm, Visit&& visit) {
@@ -440,9 +443,9 @@ FeedCompared compare_feed(const Path& pa, const Interpretation& ia, const Path& 
     b.lo = b.lo.cwiseMin(pa.a(k).cwiseMin(pa.b(k)) - Vec3::Constant(off));
     b.hi = b.hi.cwiseMax(pa.a(k).cwiseMax(pa.b(k)) + Vec3::Constant(off));
   }
-  auto box_within = [&](size_t chunk, const Vec3& p) {
+  auto box_within = [&](size_t chunk, const Vec3& p, double radius_mm) {
     const Box& b = boxes[chunk];
-    return (p - p.cwiseMax(b.lo).cwiseMin(b.hi)).norm() <= tolerance_mm;
+    return (p - p.cwiseMax(b.lo).cwiseMin(b.hi)).norm() <= radius_mm;
   };
   // How far along its path each segment starts (mm), on A and on B. B's path follows A's in
   // order, a little shorter or longer where it cuts a corner or rounds one: where the last
@@ -456,6 +459,9 @@ FeedCompared compare_feed(const Path& pa, const Interpretation& ia, const Path& 
   double shift_mm = 0;  // along A less along B, at the last pair (or the section's start)
   size_t cursor = 0;
   uint32_t near_hint = 0;  // the last nearest A segment: B's next middle lies near it
+  size_t met = 0;           // the A segment at whose start a B move started last
+  // Two programs' points are the same within the digits either prints (or a tenth of the band).
+  const double same_point_mm = std::min(1e-3, tolerance_mm / 10);
   // B's pieces of the move met last, [move_first, move_last]: found once a move, not per piece.
   uint32_t range_move = UINT32_MAX;
   size_t move_first = 0, move_last = 0;
@@ -475,14 +481,41 @@ FeedCompared compare_feed(const Path& pa, const Interpretation& ia, const Path& 
       size_t start_b = sb;
       while (start_b > 0 && pb.section_of[start_b - 1] == pb.section_of[sb]) --start_b;
       cursor = std::max(cursor, start_a);
+      met = std::max(met, start_a);
       shift_mm = along_a[std::min(start_a, pa.size())] - along_b[start_b];
+    }
+    // Where a B move starts on a vertex of A (as the compressor's moves all do), at or after
+    // the last such vertex, the two paths are at the same place: the pairing goes on from
+    // there, back too where a piece was taken for a later pass's, and the count along both
+    // starts again. (Where B cuts a slicer's zig-zag infill short in a band many lines wide,
+    // counting on from the last pair falls behind A's longer path, and the window's search
+    // ahead finds a line of the next layer.) Of A's vertices there (a loop that closes meets
+    // its start twice), the one nearest to where the count along both expects it.
+    if (sb == 0 || pb.move_of[sb - 1] != pb.move_of[sb]) {
+      const Vec3 start = pb.a(sb);
+      const double expected = along_b[sb] + shift_mm;
+      size_t at = pa.size();
+      for (size_t k = met; k < std::min(pa.size(), met + kWindow); ++k) {
+        if (at < pa.size() && along_a[k] - expected > std::abs(along_a[at] - expected)) break;
+        if (k % kChunk == 0 && !box_within(k / kChunk, start, same_point_mm)) {
+          k += kChunk - 1;
+          continue;
+        }
+        if ((pa.a(k) - start).norm() <= same_point_mm && may_pair(k, sb) &&
+            (at == pa.size() || std::abs(along_a[k] - expected) < std::abs(along_a[at] - expected)))
+          at = k;
+      }
+      if (at < pa.size()) {
+        met = cursor = at;
+        shift_mm = along_a[at] - along_b[sb];
+      }
     }
     Vec3 mid = pb.middle(sb);
     const double mid_along_b = along_b[sb] + db.norm() / 2;
     size_t found = pa.size();
     auto search = [&](size_t from, size_t to) {
       for (size_t k = from; k < std::min(pa.size(), to) && found == pa.size(); ++k) {
-        if (k % kChunk == 0 && !box_within(k / kChunk, mid)) {
+        if (k % kChunk == 0 && !box_within(k / kChunk, mid, tolerance_mm)) {
           k += kChunk - 1;
           continue;
         }
@@ -491,12 +524,35 @@ FeedCompared compare_feed(const Path& pa, const Interpretation& ia, const Path& 
           found = k;
       }
     };
-    // The segment paired last, and the next, first; then, where a piece of a B arc runs off
+    // First, of the segments as far along A as the piece is along B, give or take a band's
+    // width, the nearest within the band that does not run against the piece, else the
+    // nearest: an arc that rounds a corner of moves shorter than the band heads far off each
+    // of them (and may cross them), and the first segment ahead that runs its way may be the
+    // next move, or a line printed a layer or a pass later; a travel that leaves where the
+    // piece ends may lie nearer than the piece's own move, but runs another way.
+    {
+      const double expected = mid_along_b + shift_mm;
+      size_t k = cursor;
+      while (k < pa.size() && k < cursor + kWindow && along_a[k + 1] < expected - tolerance_mm) ++k;
+      double nearest_mm = tolerance_mm;
+      bool found_along = false;  // whether `found` does not run against the piece
+      for (size_t c = k; c < pa.size() && c < cursor + kWindow && along_a[c] <= expected + tolerance_mm; ++c) {
+        if (!may_pair(c, sb) || !directed(c)) continue;
+        const double dist = (pa.nearest(c, mid) - mid).norm();
+        const bool runs_along = cosine(c, db) >= 0;
+        if (dist <= tolerance_mm && (runs_along > found_along || (runs_along == found_along && dist <= nearest_mm))) {
+          nearest_mm = dist;
+          found = c;
+          found_along = runs_along;
+        }
+      }
+    }
+    // Else the segment paired last, and the next; then, where a piece of a B arc runs off
     // both by more than the window's angle, the one the whole arc lies over (both its ends
     // within the band of it), unless the piece runs against it: an arc over a short move
     // heads up to 90° off it inside the band, and a later pass that crosses the arc at its
     // own heading is not the move it stands for.
-    search(cursor, cursor + 2);
+    if (found == pa.size()) search(cursor, cursor + 2);
     // B's pieces of its move, and whether p lies within the band of one of them.
     if (const uint32_t move = pb.move_of[sb]; move != range_move) {
       range_move = move;
@@ -520,25 +576,6 @@ FeedCompared compare_feed(const Path& pa, const Interpretation& ia, const Path& 
         if (may_pair(k, sb) && directed(k) && cosine(k, db) >= 0 && within(k, mid) && within(k, from) &&
             within(k, to) && near_move(pa.a(k)) && near_move(pa.b(k)))
           found = k;
-    }
-    // Of the segments as far along A as the piece is along B (from where the last pair lay
-    // on both), give or take a band's width, the nearest within the band, whichever way it
-    // runs: an arc that rounds a corner of moves shorter than the band heads far off each of
-    // them, and the first segment ahead that runs its way may be a line printed a layer or a
-    // pass later.
-    if (found == pa.size()) {
-      const double expected = mid_along_b + shift_mm;
-      size_t k = cursor;
-      while (k < pa.size() && k < cursor + kWindow && along_a[k + 1] < expected - tolerance_mm) ++k;
-      double nearest_mm = tolerance_mm;
-      for (size_t c = k; c < pa.size() && c < cursor + kWindow && along_a[c] <= expected + tolerance_mm; ++c) {
-        if (!may_pair(c, sb) || !directed(c)) continue;
-        const double dist = (pa.nearest(c, mid) - mid).norm();
-        if (dist <= nearest_mm) {
-          nearest_mm = dist;
-          found = c;
-        }
-      }
     }
     // The first steps of the window, then whether any segment lies within the band at all:
     // where none does (B strays from A there), the rest of the window holds no counterpart.
@@ -578,7 +615,7 @@ FeedCompared compare_feed(const Path& pa, const Interpretation& ia, const Path& 
     const double into_mm = (pa.nearest(found, mid) - pa.a(found)).norm();  // along the A segment
     shift_mm = along_a[found] + std::min(into_mm, along_a[found + 1] - along_a[found]) - mid_along_b;
     uint32_t move_a = pa.move_of[found], move_b = pb.move_of[sb];
-    if (near_feed_change(ia, move_a, mid, tolerance_mm) || near_feed_change(ib, move_b, mid, tolerance_mm)) continue;
+    if (near_feed_change(ia, move_a, mid, tolerance_mm)) continue;
     if (ia.moves[move_a].feed_mm_min <= 0) continue;
     visit(ia.moves[move_a], ib.moves[move_b], mid);
     compared_mm += db.norm();
