@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Installs the Debian packages arcpress builds with; with --test, also the real
-# interpreters, slicer, CAM system and browser the test suite checks output against (LinuxCNC's rs274,
-# PrusaSlicer, FreeCAD, Chromium), clang (the fuzz build's compiler, whose C++ the suite checks), the
+# interpreters, slicers, CAM system and browser the test suite checks output against (LinuxCNC's rs274,
+# PrusaSlicer, Cura, FreeCAD, Chromium), clang (the fuzz build's compiler, whose C++ the suite checks), the
 # Windows cross compiler and wine, and lintian; with --windows, the cross compiler and wine
 # alone (scripts/build-windows.sh); with --fuzz, clang and its sanitizer and libFuzzer runtimes
 # (scripts/fuzz.sh).
@@ -10,7 +10,7 @@
 set -euo pipefail
 packages=(g++ cmake make libeigen3-dev libcgal-dev libcli11-dev libfmt-dev catch2 libtomlplusplus-dev)
 if [ "${1:-}" = "--test" ]; then
-  packages+=(linuxcnc-uspace chromium prusa-slicer freecad clang)
+  packages+=(linuxcnc-uspace chromium prusa-slicer freecad cura clang)
 fi
 # The Windows cross build and what runs its tests (scripts/build-windows.sh); the test suite
 # builds it too, and checks the Debian package with lintian.
