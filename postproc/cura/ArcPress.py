@@ -6,9 +6,10 @@ sliced program over as a list of chunks (its header, the start G-code, one per l
 end G-code); the script runs the arcpress program on all of it at once (each layer starts
 where the one before left the nozzle, in the extrusion mode and at the feed it set), and
 hands the result back cut where the chunks began (each begins with a comment, ";LAYER:3", or
-a command arcpress leaves as it is). Where arcpress refuses (its check found the output outside the band, or the program cannot
-be read), the G-code is saved as Cura sliced it, and the reason is shown and logged. Run it
-after the scripts that edit the G-code: they read the moves Cura wrote.
+a command arcpress leaves as it is). Where arcpress refuses (its check found the output
+outside the band, or the program cannot be read), the G-code is saved as Cura sliced it, and
+the reason is shown and logged. Run it after the scripts that edit the G-code: they read the
+moves Cura wrote.
 
 Installed by postproc/cura/install.sh into Cura's scripts folder (Help > Show Configuration
 Folder, then scripts). Cura loads a script by its file name, which names its class.
@@ -98,7 +99,8 @@ class ArcPress(Script):
                 },
                 "program": {
                     "label": "arcpress program",
-                    "description": "The arcpress command, or its full path (on Windows, arcpress.exe in the folder it was unpacked to).",
+                    "description": "The arcpress command, or its full path (on Windows, arcpress.exe in the "
+                                   "folder it was unpacked to).",
                     "type": "str",
                     "default_value": "arcpress",
                 },
@@ -111,11 +113,14 @@ class ArcPress(Script):
         line = command(self.getSettingValueByKey("program") or "arcpress", self.getSettingValueByKey("tolerance"),
                        self.getSettingValueByKey("dialect"))
         try:
-            run = subprocess.run(line, input="".join(data).encode("utf-8"), capture_output=True)
+            # (On Windows, without a console window flashing up.)
+            run = subprocess.run(line, input="".join(data).encode("utf-8"), capture_output=True,
+                                 creationflags=getattr(subprocess, "CREATE_NO_WINDOW", 0))
         except OSError as e:
             return self._refused(data, "cannot run {}: {}".format(line[0], e))
         if run.returncode != 0:
-            return self._refused(data, "{} (exit {})".format(run.stderr.decode("utf-8", "replace").strip(), run.returncode))
+            why = run.stderr.decode("utf-8", "replace").strip()
+            return self._refused(data, "{} (exit {})".format(why, run.returncode))
         cut = cut_like(data, run.stdout.decode("utf-8"))
         if cut is None:
             return self._refused(data, "the first line of a chunk of Cura's G-code was not found in arcpress's output")

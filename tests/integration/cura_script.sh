@@ -104,6 +104,8 @@ open(failing, "w").write("#!/bin/sh\ncat >/dev/null\necho 'x.gcode: error: E-VER
 os.chmod(failing, 0o755)
 refused = script(program=failing)
 assert refused.execute(list(chunks)) == chunks and "E-VERIFY" in refused.refused and "exit 1" in refused.refused
+bad = script(program=os.environ["ARCPRESS"], tolerance=1000)  # beyond what arcpress takes
+assert bad.execute(list(chunks)) == chunks and "--tolerance" in bad.refused and "exit 2" in bad.refused, bad.refused
 dropping = os.path.join(os.environ["WORK"], "dropping.sh")  # its output lacks a chunk's first line
 open(dropping, "w").write("#!/bin/sh\nsed '/^;LAYER:7$/d'\n")
 os.chmod(dropping, 0o755)
