@@ -42,16 +42,23 @@ std::vector<std::string> non_motion_lines(const std::string& text, size_t& plane
   return out;
 }
 
-/// `text` (corpus file `f`) compressed for `dialect` at `band_mm` stays inside the band, and
-/// arcpress diff finds it the same as the input there, the feed included.
-void compressed_agrees_with_diff(const std::filesystem::path& f, const std::string& text, const Dialect& dialect,
-                                 double band_mm) {
+/// `text` (corpus file `f`) compressed for `dialect` at `band_mm`, inside the band.
+CompressResult compressed(const std::filesystem::path& f, const std::string& text, const Dialect& dialect,
+                          double band_mm) {
   DiagnosticSink sink(f.string());
   CompressOptions opt;
   opt.dialect = dialect;
   opt.fit.tolerance_mm = band_mm;
-  const CompressResult r = compress(f.string(), text, opt, sink);
+  CompressResult r = compress(f.string(), text, opt, sink);
   REQUIRE(r.within_band());
+  return r;
+}
+
+/// `text` (corpus file `f`) compressed for `dialect` at `band_mm` stays inside the band, and
+/// arcpress diff finds it the same as the input there, the feed included.
+void compressed_agrees_with_diff(const std::filesystem::path& f, const std::string& text, const Dialect& dialect,
+                                 double band_mm) {
+  const CompressResult r = compressed(f, text, dialect, band_mm);
   DiffOptions dopt;
   dopt.tolerance_mm = band_mm;
   const ProgramDiff d = test::diff_texts(text, r.output, dopt, dialect);
@@ -59,6 +66,23 @@ void compressed_agrees_with_diff(const std::filesystem::path& f, const std::stri
   CHECK(d.agrees(band_mm));
   CHECK(d.max_feed_difference_pct == 0.0);
   CHECK(d.feed_unpaired_mm == 0);  // every piece within the band found its counterpart
+}
+
+/// The dialect a program names for itself (a slicer's flavor line), else rs274, as the
+/// command picks it.
+Dialect own_dialect(const std::string& text) {
+  const std::optional<ProgramFlavor> flavor = program_flavor(text);
+  return find_dialect(flavor && !flavor->dialect.empty() ? flavor->dialect : "rs274", {ARCPRESS_SOURCE_DIR "/dialects"});
+}
+
+/// compressed_agrees_with_diff() for every corpus file, in the dialect it names.
+void every_corpus_file_agrees_with_diff(double band_mm) {
+  ARCPRESS_CORPUS_FILES_OR_SKIP(files)
+  for (const auto& f : files) {
+    const std::string text = test::read_file(f);
+    INFO(f.string());
+    compressed_agrees_with_diff(f, text, own_dialect(text), band_mm);
+  }
 }
 
 }  // namespace
@@ -173,15 +197,7 @@ TEST_CASE("arcpress diff finds every corpus file the same as its output in a ban
           "[corpus][diff]") {
   // At 0.2 mm the band reaches the neighbouring lines of a print and the travels that
   // cross them: a printed move is compared with a printed one, a travel with a travel.
-  ARCPRESS_CORPUS_FILES_OR_SKIP(files)
-  for (const auto& f : files) {
-    const std::string text = test::read_file(f);
-    const std::optional<ProgramFlavor> flavor = program_flavor(text);
-    const std::string name = flavor && !flavor->dialect.empty() ? flavor->dialect : "rs274";
-    INFO(fmt::format("{} read as {}", f.string(), name));
-    const Dialect dialect = find_dialect(name, {ARCPRESS_SOURCE_DIR "/dialects"});
-    compressed_agrees_with_diff(f, text, dialect, 0.2);
-  }
+  every_corpus_file_agrees_with_diff(0.2);
 }
 
 TEST_CASE("arcpress diff finds every corpus file the same as its output in a band five printed layers deep",
@@ -190,15 +206,7 @@ TEST_CASE("arcpress diff finds every corpus file the same as its output in a ban
   // an arc that rounds a corner of short moves heads far off each of them: a piece is paired
   // with the moves as far along the input as it is along the output, and where moves are
   // shorter than the band, a feed change a few moves away leaves the feed there ambiguous.
-  ARCPRESS_CORPUS_FILES_OR_SKIP(files)
-  for (const auto& f : files) {
-    const std::string text = test::read_file(f);
-    const std::optional<ProgramFlavor> flavor = program_flavor(text);
-    const std::string name = flavor && !flavor->dialect.empty() ? flavor->dialect : "rs274";
-    INFO(fmt::format("{} read as {}", f.string(), name));
-    const Dialect dialect = find_dialect(name, {ARCPRESS_SOURCE_DIR "/dialects"});
-    compressed_agrees_with_diff(f, text, dialect, 1.0);
-  }
+  every_corpus_file_agrees_with_diff(1.0);
 }
 
 TEST_CASE("a feed set 10 % lower on one block of the output is found at that block's line, in a band up to five "
@@ -215,16 +223,9 @@ TEST_CASE("a feed set 10 % lower on one block of the output is found at that blo
   for (const auto& f : files) {
     if (f.parent_path().filename() != "printer" || f.filename() == "ps271_benchy.gcode") continue;
     const std::string text = test::read_file(f);
-    const std::optional<ProgramFlavor> flavor = program_flavor(text);
-    const Dialect dialect = find_dialect(flavor && !flavor->dialect.empty() ? flavor->dialect : "rs274",
-                                         {ARCPRESS_SOURCE_DIR "/dialects"});
+    const Dialect dialect = own_dialect(text);
     for (double band_mm : {0.05, 1.0}) {
-      DiagnosticSink sink(f.string());
-      CompressOptions opt;
-      opt.dialect = dialect;
-      opt.fit.tolerance_mm = band_mm;
-      const CompressResult r = compress(f.string(), text, opt, sink);
-      REQUIRE(r.within_band());
+      const CompressResult r = compressed(f, text, dialect, band_mm);
       std::vector<std::string> lines;
       for (size_t at = 0, end; at < r.output.size(); at = end + 1) {
         end = std::min(r.output.find('\n', at), r.output.size());
