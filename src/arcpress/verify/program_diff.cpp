@@ -354,31 +354,6 @@ class Directed {
   size_t points_left_ = 0;
 };
 
-/// True when p lies within `radius_mm` of a joint where the feed rate or S changes between
-/// two feed moves, on the moves next to move i in the program that keep within that radius
-/// of p: which of them p belongs to is ambiguous there. (Where moves are shorter than the
-/// band, a change a few moves away is as near as the next joint.) Past kMaxJoints joints
-/// within the radius either way, as ambiguous. Asked of A's moves only: where A's feed is
-/// the same all round p, any other feed B has there differs, however short the B move that
-/// sets it.
-bool near_feed_change(const Interpretation& in, uint32_t i, const Vec3& p, double radius_mm) {
-  constexpr size_t kMaxJoints = 256;
-  auto changes = [&](size_t j, size_t k) {  // the joint from move j into move k
-    return is_feed(in.moves[j].kind) && is_feed(in.moves[k].kind) &&
-           (in.moves[j].feed_mm_min != in.moves[k].feed_mm_min || in.moves[j].spindle != in.moves[k].spindle);
-  };
-  const size_t n = in.moves.size();
-  for (size_t k = i, joints = 0; k > 0 && is_feed(in.moves[k - 1].kind); --k) {
-    if ((xyz(in.from(uint32_t(k))) - p).norm() > radius_mm) break;
-    if (changes(k - 1, k) || ++joints > kMaxJoints) return true;
-  }
-  for (size_t k = i, joints = 0; k + 1 < n && is_feed(in.moves[k + 1].kind); ++k) {
-    if ((xyz(in.moves[k].to) - p).norm() > radius_mm) break;
-    if (changes(k, k + 1) || ++joints > kMaxJoints) return true;
-  }
-  return false;
-}
-
 /// What the feed check compared of B's feed path.
 struct FeedCompared {
   double share = 1;           ///< by length, the share whose feed was compared
@@ -400,8 +375,8 @@ struct FeedCompared {
 /// that retraces a printed line elsewhere in the program, or a line printed a layer later
 /// within a wide band, is thus not taken for it. A B segment with no counterpart is not
 /// compared, and is counted where it lies within the band of A's path (beyond it, the path
-/// measure finds B different); nor is one whose middle is within the band of a joint where
-/// A's feed changes (near_feed_change()). `visit(a_move, b_move, point)`.
+/// measure finds B different); nor is one whose counterpart's point lies within a band's
+/// width, along A's path, of a joint where A's feed changes. `visit(a_move, b_move, point)`.
 template <class Visit>
 FeedCompared compare_feed(const Path& pa, const Interpretation& ia, const Path& pb, const Interpretation& ib,
                   const SegmentIndex& index_a, double tolerance_mm, Visit&& visit) {
@@ -456,6 +431,24 @@ FeedCompared compare_feed(const Path& pa, const Interpretation& ia, const Path& 
     return at;
   };
   const std::vector<double> along_a = along_path(pa), along_b = along_path(pb);
+  // Where along A's path its feed rate or S changes between two feed moves, in order. Which
+  // of the two moves a point within a band's width of such a joint, along the path, stands
+  // for is ambiguous: its feed is not compared. (Only A's: where A's feed is the same all
+  // round a point, any other feed B has there differs, however short the B move that sets
+  // it. Along the path, not in space: a piece is paired in program order, so a change the
+  // path passed long before is no nearer for lying beside it.)
+  std::vector<double> changes_a;
+  for (size_t k = 1; k < pa.size(); ++k) {
+    const Move& m0 = ia.moves[pa.move_of[k - 1]];
+    const Move& m1 = ia.moves[pa.move_of[k]];
+    if (pa.section_of[k] == pa.section_of[k - 1] && pa.move_of[k] != pa.move_of[k - 1] &&
+        (m0.feed_mm_min != m1.feed_mm_min || m0.spindle != m1.spindle))
+      changes_a.push_back(along_a[k]);
+  }
+  auto near_change = [&](double at_mm) {
+    const auto c = std::lower_bound(changes_a.begin(), changes_a.end(), at_mm - tolerance_mm);
+    return c != changes_a.end() && *c <= at_mm + tolerance_mm;
+  };
   double shift_mm = 0;  // along A less along B, at the last pair (or the section's start)
   size_t cursor = 0;
   uint32_t near_hint = 0;  // the last nearest A segment: B's next middle lies near it
@@ -524,28 +517,42 @@ FeedCompared compare_feed(const Path& pa, const Interpretation& ia, const Path& 
           found = k;
       }
     };
-    // First, of the segments as far along A as the piece is along B, give or take a band's
-    // width, the nearest within the band that does not run against the piece, else the
-    // nearest: an arc that rounds a corner of moves shorter than the band heads far off each
-    // of them (and may cross them), and the first segment ahead that runs its way may be the
-    // next move, or a line printed a layer or a pass later; a travel that leaves where the
-    // piece ends may lie nearer than the piece's own move, but runs another way.
+    auto within = [&](size_t k, const Vec3& p) { return (pa.nearest(k, p) - p).norm() <= tolerance_mm; };
+    // First, of the segments within a band's width along A of where the piece lies along B,
+    // the one nearest that place that lies within the band and does not run against the
+    // piece, else the nearest that lies within the band: an arc that rounds a corner of
+    // moves shorter than the band heads far off each of them (and may cross them), and the
+    // first segment ahead that runs its way may be the next move, or a line printed a layer
+    // or a pass later; a travel that leaves where the piece ends may lie nearer in space than
+    // the piece's own move, but runs another way. (Taken outward from that place, so that
+    // where moves are far shorter than the band the search still ends at once.)
     {
       const double expected = mid_along_b + shift_mm;
+      const size_t last = std::min(pa.size(), cursor + kWindow);  // past the window's last
       size_t k = cursor;
-      while (k < pa.size() && k < cursor + kWindow && along_a[k + 1] < expected - tolerance_mm) ++k;
-      double nearest_mm = tolerance_mm;
-      bool found_along = false;  // whether `found` does not run against the piece
-      for (size_t c = k; c < pa.size() && c < cursor + kWindow && along_a[c] <= expected + tolerance_mm; ++c) {
-        if (!may_pair(c, sb) || !directed(c)) continue;
-        const double dist = (pa.nearest(c, mid) - mid).norm();
-        const bool runs_along = cosine(c, db) >= 0;
-        if (dist <= tolerance_mm && (runs_along > found_along || (runs_along == found_along && dist <= nearest_mm))) {
-          nearest_mm = dist;
+      while (k + 1 < last && along_a[k + 1] <= expected) ++k;
+      auto gap = [&](size_t c) {  // how far along A segment c lies from `expected`
+        return along_a[c] > expected ? along_a[c] - expected : std::max(0.0, expected - along_a[c + 1]);
+      };
+      constexpr size_t kNone = SIZE_MAX;
+      size_t down = k < last ? k : kNone, up = k + 1, against = kNone;
+      while (found == pa.size()) {
+        const bool can_down = down != kNone && gap(down) <= tolerance_mm;
+        const bool can_up = up < last && gap(up) <= tolerance_mm;
+        if (!can_down && !can_up) break;
+        const bool take_down = can_down && (!can_up || gap(down) <= gap(up));
+        const size_t c = take_down ? down : up;
+        if (take_down)
+          down = down > cursor ? down - 1 : kNone;
+        else
+          ++up;
+        if (!may_pair(c, sb) || !directed(c) || !within(c, mid)) continue;
+        if (cosine(c, db) >= 0)
           found = c;
-          found_along = runs_along;
-        }
+        else if (against == kNone)
+          against = c;
       }
+      if (found == pa.size() && against != kNone) found = against;
     }
     // Else the segment paired last, and the next; then, where a piece of a B arc runs off
     // both by more than the window's angle, the one the whole arc lies over (both its ends
@@ -565,7 +572,6 @@ FeedCompared compare_feed(const Path& pa, const Interpretation& ia, const Path& 
         if ((pb.nearest(s, p) - p).norm() <= tolerance_mm) return true;
       return false;
     };
-    auto within = [&](size_t k, const Vec3& p) { return (pa.nearest(k, p) - p).norm() <= tolerance_mm; };
     if (found == pa.size() && pb.curved(sb)) {
       const uint32_t arc = pb.move_of[sb];
       const Vec3 from = xyz(ib.from(arc)), to = xyz(ib.moves[arc].to);
@@ -613,9 +619,10 @@ FeedCompared compare_feed(const Path& pa, const Interpretation& ia, const Path& 
     }
     cursor = found;
     const double into_mm = (pa.nearest(found, mid) - pa.a(found)).norm();  // along the A segment
-    shift_mm = along_a[found] + std::min(into_mm, along_a[found + 1] - along_a[found]) - mid_along_b;
+    const double paired_along_a = along_a[found] + std::min(into_mm, along_a[found + 1] - along_a[found]);
+    shift_mm = paired_along_a - mid_along_b;
     uint32_t move_a = pa.move_of[found], move_b = pb.move_of[sb];
-    if (near_feed_change(ia, move_a, mid, tolerance_mm)) continue;
+    if (near_change(paired_along_a)) continue;
     if (ia.moves[move_a].feed_mm_min <= 0) continue;
     visit(ia.moves[move_a], ib.moves[move_b], mid);
     compared_mm += db.norm();
