@@ -365,9 +365,9 @@ struct FeedCompared {
 /// order, at the middle of the B segment (away from the joints, where two moves meet). Both
 /// paths are counted along from where they were last at the same place: a B move that starts
 /// on a vertex of A, or else the last pair. The counterpart is, of the A segments within the
-/// band of that middle and printing as it does: the nearest of those as far along A as the
-/// piece is along B, give or take a band's width, one that does not run against the piece
-/// first; else the one paired last or the next, where it runs roughly the same way, or, for
+/// band of that middle and printing as it does: of those within a band's width along A of
+/// where the piece lies along B, the one nearest that place that does not run against the
+/// piece, else the nearest; else the one paired last or the next, where it runs roughly the same way, or, for
 /// a piece of an arc that lies over one of them, that one while the piece does not run
 /// against it; else the first ahead within a window that runs roughly the same way, or the
 /// nearest anywhere if it lies ahead and runs the same way; else the nearest in the stretch
