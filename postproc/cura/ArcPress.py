@@ -6,7 +6,8 @@ sliced program over as a list of chunks (its header, the start G-code, one per l
 end G-code); the script runs the arcpress program on all of it at once (each layer starts
 where the one before left the nozzle, in the extrusion mode and at the feed it set), and
 hands the result back cut where the chunks began (each begins with a comment, ";LAYER:3", or
-a command arcpress leaves as it is). Where arcpress refuses (its check found the output
+a command arcpress leaves as it is; a chunk that began with a move arcpress replaced comes
+back empty, its text in the chunk before). Where arcpress refuses (its check found the output
 outside the band, or the program cannot be read), the G-code is saved as Cura sliced it, and
 the reason is shown and logged. Run it after the scripts that edit the G-code: they read the
 moves Cura wrote.
@@ -42,33 +43,24 @@ def command(program, tolerance_mm, dialect):
 
 def cut_like(chunks, text):
     """`text` cut into as many chunks as `chunks`: each from where that chunk's first line
-    stands in `text` as a whole line, after the chunk before's; an empty chunk stays empty.
-    (Cura's chunks begin with a comment, ";LAYER:3", or a command such as "M140 S0", which
-    arcpress leaves as they are.) None where a first line is not found."""
-    starts, after = [], 1 if chunks[0] else 0  # per chunk, where it starts in `text` (None: empty)
-    for i, chunk in enumerate(chunks):
-        if i == 0:
-            starts.append(0)
-            continue
-        if not chunk:
-            starts.append(None)
-            continue
+    stands in `text` as a whole line, after the chunk before's. (Cura's chunks begin with a
+    comment, ";LAYER:3", or a command such as "M140 S0", which arcpress leaves as they are.)
+    A chunk whose first line is not found (a move arcpress replaced), or that was empty, comes
+    back empty, its text at the end of the chunk before: the whole is the same."""
+    starts, after = [0], 1 if chunks and chunks[0] else 0  # per chunk, where it starts (None: empty)
+    for chunk in chunks[1:]:
         first = chunk.split("\n", 1)[0].rstrip("\r")
-        at = text.find(first, after)
+        at = text.find(first, after) if first else -1
         while at >= 0 and not ((at == 0 or text[at - 1] == "\n") and
                                text[at + len(first):at + len(first) + 1] in ("", "\n", "\r")):
             at = text.find(first, at + 1)
-        if at < 0:
-            return None
-        starts.append(at)
-        after = at + 1
+        starts.append(at if at >= 0 else None)
+        if at >= 0:
+            after = at + 1
     pieces = []
     for i, start in enumerate(starts):
-        if start is None:
-            pieces.append("")
-            continue
         end = next((s for s in starts[i + 1:] if s is not None), len(text))
-        pieces.append(text[start:end])
+        pieces.append("" if start is None else text[start:end])
     return pieces
 
 
@@ -121,10 +113,7 @@ class ArcPress(Script):
         if run.returncode != 0:
             why = run.stderr.decode("utf-8", "replace").strip()
             return self._refused(data, "{} (exit {})".format(why, run.returncode))
-        cut = cut_like(data, run.stdout.decode("utf-8"))
-        if cut is None:
-            return self._refused(data, "the first line of a chunk of Cura's G-code was not found in arcpress's output")
-        return cut
+        return cut_like(data, run.stdout.decode("utf-8"))
 
     def _refused(self, data, why):
         """Leaves the G-code as Cura sliced it, and says why."""

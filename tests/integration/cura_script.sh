@@ -10,8 +10,8 @@
 # Checked: the chunks come back as many, each beginning as it did, and together the bytes
 # the command line writes for the whole program, with the tolerance and firmware set; the
 # result holds arcs and `arcpress diff` finds it the same as the sliced program; where
-# arcpress cannot run, fails, or its output cannot be cut like Cura's chunks, the G-code
-# comes back as it was, and the script says why.
+# arcpress cannot run or fails, the G-code comes back as it was, and the script says why; a
+# chunk whose first line the output lacks comes back empty, its text in the chunk before.
 # Skipped (exit 77) where Cura is not installed, or the corpus's Cura program is not there.
 #   cura_script.sh ARCPRESS SOURCE_DIR PROGRAM
 set -euo pipefail
@@ -106,11 +106,16 @@ refused = script(program=failing)
 assert refused.execute(list(chunks)) == chunks and "E-VERIFY" in refused.refused and "exit 1" in refused.refused
 bad = script(program=os.environ["ARCPRESS"], tolerance=1000)  # beyond what arcpress takes
 assert bad.execute(list(chunks)) == chunks and "--tolerance" in bad.refused and "exit 2" in bad.refused, bad.refused
-dropping = os.path.join(os.environ["WORK"], "dropping.sh")  # its output lacks a chunk's first line
+# A chunk whose first line the output lacks (as a move arcpress replaced would be) comes back
+# empty, its text in the chunk before: the whole is what the program wrote.
+dropping = os.path.join(os.environ["WORK"], "dropping.sh")
 open(dropping, "w").write("#!/bin/sh\nsed '/^;LAYER:7$/d'\n")
 os.chmod(dropping, 0o755)
-uncut = script(program=dropping)
-assert uncut.execute(list(chunks)) == chunks and "not found" in uncut.refused, uncut.refused
+seven = next(i for i, c in enumerate(chunks) if c.startswith(";LAYER:7\n"))
+cut = script(program=dropping).execute(list(chunks))
+assert len(cut) == len(chunks) and cut[seven] == "" and cut[seven - 1] == chunks[seven - 1] + chunks[seven].split("\n", 1)[1]
+assert "".join(cut) == whole.replace(";LAYER:7\n", "", 1)
+assert cut[:seven - 1] == chunks[:seven - 1] and cut[seven + 1:] == chunks[seven + 1:]
 print("ArcPress.py: {} chunks back as they began, the command line's bytes, arcs, SAME; refusals keep the "
       "G-code".format(len(out)))
 PY
