@@ -126,9 +126,9 @@ struct ProgramDiff {
   DiffPlace worst_entry;
   double max_feed_difference_pct = 0;   ///< F at B's moves against A's nearest move
   DiffPlace worst_feed;                 ///< deviation_mm holds nothing here; lines only
-  /// The share of B's feed path (by length) whose feed and S were compared with A's: not
-  /// within the band of a joint where either feed changes, and paired with a piece of A (in
-  /// a band wider than the path's own features, pairing by place finds none for some).
+  /// The share of B's feed path (by length) whose feed and S were compared with A's: paired
+  /// with a piece of A that lies farther than a band's width, along A's path, from a joint
+  /// where A's feed or S changes.
   double feed_compared_share = 0;
   /// The length of B's feed path for which no piece of A qualifies as its counterpart, so
   /// whose feed was not compared (mm), and the B line of the first such piece (0: none). A
