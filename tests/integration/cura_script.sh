@@ -28,6 +28,10 @@ fi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 HOME="$work/home" bash "$source/postproc/cura/install.sh" "$work/scripts"
+# Without a folder: the installed Cura's version names it, where no Cura has run yet.
+version=$(/usr/bin/python3 -c "from cura.CuraVersion import CuraVersion; print('.'.join(CuraVersion.split('.')[:2]))")
+HOME="$work/home" bash "$source/postproc/cura/install.sh"
+cmp "$source/postproc/cura/ArcPress.py" "$work/home/.local/share/cura/$version/scripts/ArcPress.py"
 export ARCPRESS=$arcpress PROGRAM=$program SCRIPTS="$work/scripts" WORK=$work CURA_PLUGINS=$plugins
 PYTHONWARNINGS=ignore QT_QPA_PLATFORM=offscreen /usr/bin/python3 - <<'PY'
 import importlib.util, os, subprocess, sys
