@@ -18,6 +18,9 @@ inline constexpr char kAxisLetters[kAxisCount] = {'X', 'Y', 'Z', 'A', 'B', 'C', 
 inline constexpr bool kAxisIsLinear[kAxisCount] = {true, true, true, false, false, false, true, true, true, true};
 using AxisValues = std::array<double, kAxisCount>;
 
+/// Position `v`'s X, Y and Z.
+inline Vec3 xyz(const AxisValues& v) { return {v[kX], v[kY], v[kZ]}; }
+
 /// Position `v`'s X, Y, Z in the coordinates of plane `p` (first, second, normal).
 inline Vec3 in_plane(const AxisValues& v, Plane p) {
   const auto a = axes_of(p);

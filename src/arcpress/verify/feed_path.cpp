@@ -9,8 +9,6 @@
 namespace arcpress {
 namespace {
 
-Vec3 xyz(const AxisValues& v) { return {v[kX], v[kY], v[kZ]}; }
-
 /// Move i exactly: kind, plane, turns, start, end and centre.
 std::array<double, 12> move_key(const Interpretation& in, size_t i) {
   const Move& m = in.moves[i];
