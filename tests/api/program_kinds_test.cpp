@@ -111,6 +111,31 @@ TEST_CASE("a lathe program in diameter mode (G7) is left as it is, and --stats s
   CHECK(r.not_fitted[0].first_line == 3);
 }
 
+TEST_CASE("a printer program that retracts in firmware (G10/G11) between its curves is fitted on both sides",
+          "[api][printer]") {
+  // Two circles of 10 mm radius, each in 72 moves, a travel between them under G10/G11.
+  auto circle = [](double cx, double e0) {
+    std::string t;
+    for (int k = 1; k <= 72; ++k) {
+      const double a = deg_to_rad(5.0 * k);
+      t += fmt::format("G1 X{:.3f} Y{:.3f} E{:.5f}\n", cx + 10 * std::cos(a), 10 * std::sin(a), e0 + 0.03 * k);
+    }
+    return t;
+  };
+  const std::string t = "G21 G90 M82\nG28\nG0 X10 Y0 Z0.2 F6000\nG1 F1200\n" + circle(0, 0) +
+                        "G10\nG0 X40 Y0 F6000\nG11\nG1 F1200\n" + circle(30, 2.16) + "M84\n";
+  DiagnosticSink sink("t.gcode");
+  const CompressResult r = compressed(t, sink, "marlin");
+  CHECK(sink.format_all().empty());
+  CHECK(r.stats.moves_in == 144);
+  CHECK(r.stats.arcs_out >= 4);  // each circle in arcs of at most 180 degrees
+  CHECK(r.stats.arcs_out + r.stats.lines_out <= 8);
+  for (const auto& n : r.not_fitted) CHECK_FALSE(is_position_unknown(n.why));
+  // Every other line is the input's own, in order.
+  for (const char* kept : {"G10\n", "G0 X40 Y0 F6000\nG11\nG1 F1200\n", "M84\n"})
+    CHECK(r.output.find(kept) != std::string::npos);
+}
+
 TEST_CASE("a laser contour with S on every move is fitted with arcs that carry its S, never across an S change",
           "[api][laser]") {
   // Grbl laser mode: a circle of radius 10 mm in 2° steps, S300 on the first half's moves,

@@ -338,6 +338,49 @@ TEST_CASE("a lathe dialect reads X words as diameters from the start, and G8 as 
   CHECK(mill.moves[0].to[kX] == 20.0);
 }
 
+TEST_CASE("G10 and G11 are a printer firmware's retraction that leaves the programmed position where it is",
+          "[dialect][printer]") {
+  const std::vector<std::string> retracting = {"marlin", "prusa", "klipper", "reprapfirmware", "smoothieware"};
+  for (const std::string& name : kShipped) {
+    INFO(name);
+    CHECK(shipped(name).firmware_retraction ==
+          (std::find(retracting.begin(), retracting.end(), name) != retracting.end()));
+  }
+  const std::string text =
+      "G21 G90\nG0 X0 Y0 Z0.2\nG1 X1 E1 F600\n"
+      "G10\nG0 X5 Y5\nG11\nG1 X6 E2\n"            // a retraction around a travel
+      "G10 P0 S200 R150\nG1 X7 E3\n"                // a tool's temperatures (RepRapFirmware)
+      "G10 S1\nG1 X8 E4\nG11\n"                     // a tool-change retraction (Marlin)
+      "G10 P0 X1 Y1\nG1 X9 E5\n";                   // a tool's offsets
+  DiagnosticSink sink("t.gcode");
+  Program p = lex("t.gcode", text, sink);
+  Interpretation in = interpret(p, sink, shipped("reprapfirmware"));
+  REQUIRE(in.moves.size() == 7);
+  for (size_t k = 1; k < 6; ++k) {
+    INFO(k);
+    CHECK(in.moves[k].known);
+  }
+  CHECK(in.moves[3].to[kX] == 6.0);
+  CHECK(in.moves[3].to[kZ] == 0.2);
+  CHECK_FALSE(in.moves[6].known);  // X from the new offsets
+  CHECK(in.moves[6].unfit == Unfit::UnknownAfterCycle);
+  CHECK(sink.format_all().empty());
+  // Where G10 sets offsets and tables only, the position after it is unknown, and G11 is
+  // not read.
+  DiagnosticSink cnc("t.gcode");
+  Interpretation plain = interpret(p, cnc, shipped("rs274"));
+  CHECK_FALSE(plain.moves[2].known);
+  CHECK(plain.moves[2].unfit == Unfit::UnknownAfterCycle);
+  CHECK(cnc.format_all().find("t.gcode:6:1: warning: E-MODEL-GCODE: G11 is not modelled") != std::string::npos);
+  // G11 with axis words is none of the firmware's.
+  DiagnosticSink odd("t.gcode");
+  Program q = lex("t.gcode", "G0 X0 Y0 Z0\nG11 X3\nG1 Y4 F600\n", odd);
+  Interpretation qi = interpret(q, odd, shipped("marlin"));
+  CHECK(odd.format_all().find("t.gcode:2:1: warning: E-MODEL-GCODE: G11 with axis words is not modelled") !=
+        std::string::npos);
+  CHECK_FALSE(qi.moves.back().known);
+}
+
 TEST_CASE("a program names its own dialect by its slicer's flavor, where the flavor says which firmware",
           "[dialect][flavor]") {
   auto flavor = [](const std::string& text) { return program_flavor(text); };

@@ -73,6 +73,11 @@ struct Dialect {
   /// X words are diameters from the start, as on lathes that power up in diameter mode
   /// (Haas, Fanuc); G7/G8 still switch where the program writes them.
   bool diameter_x = false;
+  /// A printer firmware's own retraction ([printer] firmware_retraction): G10 without L and
+  /// without axis words retracts the filament (or, with P, sets a tool's temperatures), G11
+  /// recovers it; neither moves the programmed position (a Z hop is undone on recovery).
+  /// Elsewhere G10 sets offsets or tables and G11 is not read.
+  bool firmware_retraction = false;
 
   // --- numbers ----------------------------------------------------------------------
   NumberDigits mm{4, 4, 6, 1, 5};

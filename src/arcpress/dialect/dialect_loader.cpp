@@ -226,6 +226,11 @@ Dialect parse_dialect(const std::string& text, const std::string& path) {
     r.boolean("diameter", d.diameter_x);
     r.finish();
   }
+  if (const toml::table* t = top.table("printer")) {
+    TableReader r(*t, path, "printer.");
+    r.boolean("firmware_retraction", d.firmware_retraction);
+    r.finish();
+  }
   if (const toml::table* t = top.table("numbers")) {
     TableReader r(*t, path, "numbers.");
     r.boolean("decimal_point", d.decimal_point);

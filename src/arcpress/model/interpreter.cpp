@@ -85,6 +85,8 @@ class Interpreter {
     bool other_words = false;   // words a fitted block could not carry along
     int motion = -1;            // G-code ×10 of a motion word in this block
     bool g92 = false, g92_reset = false, g53 = false, axis_consumer = false, homing = false;
+    bool g10 = false, l_seen = false;
+    uint32_t g11_col = 0;  // column of a G11 the firmware reads as its recovery (0: none)
     // Bit per axis: written with a value, with an expression, as a flag.
     uint32_t words_seen = 0, expr_axis = 0, flag_axis = 0;
     double value[kAxisCount] = {};
@@ -163,10 +165,10 @@ class Interpreter {
             case 280: case 300: homing = true; axis_consumer = true; break;
             case 281: case 301: break;
             case 700: case 710: case 720: case 740: case 750:  // lathe turning cycles: run elsewhere
-            case 100:                                           // G10: offsets and tables
               axis_consumer = true;
               forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterCycle, bi);
               break;
+            case 100: g10 = true; axis_consumer = true; break;  // G10: read with the block's other words
             case 530: g53 = true; break;
             case 540: case 550: case 560: case 570: case 580: case 590: case 591: case 592: case 593:
               if (s_.frame.work_offset != g)  // same machine point, new coordinates
@@ -181,6 +183,12 @@ class Interpreter {
             case 310: case 320:
             case 500: case 960: case 970:                       // lathe spindle limits, CSS
               break;
+            case 110:  // G11: the firmware's recovery after its retraction, where it retracts
+              if (d_.firmware_retraction) {
+                g11_col = w->col;
+                break;
+              }
+              [[fallthrough]];
             default:
               sink_.problem({b.line, w->col}, "E-MODEL-GCODE",
                             fmt::format("{} is not modelled; the block is kept and not fitted",
@@ -224,10 +232,25 @@ class Interpreter {
           break;
         case 'N':
           break;
+        case 'L':
+          l_seen = true;
+          other_words = true;
+          break;
         default:
           other_words = true;
           break;
       }
+    }
+    // Where the firmware retracts (d_.firmware_retraction), G10 without L and without axis
+    // words retracts (or sets a tool's temperatures) and G11 recovers: the programmed position
+    // stays. Any other G10 sets offsets or tables the program's coordinates may depend on.
+    const bool axis_words = words_seen != 0 || flag_axis != 0;
+    if (g10 && !(d_.firmware_retraction && !l_seen && !axis_words))
+      forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterCycle, bi);
+    if (g11_col > 0 && axis_words) {
+      sink_.problem({b.line, g11_col}, "E-MODEL-GCODE",
+                    "G11 with axis words is not modelled; the block is kept and not fitted");
+      forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterUnmodelled, bi);
     }
     const Frame& fnow = fedit ? *fedit : s_.frame;
     if (feed_set) {
