@@ -69,6 +69,11 @@ TEST_CASE("Grbl's mc_arc() makes floor(half the length / sqrt($12 (2r - $12))) s
   // r 5, 3 degrees: 0.1309 / 0.1414 = 0.93: Grbl draws the chord, 5 (1 - cos 1.5 deg) off the circle.
   CHECK(executed_segments(grbl, 5, deg(3)) == 1);
   CHECK(executed_sagitta_mm(grbl, 5, deg(3)) == Approx(0.0017133).margin(1e-7));
+  // Near half of $12 the count grows without bound; Grbl counts in 16 bits, and so does
+  // arcpress, which writes no arc that needs as many.
+  CHECK(executed_segments(grbl, 0.001 + 1e-15, deg(180)) == kMaxArcSegments);
+  CHECK(executed_segments(grbl, 0.001, deg(180)) == 1);  // the circle lies within $12 of the chord
+  CHECK(executed_segments(grbl, 1000, deg(180)) == 785);  // the largest radius arcpress writes by default
 }
 
 TEST_CASE("Smoothieware sizes segments from mm_max_arc_error and takes their floor, one chord below two",

@@ -11,9 +11,8 @@ namespace {
 
 using Rule = ArcSegmentation::Rule;
 
-/// A count the firmware would compute in an unsigned integer: clamped to what one arc may
-/// sensibly take, so a huge radius never overflows it.
-uint32_t count_of(double x) { return static_cast<uint32_t>(std::clamp(x, 0.0, 1e7)); }
+/// A count the firmware would compute in an unsigned integer, clamped to kMaxArcSegments.
+uint32_t count_of(double x) { return static_cast<uint32_t>(std::clamp(x, 0.0, double(kMaxArcSegments))); }
 
 }  // namespace
 

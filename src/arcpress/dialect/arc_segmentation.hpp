@@ -61,9 +61,16 @@ inline std::optional<ArcSegmentation::Rule> rule_named(std::string_view name) {
   return std::nullopt;
 }
 
+/// The most segments one arc is cut into: Marlin's plan_arc() and Grbl's mc_arc() count them
+/// in 16 bits, so a count above is not what those firmwares run. (Grbl's count grows
+/// without bound as the radius nears half its arc tolerance: a circle that small lies within
+/// the tolerance of any chord.) arcpress writes no arc that asks for as many.
+inline constexpr uint32_t kMaxArcSegments = 65535;
+
 /// How many straight segments the firmware moves along for an arc of `radius_mm` turning
 /// by `sweep_rad` (either sign) while the plane's normal axis travels `normal_travel_mm`:
-/// 1 means one chord from start to end. Always at least 1; 0 for Rule::None (the circle).
+/// 1 means one chord from start to end. Always at least 1, at most kMaxArcSegments (a
+/// count the rule would make larger is read as that many); 0 for Rule::None (the circle).
 uint32_t executed_segments(const ArcSegmentation& s, double radius_mm, double sweep_rad, double normal_travel_mm = 0);
 
 /// Where the firmware of `s` ends one chord and begins the next on an arc from `start` about

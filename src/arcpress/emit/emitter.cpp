@@ -503,6 +503,8 @@ class Emitter {
     double sweep_deg = rad_to_deg(std::abs(g.sweep));
     if (sweep_deg < d().min_sweep_deg || sweep_deg > d().max_sweep_deg + 1e-9) return false;
     if (rs * std::abs(g.sweep) < d().min_arc_length_mm) return false;
+    // The firmware must be able to count the chords it cuts the arc into.
+    if (executed_segments(d().executed, rs, g.sweep, g.h1 - g.h0) >= kMaxArcSegments) return false;
     // Rounding the centre turns the arc's radii at its ends, and with them its tangents.
     for (const Vec3* p : {&s, &e}) {
       if (!tangent) break;

@@ -67,6 +67,7 @@ std::optional<Chosen> RunFitter::make_arc(uint32_t a, uint32_t e, const Vec2& ce
   // with that taken off keeps the chords in the band. Else the chords are measured
   // themselves (a flat arc); the circle must keep the band too.
   const uint32_t chords = executed_segments(o_.executed, g.radius_mm, g.sweep, g.h1 - g.h0);
+  if (chords >= kMaxArcSegments) return std::nullopt;  // more than the firmware counts
   double sagitta = chords_sagitta_mm(g.radius_mm, g.sweep, chords);
   // The firmware's chord ends, which its small-angle steps may pull off the circle: the
   // chords lie within their sagitta and that drift of the circle.
