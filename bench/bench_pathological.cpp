@@ -30,8 +30,6 @@ struct Case {
   std::string grows;                             ///< what doubles
   std::function<std::string(double size)> text;  ///< the program at a size
   double size;                                   ///< the 1x size
-  std::vector<std::string> options = {};         ///< given to both commands
-  std::vector<std::string> fit_options = {};     ///< given to the compressor alone
 };
 
 std::string head() { return "G21 G90\nG0 X0 Y0 Z0\nG1 F600\n"; }
@@ -73,16 +71,6 @@ std::vector<Case> cases() {
   c.push_back({"helix, many turns", "turns", [](double p) {
                  return head() + fmt::format("G3 X0 Y0 Z1e6 I0 J0.5 P{:.0f}\nM2\n", p);
                }, 1000});
-  c.push_back({"arcs at Grbl's tolerance", "moves", [](double n) {
-                 // A helix in G18 of 0.001 mm radius, four moves a turn: the XZ arcs through
-                 // its points have radii at half Grbl's $12 (0.002 mm) up to floating noise,
-                 // where its mc_arc() would cut them into ever more chords.
-                 std::string t = "G21 G90 G18\nG0 X0 Y0 Z0\nG1 F1000\n";
-                 const double x[4] = {0.001, 0, -0.001, 0}, z[4] = {0, 0.001, 0, -0.001};
-                 for (int i = 1; i <= int(n); ++i)
-                   t += fmt::format("G1 X{:.3f} Y{:.3f} Z{:.3f}\n", x[i % 4], 0.01 * i, z[i % 4]);
-                 return t + "M2\n";
-               }, 2000, {"--dialect", "grbl", "--tolerance", "0.002"}, {"--min-radius", "0"}});
   return c;
 }
 
@@ -103,13 +91,8 @@ int main(int argc, char** argv) {
       const fs::path file = dir / "case.nc";
       std::ofstream(file) << c.text(size);
       const fs::path out = dir / "out.nc";
-      std::vector<std::string> compress_args = {ARCPRESS_BINARY, file.string(), "-o", out.string()};
-      std::vector<std::string> diff_args = {ARCPRESS_BINARY, "diff", file.string(), out.string(), "-j1"};
-      compress_args.insert(compress_args.end(), c.options.begin(), c.options.end());
-      compress_args.insert(compress_args.end(), c.fit_options.begin(), c.fit_options.end());
-      diff_args.insert(diff_args.end(), c.options.begin(), c.options.end());
-      const ChildRun compress = run_child(compress_args);
-      const ChildRun diff = run_child(diff_args);
+      const ChildRun compress = run_child({ARCPRESS_BINARY, file.string(), "-o", out.string()});
+      const ChildRun diff = run_child({ARCPRESS_BINARY, "diff", file.string(), out.string(), "-j1"});
       auto ratio = [&](const ChildRun& now, const ChildRun& before, bool time) {
         if (k == 0) return std::string("");
         if (time && now.seconds < kNoiseSeconds && before.seconds < kNoiseSeconds) return std::string("-");
