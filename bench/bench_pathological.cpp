@@ -48,6 +48,12 @@ std::vector<Case> cases() {
                  for (int i = 1; i <= int(n); ++i) t += fmt::format("G1 X{:.4f} Y{:.4f}\n", i * 0.001, (i % 2) * 0.001);
                  return t + "M2\n";
                }, 31000});
+  c.push_back({"plunge in tiny steps", "moves", [](double n) {
+                 // Straight down in steps of 0.1 um: no direction in the plane anywhere.
+                 std::string t = head();
+                 for (int i = 1; i <= int(n); ++i) t += fmt::format("G1 Z{:.4f}\n", -0.0001 * i);
+                 return t + "M2\n";
+               }, 40000});
   c.push_back({"circle retraced", "moves", [](double n) {
                  std::string t = head();
                  for (int i = 1; i <= int(n); ++i) {

@@ -271,7 +271,7 @@ std::optional<Candidate> RunFitter::finish_from(uint32_t v, const Vec2& T, uint3
 /// vertex up to there within the band of the chord there.
 bool RunFitter::straight_ahead(uint32_t v, uint32_t limit) const {
   uint32_t e = v + 1;
-  while (e < limit && (q(e) - q(v)).squaredNorm() < kStraightAheadMm * kStraightAheadMm) ++e;
+  while (e < limit && e - v < kLocalMoves && (q(e) - q(v)).squaredNorm() < kStraightAheadMm * kStraightAheadMm) ++e;
   const Vec2 chord = q(e) - q(v);
   const double len = chord.norm();
   if (len <= kLengthEpsMm) return false;

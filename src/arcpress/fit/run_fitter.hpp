@@ -36,6 +36,11 @@ constexpr int kWiggleArcs = 4;
 /// How far ahead (mm) the input must run straight for the beam to offer lines along tangents
 /// turned by half the joint allowance (beam_chain()).
 constexpr double kStraightAheadMm = 1.0;
+/// The input's direction at a vertex, and whether it runs straight ahead, are read from at
+/// most this many moves each way, however short they are: a plunge written as thousands of
+/// steps along the plane's normal (no direction in the plane) would otherwise be read over
+/// again from every one of its vertices.
+constexpr uint32_t kLocalMoves = 256;
 /// Primitives a forced kink must save, at the least, where a chain wiggles (see untangle()).
 constexpr size_t kKinkWorth = 4;
 /// How many wiggles after the first untangle() mends in the chain it tries after a kink.

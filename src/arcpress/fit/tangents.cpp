@@ -8,15 +8,15 @@ namespace arcpress::fit_detail {
 
 /// The input's own direction at vertex e, from each side apart: the mean of the tangents
 /// at e of the circles through e and two vertices behind it, and through e and two ahead
-/// (0.1 mm apart or more). Where the curvature jumps (a fillet meeting a straight side),
+/// (0.1 mm apart or more, or kLocalMoves). Where the curvature jumps (a fillet meeting a straight side),
 /// each circle follows its own curve, where one circle through both sides would bend the
 /// tangent towards the tighter (by 0.46° at the end of a 5 mm fillet written in 0.2 mm
 /// moves, more than a joint may turn). input_tangent() where a side lacks the vertices.
 std::optional<Vec2> RunFitter::sided_tangent(uint32_t e, uint32_t lo, uint32_t hi) const {
   if (e <= lo || e >= hi) return std::nullopt;
   uint32_t wl = 1, wr = 1;
-  while (e - wl > lo && (q(e - wl) - q(e)).norm() < 0.1) ++wl;
-  while (e + wr < hi && (q(e + wr) - q(e)).norm() < 0.1) ++wr;
+  while (e - wl > lo && wl < kLocalMoves && (q(e - wl) - q(e)).norm() < 0.1) ++wl;
+  while (e + wr < hi && wr < kLocalMoves && (q(e + wr) - q(e)).norm() < 0.1) ++wr;
   if (e >= lo + 2 * wl && e + 2 * wr <= hi) {
     auto tl = circle_tangent(q(e), q(e - wl), q(e - 2 * wl));
     auto tr = circle_tangent(q(e), q(e + wr), q(e + 2 * wr));
@@ -26,12 +26,15 @@ std::optional<Vec2> RunFitter::sided_tangent(uint32_t e, uint32_t lo, uint32_t h
 }
 
 /// The input's own direction at vertex e: tangent at e of the circle through e-w, e, e+w,
-/// with w wide enough (0.1 mm each side) that 4-decimal rounding does not steer it.
+/// with w wide enough (0.1 mm each side, or kLocalMoves) that 4-decimal rounding does not
+/// steer it.
 /// Nothing at the ends of the stretch [lo, hi].
 std::optional<Vec2> RunFitter::input_tangent(uint32_t e, uint32_t lo, uint32_t hi) const {
   if (e <= lo || e >= hi) return std::nullopt;
   uint32_t w = 1;
-  while (e - w > lo && e + w < hi && ((q(e - w) - q(e)).norm() < 0.1 || (q(e + w) - q(e)).norm() < 0.1)) ++w;
+  while (e - w > lo && e + w < hi && w < kLocalMoves &&
+         ((q(e - w) - q(e)).norm() < 0.1 || (q(e + w) - q(e)).norm() < 0.1))
+    ++w;
   Vec2 a = q(e - w), b = q(e), c = q(e + w);
   auto t = circle_tangent(b, c, a);  // at b, pointing towards c
   return t;
