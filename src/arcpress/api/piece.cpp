@@ -337,6 +337,7 @@ void compress_piece(Piece& piece, const CompressOptions& options) {
   eo.format = opt.arc_format.value_or(opt.dialect.format);
   eo.tangent_slack_deg = 0.05 * opt.fit.g1_angle_deg;
   eo.threads = opt.threads;
+  eo.executed = opt.executed_rule();
   eo.start = piece.emit;
   r.output = emit_program(prog, in, runs, fits, eo, &r.stats);
   r.ok = true;

@@ -275,6 +275,9 @@ class Emitter {
   struct ArcScratch {
     std::vector<Vec3> pts;
     Vec2 ideal{0, 0};
+    uint32_t ideal_chords = 0;  ///< executed_segments() of the fitted arc
+    std::vector<Vec3> flat_pts;
+    std::vector<Vec2> chord_ends;
   };
 
   /// What the controller reads from one printed arc, checked against the input points.
@@ -416,6 +419,7 @@ class Emitter {
     scratch.ideal = ideal;
     const double r_ideal = (s2 - ideal).norm();
     const double sweep_ideal = std::abs(ArcGeom::sweep_of(s3, e3, ideal, pr.ccw));
+    scratch.ideal_chords = executed_segments(opt_.executed, r_ideal, sweep_ideal, e3.z() - s3.z());
     bool use_radius = opt_.format == ArcFormat::Radius && d().radius_word &&
                       // R is ambiguous near a half circle and meaningless near a full one
                       std::abs(rad_to_deg(sweep_ideal) - 180.0) > 15.0 && rad_to_deg(sweep_ideal) < 345.0;
@@ -494,7 +498,7 @@ class Emitter {
   /// Whether an arc from s to e about c (as the controller reads the printed numbers) is one
   /// the controller runs as meant, inside the band of the input points scratch.pts.
   /// With `tangent`, also whether its end tangents are within the slack of the fitted arc's.
-  bool acceptable(const Vec3& s, const Vec3& e, const Vec2& c, bool ccw, bool tangent, const ArcScratch& scratch) const {
+  bool acceptable(const Vec3& s, const Vec3& e, const Vec2& c, bool ccw, bool tangent, ArcScratch& scratch) const {
     double rs = (s.head<2>() - c).norm(), re = (e.head<2>() - c).norm();
     double dr = std::abs(rs - re);
     if (dr > d().radius_allowance_mm(rs)) return false;
@@ -515,7 +519,28 @@ class Emitter {
     // inside the band by what reading the program back may misread, kReadingShare.)
     const double band_mm = opt_.band_mm * (1 - kReadingShare);
     Deviation dev = arc_deviation(scratch.pts, g, band_mm - dr);
-    return dev.ordered && dev.max_mm <= band_mm - dr;
+    if (!dev.ordered || dev.max_mm > band_mm - dr) return false;
+    return chords_kept(s, e, c, g, band_mm - dr, scratch);
+  }
+
+  /// Where the band is held on the firmware's chords and the printed arc is cut into another
+  /// number of them than the fitted one (whose chords the fitter measured), whether those
+  /// chords, cut from the printed numbers as the firmware cuts them, stay within `band_mm`
+  /// of the input points in the plane. (Two chords where the fit had three lie twice as far
+  /// off the circle.)
+  bool chords_kept(const Vec3& s, const Vec3& e, const Vec2& c, const ArcGeom& g, double band_mm,
+                   ArcScratch& scratch) const {
+    if (!opt_.executed.moves_on_chords()) return true;
+    const uint32_t chords = executed_segments(opt_.executed, g.radius_mm, g.sweep, g.h1 - g.h0);
+    if (chords == scratch.ideal_chords) return true;
+    scratch.chord_ends.clear();
+    executed_chord_ends(opt_.executed, s.head<2>(), c, e.head<2>(), g.sweep, chords, scratch.chord_ends);
+    scratch.flat_pts.assign(scratch.pts.begin(), scratch.pts.end());
+    for (Vec3& p : scratch.flat_pts) p.z() = g.h0;
+    ArcGeom flat = g;
+    flat.h1 = g.h0;
+    const std::optional<double> bound = chords_deviation_bound(scratch.flat_pts, flat, scratch.chord_ends, band_mm);
+    return bound && *bound <= band_mm;
   }
 
   /// The dialect's limit on significant digits in one number.

@@ -74,6 +74,10 @@ struct EmitOptions {
   /// Threads that compose the runs' new blocks (0: one per hardware thread). The text is the
   /// same for any number.
   unsigned threads = 1;
+  /// The chords the firmware cuts arcs into, where the band is held on them
+  /// (CompressOptions::executed_rule()): a printed arc the firmware would cut into another
+  /// number of chords than the fitted one has its chords checked against the band again.
+  ArcSegmentation executed;
   EmitStart start;
 };
 
