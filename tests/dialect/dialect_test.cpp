@@ -392,6 +392,7 @@ TEST_CASE("a program names its own dialect by its slicer's flavor, where the fla
   const auto cura = flavor(";FLAVOR:Marlin\n;TIME:6666\n");
   REQUIRE(cura);
   CHECK(cura->dialect == "marlin");
+  CHECK(flavor(";FLAVOR:Marlin(Volumetric)\n")->dialect == "marlin");  // Marlin, E in mm³
   CHECK(flavor("; gcode_flavor = klipper\n")->dialect == "klipper");
   CHECK(flavor("; gcode_flavor = reprapfirmware\n")->dialect == "reprapfirmware");
   CHECK(flavor("; gcode_flavor = smoothie\n")->dialect == "smoothieware");

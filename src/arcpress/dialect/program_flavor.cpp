@@ -23,7 +23,7 @@ std::string_view trimmed(std::string_view s) {
 /// Slicers' flavor names that say which firmware, and the shipped dialect of each.
 constexpr std::pair<const char*, const char*> kFlavors[] = {
     {"marlin", "marlin"},     {"marlin2", "marlin"},  {"marlinlegacy", "marlin"},
-    {"marlinfirmware", "marlin"},
+    {"marlinfirmware", "marlin"}, {"marlin(volumetric)", "marlin"},  // Cura's "RepRap (Volumetric)"
     {"klipper", "klipper"},   {"reprapfirmware", "reprapfirmware"},
     {"smoothie", "smoothieware"}, {"smoothieware", "smoothieware"},
 };
