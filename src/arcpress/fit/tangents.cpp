@@ -8,10 +8,11 @@ namespace arcpress::fit_detail {
 
 /// The input's own direction at vertex e, from each side apart: the mean of the tangents
 /// at e of the circles through e and two vertices behind it, and through e and two ahead
-/// (0.1 mm apart or more, or kLocalMoves). Where the curvature jumps (a fillet meeting a straight side),
-/// each circle follows its own curve, where one circle through both sides would bend the
-/// tangent towards the tighter (by 0.46° at the end of a 5 mm fillet written in 0.2 mm
-/// moves, more than a joint may turn). input_tangent() where a side lacks the vertices.
+/// (0.1 mm apart or more, or kLocalMoves moves). Where the curvature jumps (a fillet
+/// meeting a straight side), each circle follows its own curve, where one circle through
+/// both sides would bend the tangent towards the tighter (by 0.46° at the end of a 5 mm
+/// fillet written in 0.2 mm moves, more than a joint may turn). input_tangent() where a
+/// side lacks the vertices.
 std::optional<Vec2> RunFitter::sided_tangent(uint32_t e, uint32_t lo, uint32_t hi) const {
   if (e <= lo || e >= hi) return std::nullopt;
   uint32_t wl = 1, wr = 1;
@@ -26,9 +27,8 @@ std::optional<Vec2> RunFitter::sided_tangent(uint32_t e, uint32_t lo, uint32_t h
 }
 
 /// The input's own direction at vertex e: tangent at e of the circle through e-w, e, e+w,
-/// with w wide enough (0.1 mm each side, or kLocalMoves) that 4-decimal rounding does not
-/// steer it.
-/// Nothing at the ends of the stretch [lo, hi].
+/// with w wide enough (0.1 mm each side, or kLocalMoves moves) that 4-decimal rounding
+/// does not steer it. Nothing at the ends of the stretch [lo, hi].
 std::optional<Vec2> RunFitter::input_tangent(uint32_t e, uint32_t lo, uint32_t hi) const {
   if (e <= lo || e >= hi) return std::nullopt;
   uint32_t w = 1;
