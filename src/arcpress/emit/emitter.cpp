@@ -420,7 +420,8 @@ class Emitter {
     scratch.ideal = ideal;
     const double r_ideal = (s2 - ideal).norm();
     const double sweep_ideal = std::abs(ArcGeom::sweep_of(s3, e3, ideal, pr.ccw));
-    scratch.ideal_chords = executed_segments(opt_.executed, r_ideal, sweep_ideal, e3.z() - s3.z());
+    if (opt_.executed.moves_on_chords())
+      scratch.ideal_chords = executed_segments(opt_.executed, r_ideal, sweep_ideal, e3.z() - s3.z());
     bool use_radius = opt_.format == ArcFormat::Radius && d().radius_word &&
                       // R is ambiguous near a half circle and meaningless near a full one
                       std::abs(rad_to_deg(sweep_ideal) - 180.0) > 15.0 && rad_to_deg(sweep_ideal) < 345.0;
@@ -509,7 +510,8 @@ class Emitter {
     if (sweep_deg < d().min_sweep_deg || sweep_deg > d().max_sweep_deg + 1e-9) return false;
     if (rs * std::abs(g.sweep) < d().min_arc_length_mm) return false;
     // The firmware must be able to count the chords it cuts the arc into.
-    if (executed_segments(d().executed, rs, g.sweep, g.h1 - g.h0) >= kMaxArcSegments) return false;
+    if (d().executed.moves_on_chords() && executed_segments(d().executed, rs, g.sweep, g.h1 - g.h0) >= kMaxArcSegments)
+      return false;
     // Rounding the centre turns the arc's radii at its ends, and with them its tangents.
     for (const Vec3* p : {&s, &e}) {
       if (!tangent) break;
