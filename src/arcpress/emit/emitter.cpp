@@ -7,7 +7,6 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
-#include <limits>
 #include <optional>
 
 #include "arcpress/core/deviation.hpp"
@@ -276,7 +275,6 @@ class Emitter {
   struct ArcScratch {
     std::vector<Vec3> pts;
     Vec2 ideal{0, 0};
-    uint32_t ideal_chords = 0;  ///< executed_segments() of the fitted arc
     std::vector<Vec3> flat_pts;
     std::vector<Vec2> chord_ends;
   };
@@ -420,8 +418,6 @@ class Emitter {
     scratch.ideal = ideal;
     const double r_ideal = (s2 - ideal).norm();
     const double sweep_ideal = std::abs(ArcGeom::sweep_of(s3, e3, ideal, pr.ccw));
-    if (opt_.executed.moves_on_chords())
-      scratch.ideal_chords = executed_segments(opt_.executed, r_ideal, sweep_ideal, e3.z() - s3.z());
     bool use_radius = opt_.format == ArcFormat::Radius && d().radius_word &&
                       // R is ambiguous near a half circle and meaningless near a full one
                       std::abs(rad_to_deg(sweep_ideal) - 180.0) > 15.0 && rad_to_deg(sweep_ideal) < 345.0;
@@ -523,28 +519,19 @@ class Emitter {
     const double band_mm = opt_.band_mm * (1 - kReadingShare);
     Deviation dev = arc_deviation(scratch.pts, g, band_mm - dr);
     if (!dev.ordered || dev.max_mm > band_mm - dr) return false;
-    return chords_kept(s, e, c, g, dev.max_mm, band_mm - dr, scratch);
+    return chords_kept(s, e, c, g, band_mm - dr, scratch);
   }
 
-  /// Where the band is held on the firmware's chords, whether the chords of the printed arc
-  /// (whose circle lies `circle_mm` from the input points), cut from the printed numbers as
-  /// the firmware cuts them, stay within `band_mm` of the input points in the plane. The
-  /// fitter measured the fitted arc's chords; rounding the centre moves them, and can change
-  /// their number (two chords where the fit had three lie twice as far off the circle).
-  bool chords_kept(const Vec3& s, const Vec3& e, const Vec2& c, const ArcGeom& g, double circle_mm, double band_mm,
+  /// Where the band is held on the firmware's chords, whether the chords of the printed arc,
+  /// cut from the printed numbers as the firmware cuts them, stay within `band_mm` of the
+  /// input points in the plane. The fitter measured the fitted arc's chords; rounding the
+  /// centre moves them, and can change their number (two chords where the fit had three lie
+  /// twice as far off the circle), and the firmware's small-angle steps pull them off the
+  /// circle by more than the sagitta says, so they are measured, not bounded.
+  bool chords_kept(const Vec3& s, const Vec3& e, const Vec2& c, const ArcGeom& g, double band_mm,
                    ArcScratch& scratch) const {
     if (!opt_.executed.moves_on_chords()) return true;
     const uint32_t chords = executed_segments(opt_.executed, g.radius_mm, g.sweep, g.h1 - g.h0);
-    // The chords lie within their sagitta of the circle, up to the firmware's own rounding:
-    // its chord ends are single-precision numbers, turned a small angle at a time from its
-    // last exact end. Where the printed circle keeps the band with both taken off, and the
-    // firmware cuts it into as many chords as the fitted arc, the chords keep it too.
-    const double rounding_mm = 4 * (std::numeric_limits<float>::epsilon() / 2) *
-                               (std::max(s.head<2>().cwiseAbs().maxCoeff(), e.head<2>().cwiseAbs().maxCoeff()) +
-                                g.radius_mm * (1 + opt_.executed.correction_period_or_default()));
-    if (chords == scratch.ideal_chords &&
-        circle_mm + chords_sagitta_mm(g.radius_mm, g.sweep, chords) + rounding_mm <= band_mm)
-      return true;
     scratch.chord_ends.clear();
     executed_chord_ends(opt_.executed, s.head<2>(), c, e.head<2>(), g.sweep, chords, scratch.chord_ends);
     scratch.flat_pts.assign(scratch.pts.begin(), scratch.pts.end());
