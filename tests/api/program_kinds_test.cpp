@@ -136,6 +136,36 @@ TEST_CASE("a printer program that retracts in firmware (G10/G11) between its cur
     CHECK(r.output.find(kept) != std::string::npos);
 }
 
+TEST_CASE("a Klipper print with relative extrusion is fitted between the host commands that forget its position",
+          "[api][printer]") {
+  // Klipper's EXCLUDE_OBJECT_START/END around each of two circles of 40 mm radius in 360
+  // moves (Klipper's 1 mm chords lie 0.003 mm inside), E relative (M83) in steps of 0.03: after each host command the first move comes
+  // from an unknown position, and E there is the sum of the words before it, which the
+  // output's arcs sum in other groups: the doubles differ in their last bits.
+  auto circle = [](double cx) {
+    std::string t;
+    for (int k = 1; k <= 360; ++k) {
+      const double a = deg_to_rad(k);
+      t += fmt::format("G1 X{:.3f} Y{:.3f} E0.03\n", cx + 40 * std::cos(a), 40 * std::sin(a));
+    }
+    return t;
+  };
+  const std::string t = "G21 G90 M83\nG28\nG0 X40 Y0 Z0.2 F6000\nG1 F1200\n"
+                        "EXCLUDE_OBJECT_START NAME=a\nG1 X40 Y0 E0.01\n" + circle(0) +
+                        "EXCLUDE_OBJECT_END NAME=a\nG0 X140 Y0 F6000\nEXCLUDE_OBJECT_START NAME=b\nG1 X140 Y0 E0.01 F1200\n" +
+                        circle(100) + "EXCLUDE_OBJECT_END NAME=b\nM84\n";
+  DiagnosticSink sink("t.gcode");
+  const CompressResult r = compressed(t, sink, "klipper");
+  CHECK(r.runs_kept_as_input == 0);
+  CHECK(r.stats.arcs_out >= 4);  // each circle in arcs of at most 180 degrees
+  CHECK(r.stats.arcs_out + r.stats.lines_out <= 8);
+  // The moves from an unknown position are the input's own, as is every other line.
+  for (const char* kept : {"EXCLUDE_OBJECT_START NAME=a\nG1 X40 Y0 E0.01\n",
+                           "EXCLUDE_OBJECT_END NAME=a\nG0 X140 Y0 F6000\nEXCLUDE_OBJECT_START NAME=b\nG1 X140 Y0 E0.01 F1200\n",
+                           "EXCLUDE_OBJECT_END NAME=b\nM84\n"})
+    CHECK(r.output.find(kept) != std::string::npos);
+}
+
 TEST_CASE("a laser contour with S on every move is fitted with arcs that carry its S, never across an S change",
           "[api][laser]") {
   // Grbl laser mode: a circle of radius 10 mm in 2° steps, S300 on the first half's moves,

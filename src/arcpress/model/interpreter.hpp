@@ -39,21 +39,17 @@ struct ModalState {
   /// Whether a reader in state `o` reads every following block as one in this state does:
   /// the same position, known axes, frame, plane, feed and spindle, and (where
   /// `with_motion`) modal motion. The reasons axes are unknown, and their lines, are only told.
-  /// Positions agree to the floating noise of summing relative moves (an E counter summed
-  /// over arcs rather than over the moves they replace).
+  /// Positions agree to the floating noise of summing relative moves (same_place()).
   /// (So are the G92 offsets, taken from such positions.)
   bool reads_as(const ModalState& o, bool with_motion) const {
-    auto same = [](double a, double b) { return std::abs(a - b) <= kSameStateShare * std::max({1.0, std::abs(a), std::abs(b)}); };
     Frame f = frame;
     for (int ax = 0; ax < kAxisCount; ++ax) {
-      if (!same(pos[ax], o.pos[ax]) || !same(frame.offset[ax], o.frame.offset[ax])) return false;
+      if (!same_place(pos[ax], o.pos[ax]) || !same_place(frame.offset[ax], o.frame.offset[ax])) return false;
       f.offset[ax] = o.frame.offset[ax];
     }
     return f.same_as(o.frame) && plane == o.plane && known == o.known && spindle == o.spindle &&
            feed_known == o.feed_known && (!feed_known || feed_mm == o.feed_mm) && (!with_motion || motion == o.motion);
   }
-  /// Relative difference of two positions that is floating noise, not a place.
-  static constexpr double kSameStateShare = 1e-9;
 };
 
 /// The state at the start of a program read by `dialect`'s controller.

@@ -2,7 +2,9 @@
 #pragma once
 // The interpreter's output: the machine state ("frame") under which words are read, and
 // one Move per block that changes position.
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -126,6 +128,17 @@ struct Move {
   bool fittable() const { return unfit == Unfit::None; }
   Vec3 xyz() const { return {to[kX], to[kY], to[kZ]}; }
 };
+
+/// Whether two values of one axis are the same place, but for the floating noise of summing
+/// relative words (G91, or M83 for E) in other groups: an E counter summed over arcs rather
+/// than over the moves they replace (0.1 + 0.3 + 0.1 against five times 0.1). A sum of n
+/// doubles drifts by at most n units in the last place of its largest partial sum, 10⁻¹⁰ of
+/// it for a million words; the share allowed is ten times that, and the smallest digit a
+/// program prints moves a value by more (10⁻⁵ at 1 000 mm).
+inline bool same_place(double a, double b) {
+  constexpr double kSumNoiseShare = 1e-9;
+  return std::abs(a - b) <= kSumNoiseShare * std::max({1.0, std::abs(a), std::abs(b)});
+}
 
 /// A feed move (G1/G2/G3) that could not be placed, and what made its axis unknown.
 struct UnplacedMove {
