@@ -381,6 +381,42 @@ TEST_CASE("G10 and G11 are a printer firmware's retraction that leaves the progr
   CHECK_FALSE(qi.moves.back().known);
 }
 
+TEST_CASE("the extended commands a dialect names as moving nothing leave the position known and others forget it",
+          "[dialect][printer]") {
+  const Dialect klipper = shipped("klipper");
+  for (const char* name : {"EXCLUDE_OBJECT_START", "EXCLUDE_OBJECT_END", "SET_VELOCITY_LIMIT", "SET_PRESSURE_ADVANCE"}) {
+    INFO(name);
+    CHECK(std::count(klipper.position_keeping_commands.begin(), klipper.position_keeping_commands.end(), name) == 1);
+  }
+  const std::string text =
+      "G21 G90 M83\nG0 X0 Y0 Z0.2\nG1 X1 E1 F600\n"
+      "EXCLUDE_OBJECT_START NAME=part_1\nG1 X2 E1\n"  // an object label (exclude_object.py)
+      "  set_velocity_limit ACCEL=3000\nG1 X3 E1\n"  // Klipper reads names in any case
+      "/EXCLUDE_OBJECT_END NAME=part_1\nG1 X4 E1\n"   // behind a block delete
+      "CLEAN_NOZZLE\nG1 X5 E1\n";                     // a macro of the printer's own config
+  DiagnosticSink sink("t.gcode");
+  const Program p = lex("t.gcode", text, sink);
+  const Interpretation in = interpret(p, sink, klipper);
+  REQUIRE(in.moves.size() == 6);
+  for (size_t k = 1; k < 5; ++k) {
+    INFO(k);
+    CHECK(in.moves[k].known);
+  }
+  CHECK(in.moves[4].to[kX] == 4.0);
+  CHECK_FALSE(in.moves[5].known);
+  CHECK(in.moves[5].unfit == Unfit::UnknownAfterControl);
+  // A dialect without the list (Marlin has no such commands) forgets the position at each.
+  DiagnosticSink other("t.gcode");
+  const Interpretation marlin = interpret(p, other, shipped("marlin"));
+  CHECK_FALSE(marlin.moves[2].known);
+  CHECK(marlin.moves[2].unfit == Unfit::UnknownAfterControl);
+  // A name the lexer would not read as a command's is refused where the file says it.
+  CHECK(error_of("name = \"x\"\n[printer]\nposition_keeping_commands = [\"SET FAN\"]\n")
+            .find("user.toml:3:30: printer.position_keeping_commands: \"SET FAN\": expected a command's name") !=
+        std::string::npos);
+  CHECK(error_of("name = \"x\"\n[printer]\nposition_keeping_commands = [\"M486\"]\n") != "");
+}
+
 TEST_CASE("a program names its own dialect by its slicer's flavor, where the flavor says which firmware",
           "[dialect][flavor]") {
   auto flavor = [](const std::string& text) { return program_flavor(text); };

@@ -78,6 +78,10 @@ struct Dialect {
   /// recovers it; neither moves the programmed position (a Z hop is undone on recovery).
   /// Elsewhere G10 sets offsets or tables and G11 is not read.
   bool firmware_retraction = false;
+  /// Extended commands (Klipper's `NAME ARG=...` lines, by their name in capitals) that move
+  /// nothing ([printer] position_keeping_commands): the position stays known across them.
+  /// Any other such command, a user's macro among them, may move anything.
+  std::vector<std::string> position_keeping_commands;
 
   // --- numbers ----------------------------------------------------------------------
   NumberDigits mm{4, 4, 6, 1, 5};

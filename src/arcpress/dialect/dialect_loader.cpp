@@ -5,6 +5,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <cerrno>
 #include <cstring>
@@ -105,8 +106,10 @@ class TableReader {
     }
     fail(n->source(), key, "expected one of " + quoted(choices));
   }
-  /// An array of strings, each one of `choices` when given.
-  bool strings(std::string_view key, std::vector<std::string>& out, std::initializer_list<std::string_view> choices = {}) {
+  /// An array of strings, each one of `choices` when given, and each passing `valid` (which
+  /// says what it expected otherwise) when given.
+  bool strings(std::string_view key, std::vector<std::string>& out, std::initializer_list<std::string_view> choices = {},
+               const char* (*valid)(std::string_view) = nullptr) {
     auto* n = node(key);
     if (!n) return false;
     auto* arr = n->as_array();
@@ -118,6 +121,7 @@ class TableReader {
       if (choices.size() && std::find(choices.begin(), choices.end(), v) == choices.end()) {
         fail(e.source(), key, fmt::format("\"{}\" is not one of {}", v, quoted(choices)));
       }
+      if (const char* expected = valid ? valid(v) : nullptr) fail(e.source(), key, fmt::format("\"{}\": {}", v, expected));
       out.push_back(v);
     }
     return true;
@@ -229,6 +233,16 @@ Dialect parse_dialect(const std::string& text, const std::string& path) {
   if (const toml::table* t = top.table("printer")) {
     TableReader r(*t, path, "printer.");
     r.boolean("firmware_retraction", d.firmware_retraction);
+    // A name as the lexer reads an extended command's.
+    auto command_name = [](std::string_view v) -> const char* {
+      auto alpha = [](char c) { return std::isalpha(static_cast<unsigned char>(c)) != 0; };
+      const bool ok = v.size() >= 2 && alpha(v[0]) && (alpha(v[1]) || v[1] == '_') &&
+                      std::all_of(v.begin(), v.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+      return ok ? nullptr : "expected a command's name: two letters (or a letter and '_'), then letters, digits or '_'";
+    };
+    if (r.strings("position_keeping_commands", d.position_keeping_commands, {}, command_name))
+      for (std::string& c : d.position_keeping_commands)
+        for (char& ch : c) ch = char(std::toupper(static_cast<unsigned char>(ch)));
     r.finish();
   }
   if (const toml::table* t = top.table("numbers")) {

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cctype>
 #include <cmath>
 #include <optional>
 
@@ -61,6 +62,22 @@ class Interpreter {
   void reset(const ModalState& s) { s_ = s; }
 
  private:
+  /// Whether the extended command on `line` is one the dialect says moves nothing.
+  bool keeps_position(std::string_view line) const {
+    const auto& names = d_.position_keeping_commands;
+    if (names.empty()) return false;
+    size_t i = 0;
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '/')) ++i;
+    size_t e = i;
+    while (e < line.size() && (std::isalnum(static_cast<unsigned char>(line[e])) || line[e] == '_')) ++e;
+    const std::string_view name = line.substr(i, e - i);
+    return std::any_of(names.begin(), names.end(), [&](const std::string& n) {
+      return n.size() == name.size() && std::equal(n.begin(), n.end(), name.begin(), [](char x, char y) {
+               return x == std::toupper(static_cast<unsigned char>(y));
+             });
+    });
+  }
+
   void block(uint32_t bi, const Block& b) {
     switch (b.kind) {
       case BlockKind::Empty:
@@ -70,11 +87,14 @@ class Interpreter {
         break;
       case BlockKind::HostCommand:
         // Firmware M-codes with a text argument (a message, an object label, a printer check,
-        // a file name) move nothing; M32 starts another program, and other host commands
-        // (`$H` homing, `$J=` jogging, firmware macros) may move anything.
+        // a file name) move nothing, nor do the extended commands the dialect names
+        // (Klipper's EXCLUDE_OBJECT_START, SET_VELOCITY_LIMIT, ...); M32 starts another
+        // program, and other host commands (`$H` homing, `$J=` jogging, firmware macros) may
+        // move anything.
         if (b.word_count > 0 && p_->words_begin(b)->letter == 'M' && !p_->words_begin(b)->is_expr &&
             p_->words_begin(b)->code10() != 320)
           return;
+        if (keeps_position(p_->raw(b))) return;
         forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterControl, bi);
         return;
       default:
