@@ -70,6 +70,9 @@ RandomCase random_case(std::span<const uint8_t> bytes) {
     // Now and then a block that is no move: runs end there, and are fitted as one chain.
     if ((h & 0x3f) == 0x21) s += "(note)\n";
     if ((h & 0x3f) == 0x22) s += fmt::format("G1 F{}\n", 500 + (i % 7) * 100);
+    // A printer's own macro: the position is unknown until the next move sets every axis,
+    // and that move's E is the sum of the relative E words before it.
+    if ((h & 0x3f) == 0x27) s += "CLEAN_NOZZLE\n";
     const double px = std::stod(fmt::format("{:.{}f}", x, decimals)), py = std::stod(fmt::format("{:.{}f}", y, decimals));
     s += fmt::format("G1 X{:.{}f} Y{:.{}f} Z{:.{}f}", x, decimals, y, decimals, z, decimals);
     if (extrudes) {
