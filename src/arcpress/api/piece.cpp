@@ -20,11 +20,14 @@ namespace arcpress {
 
 namespace {
 
-/// Whether output move j is a fit's rather than input move i as it was.
+/// Whether output move j is a fit's rather than input move i as it was (where the program
+/// is relative, to the floating noise of the sums: same_place()).
 bool fitted_move(const Interpretation& in, size_t i, const Interpretation& out, size_t j) {
   const Move& a = in.moves[i];
   const Move& b = out.moves[j];
-  return a.kind != b.kind || a.to != b.to || in.from(i) != out.from(j) || (is_arc(a.kind) && a.center != b.center);
+  return a.kind != b.kind || !same_places(a.to, b.to) || !same_places(in.from(i), out.from(j)) ||
+         (is_arc(a.kind) && !(same_place(a.center.x(), b.center.x()) && same_place(a.center.y(), b.center.y()) &&
+                              same_place(a.center.z(), b.center.z())));
 }
 
 /// Whether two moves with the same unknown axes end at the same place on every axis whose

@@ -140,6 +140,13 @@ inline bool same_place(double a, double b) {
   return std::abs(a - b) <= kSumNoiseShare * std::max({1.0, std::abs(a), std::abs(b)});
 }
 
+/// same_place() on every axis.
+inline bool same_places(const AxisValues& a, const AxisValues& b) {
+  for (size_t ax = 0; ax < a.size(); ++ax)
+    if (!same_place(a[ax], b[ax])) return false;
+  return true;
+}
+
 /// A feed move (G1/G2/G3) that could not be placed, and what made its axis unknown.
 struct UnplacedMove {
   uint32_t move = 0;        ///< index into Interpretation::moves
