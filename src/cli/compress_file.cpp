@@ -197,6 +197,17 @@ int compress_file(const CompressArgs& a, FileReport& report, std::atomic<size_t>
     if (c.max_rapid_mm > r.band_mm)
       fmt::format_to(std::back_inserter(log), "arcpress: verification failed: a rapid ends {:.6f} mm away, input line {}, output line {}\n",
                  c.max_rapid_mm, c.worst_rapid.line_a, c.worst_rapid.line_b);
+    if (const PathComparison& pc = r.comparison; pc.max_extra_axis > r.band_mm && pc.extra_axis >= 0)
+      fmt::format_to(std::back_inserter(log),
+                     "arcpress: verification failed: the output carries {} {:.6f} {} away from the input's (band {}), "
+                     "input line {}, output line {}\n",
+                     kAxisLetters[pc.extra_axis], pc.max_extra_axis, kAxisIsLinear[pc.extra_axis] ? "mm" : "degrees",
+                     r.band_mm, pc.extra_axis_line_a, pc.extra_axis_line_b);
+    if (c.max_extra_axis > r.band_mm && c.extra_axis >= 0)
+      fmt::format_to(std::back_inserter(log),
+                     "arcpress: verification failed: {} differs by {:.6f} {}, input line {}, output line {}\n",
+                     kAxisLetters[c.extra_axis], c.max_extra_axis, kAxisIsLinear[c.extra_axis] ? "mm" : "degrees",
+                     c.worst_extra_axis.line_a, c.worst_extra_axis.line_b);
     for (const std::string& f : c.findings) fmt::format_to(std::back_inserter(log), "arcpress: verification failed: {}\n", f);
     nothing_written();
     return kExitVerifyFailed;
@@ -262,6 +273,12 @@ int compress_file(const CompressArgs& a, FileReport& report, std::atomic<size_t>
                  : unforced.empty()           ? std::string(", each forced by the band or the digits")
                                               : fmt::format(", {} of them not forced (at input line {})", unforced.size(),
                                                             unforced.front()));
+      if (c.extra_axis >= 0)
+        fmt::format_to(std::back_inserter(log),
+                       "  extra axes     {} carried at most {:.6f} {} from the input's value at its vertices (band {}), "
+                       "input line {}, output line {}\n",
+                       kAxisLetters[c.extra_axis], c.max_extra_axis, kAxisIsLinear[c.extra_axis] ? "mm" : "degrees",
+                       r.band_mm, c.extra_axis_line_a, c.extra_axis_line_b);
       fmt::format_to(std::back_inserter(log),
                      "  check          {} piece{} move by move, {} of them also as whole paths (where the moves "
                      "could not be paired one for one)\n",

@@ -882,3 +882,47 @@ TEST_CASE("text written back as it was passes the check, and moves too far to ch
   CHECK(r.not_fitted.front().why == Unfit::FarFromOrigin);
   CHECK(r.not_fitted.front().moves == 400);
 }
+
+TEST_CASE("a rotary or extra axis is compared along the path: programs that differ only in it are different", "[diff][axes]") {
+  // A straight cut along X while A turns by 3 degrees a millimetre (a 4th-axis wrap), then a
+  // rapid that turns B.
+  auto wrap = [](double a_at_5, double b_after) {
+    std::string t = "G21 G90\nG0 X0 Y0 Z1 A0 B0\nG1 Z0 F300\n";
+    for (int k = 1; k <= 10; ++k) t += fmt::format("G1 X{} A{:.3f}\n", k, k == 5 ? a_at_5 : 3.0 * k);
+    return t + fmt::format("G0 Z5 B{}\nM2\n", b_after);
+  };
+  const ProgramDiff same = diff_of(wrap(15, 90), wrap(15, 90));
+  CHECK(same.extra_axes_compared);
+  CHECK(same.max_extra_axis == 0.0);
+  CHECK(same.same(0.01));
+  SECTION("A off by 2 degrees at one vertex: found there, by the feed's pairing, though the XYZ path is the same") {
+    const ProgramDiff d = diff_of(wrap(15, 90), wrap(17, 90));
+    CHECK(d.max_deviation_mm == 0.0);
+    CHECK(d.extra_axis == kA);
+    CHECK(d.max_extra_axis > 0.9);  // at the middle of a move next to it: half of 2 degrees
+    CHECK(d.max_extra_axis <= 2.0);
+    CHECK((d.worst_extra_axis.line_b == 8 || d.worst_extra_axis.line_b == 9));  // "G1 X5 A17.000" or the move after
+    CHECK(d.verdict(0.01) == ProgramDiff::Verdict::Different);
+    CHECK(d.same(1.0));  // a band of a degree lets it pass
+  }
+  SECTION("A left out of the cut altogether") {
+    std::string flat = "G21 G90\nG0 X0 Y0 Z1 A0 B0\nG1 Z0 F300\n";
+    for (int k = 1; k <= 10; ++k) flat += fmt::format("G1 X{}\n", k);
+    flat += "G0 Z5 B90\nM2\n";
+    const ProgramDiff d = diff_of(wrap(15, 90), flat);
+    CHECK(d.max_deviation_mm == 0.0);
+    CHECK(d.max_extra_axis == 30.0);  // where the rapid after the cut ends, A at 30 against 0
+    CHECK_FALSE(d.same(0.01));
+  }
+  SECTION("B at the rapid's end") {
+    const ProgramDiff d = diff_of(wrap(15, 90), wrap(15, 45));
+    CHECK(d.max_rapid_mm == 0.0);
+    CHECK(d.extra_axis == kB);
+    CHECK(d.max_extra_axis == 45.0);
+    CHECK(d.worst_extra_axis.line_b == 14);
+    CHECK_FALSE(d.same(0.01));
+  }
+  SECTION("a program where no extra axis moves compares none") {
+    CHECK_FALSE(diff_of(zigzag(), zigzag()).extra_axes_compared);
+  }
+}

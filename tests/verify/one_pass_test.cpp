@@ -205,3 +205,37 @@ TEST_CASE("on programs made from random bytes, in every plane, method, scale and
   CHECK(one_pass > 1000);
   CHECK(whole < one_pass / 4);
 }
+
+TEST_CASE("the check measures a rotary axis at every input vertex an output move replaces, as the controller carries "
+          "it along the move",
+          "[verify][one-pass][axes]") {
+  // Along X while A turns ever faster (a quarter of a degree a millimetre more each move):
+  // the fit may join moves only while A, carried linearly along the block, stays within the
+  // band of the input's A at every vertex between.
+  std::string text = "G21 G90 G17\nG0 X0 Y0 Z0 A0\nG1 F300\n";
+  double a = 0;
+  for (int k = 1; k <= 40; ++k) text += fmt::format("G1 X{} A{:.4f}\n", k, a += 0.001 * k);
+  text += "M2\n";
+  CompressOptions opt;
+  opt.dialect = dialect_named("linuxcnc");
+  DiagnosticSink sink("in");
+  const CompressResult r = compress("in", text, opt, sink);
+  REQUIRE(r.within_band());
+  CHECK(r.stats.lines_out + r.stats.arcs_out < 40);  // some moves were joined
+  CHECK(r.comparison.extra_axis == kA);
+  CHECK(r.comparison.max_extra_axis > 0);
+  CHECK(r.comparison.max_extra_axis <= opt.fit.tolerance_mm);
+  SECTION("one line over all of it, with the right ends, is refused at the vertex where A is farthest from it") {
+    const std::string one = "G21 G90 G17\nG0 X0 Y0 Z0 A0\nG1 F300\n" + fmt::format("G1 X40 A{:.4f}\n", a) + "M2\n";
+    const CompressResult v = checked(text, one, opt);
+    CHECK(v.comparison.matched);
+    CHECK(v.comparison.max_deviation_mm == 0.0);  // the same line in XYZ
+    CHECK(v.comparison.extra_axis == kA);
+    // A at X20 is 0.21 degrees; the line carries 0.82 / 2 = 0.41 there: the largest gap of
+    // the parabola, at its middle.
+    CHECK(v.comparison.max_extra_axis == Approx(0.2).margin(1e-9));
+    CHECK(v.comparison.extra_axis_line_a == 23);  // "G1 X20 ..."
+    CHECK(v.comparison.extra_axis_line_b == 4);
+    CHECK_FALSE(v.within_band());
+  }
+}

@@ -227,6 +227,7 @@ std::vector<uint32_t> refused_output_lines(const CompressResult& r) {
   const PathComparison& c = r.comparison;
   if (!c.matched) lines.push_back(c.mismatch_line_b);
   if (c.max_deviation_mm > r.band_mm) lines.push_back(c.worst_line_b);
+  if (c.max_extra_axis > r.band_mm) lines.push_back(c.extra_axis_line_b);
   if (c.max_wrong_side_mm > r.side_allowance_mm) lines.push_back(c.wrong_side_line_b);
   for (const DiffPlace& p : r.check.worst)
     if (p.deviation_mm > r.band_mm) lines.push_back(p.line_b);
@@ -459,7 +460,7 @@ constexpr size_t kMaxFindings = 20;
 
 void add_diff(ProgramDiff& into, ProgramDiff d, size_t lines_before) {
   for (DiffPlace& p : d.worst) shift(p, lines_before);
-  for (DiffPlace* p : {&d.worst_rapid, &d.worst_entry, &d.worst_feed}) shift(*p, lines_before);
+  for (DiffPlace* p : {&d.worst_rapid, &d.worst_entry, &d.worst_feed, &d.worst_extra_axis}) shift(*p, lines_before);
   add_summary(into.a, d.a);
   add_summary(into.b, d.b);
   into.max_deviation_mm = std::max(into.max_deviation_mm, d.max_deviation_mm);
@@ -471,6 +472,9 @@ void add_diff(ProgramDiff& into, ProgramDiff d, size_t lines_before) {
   keep_largest(into.max_rapid_mm, into.worst_rapid, d.max_rapid_mm, d.worst_rapid);
   keep_largest(into.max_entry_mm, into.worst_entry, d.max_entry_mm, d.worst_entry);
   keep_largest(into.max_feed_difference_pct, into.worst_feed, d.max_feed_difference_pct, d.worst_feed);
+  into.extra_axes_compared = into.extra_axes_compared || d.extra_axes_compared;
+  if (d.max_extra_axis > into.max_extra_axis) into.extra_axis = d.extra_axis;
+  keep_largest(into.max_extra_axis, into.worst_extra_axis, d.max_extra_axis, d.worst_extra_axis);
   into.max_extrusion_difference_mm = std::max(into.max_extrusion_difference_mm, d.max_extrusion_difference_mm);
   into.max_extrusion_per_mm_difference_pct =
       std::max(into.max_extrusion_per_mm_difference_pct, d.max_extrusion_per_mm_difference_pct);
@@ -494,6 +498,12 @@ void add_comparison(PathComparison& into, const PathComparison& c, size_t lines_
     into.worst_point = c.worst_point;
   }
   into.covers_path = into.covers_path && c.covers_path;
+  if (c.max_extra_axis > into.max_extra_axis) {
+    into.max_extra_axis = c.max_extra_axis;
+    into.extra_axis = c.extra_axis;
+    into.extra_axis_line_a = c.extra_axis_line_a;
+    into.extra_axis_line_b = c.extra_axis_line_b ? c.extra_axis_line_b + uint32_t(lines_before) : 0;
+  }
   if (c.max_executed_mm > into.max_executed_mm) {
     into.max_executed_mm = c.max_executed_mm;
     into.executed_line_a = c.executed_line_a;

@@ -71,6 +71,25 @@ Vec3 nearest_on_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
   return t <= 0.5 ? Vec3(a + t * d) : Vec3(b - (1 - t) * d);
 }
 
+double line_progress(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 d = b - a;
+  const double len2 = d.squaredNorm();
+  if (len2 <= kLengthEpsMm * kLengthEpsMm) return 0;
+  return std::clamp((p - a).dot(d) / len2, 0.0, 1.0);
+}
+
+double arc_progress(const Vec3& p, const ArcGeom& arc) {
+  const double turn = std::abs(arc.sweep);
+  if (turn <= 0) return 0;
+  // The turn from the start towards p, the arc's way round, in [0, 2π).
+  double d = std::atan2(p.y() - arc.center.y(), p.x() - arc.center.x()) - arc.start_angle;
+  if (arc.sweep < 0) d = -d;
+  d = std::fmod(d, 2 * kPi);
+  if (d < 0) d += 2 * kPi;
+  if (d <= turn) return d / turn;
+  return d - turn < 2 * kPi - d ? 1.0 : 0.0;  // past the end, or before the start
+}
+
 double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
   return (p - nearest_on_segment(p, a, b)).norm();
 }

@@ -104,6 +104,14 @@ bool is_corner(const Vec3& a, const Vec3& b, const Vec3& c, double band_mm, doub
 bool is_corner_beside_corner(const Vec3* z, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3* d,
                              bool a_is_corner, bool c_is_corner, double band_mm);
 
+/// How far along a block the controller has carried the block's other axes (A/B/C, U/V/W,
+/// which it moves linearly with the block's progress) where the tool passes nearest p, from
+/// 0 at its start to 1 at its end: the share of the line a-b at p's foot on it (0 for a line
+/// shorter than kLengthEpsMm), or of the arc's sweep at p's direction from its centre (p in
+/// the arc's plane's coordinates; past either end, the nearer end).
+double line_progress(const Vec3& p, const Vec3& a, const Vec3& b);
+double arc_progress(const Vec3& p, const ArcGeom& arc);
+
 /// The point of the segment a-b nearest p (a, for a segment shorter than kLengthEpsMm).
 Vec3 nearest_on_segment(const Vec3& p, const Vec3& a, const Vec3& b);
 /// Distance from point p to the segment a-b.

@@ -11,18 +11,12 @@ std::optional<Chosen> RunFitter::make(uint32_t a, const Vec2& T, const Candidate
   return make_arc(a, c.e, q(a) + left_normal(T) / c.k, c.k > 0);
 }
 
-/// Whether every extra axis that moves, carried linearly by path length from vertex a to
-/// vertex e as the controller carries it along one block, passes within the band of its
-/// value at each vertex between (the band's number read in the axis's unit: mm, or
-/// degrees for A/B/C, which keeps a point within the band up to 57 mm from the axis).
-/// The vertices' rates per mm agree with their neighbours' (soft_), but a rate that
-/// drifts slowly would still bend the axis away from the line over a long primitive.
-bool RunFitter::extra_axes_linear(uint32_t a, uint32_t e) const {
+template <class Progress>
+bool RunFitter::extra_axes_linear(uint32_t a, uint32_t e, const Progress& progress) const {
   const size_t k = extra_.size();
   if (k == 0 || e <= a + 1) return true;
-  const double span = length_[e] - length_[a];
   for (uint32_t m = a + 1; m < e; ++m) {
-    const double t = span > 0 ? (length_[m] - length_[a]) / span : 0;
+    const double t = progress(m);
     for (size_t i = 0; i < k; ++i) {
       const double va = extra_values_[a * k + i], ve = extra_values_[e * k + i];
       if (std::abs(extra_values_[m * k + i] - (va + t * (ve - va))) > eps_) return false;
@@ -33,7 +27,7 @@ bool RunFitter::extra_axes_linear(uint32_t a, uint32_t e) const {
 
 /// The line from vertex a to vertex e, if the moves between stay inside the band.
 std::optional<Chosen> RunFitter::make_line(uint32_t a, uint32_t e, const Vec2& fallback_tangent) const {
-  if (!extra_axes_linear(a, e)) return std::nullopt;
+  if (!extra_axes_linear(a, e, [&](uint32_t m) { return line_progress(p_[m], p_[a], p_[e]); })) return std::nullopt;
   std::span<const Vec3> pts(p_.data() + a, e - a + 1);
   Deviation d = line_deviation(pts, eps_);
   if (!d.ordered || d.max_mm > eps_) return std::nullopt;
@@ -49,7 +43,7 @@ std::optional<Chosen> RunFitter::make_line(uint32_t a, uint32_t e, const Vec2& f
 /// The arc from vertex a to vertex e about `center`, if the moves between stay inside the
 /// band (in-plane share when it climbs) and the arc keeps the options' limits.
 std::optional<Chosen> RunFitter::make_arc(uint32_t a, uint32_t e, const Vec2& center, bool ccw) const {
-  if (!arcs_ || e - a < std::max<uint32_t>(o_.min_arc_moves, 1) || !extra_axes_linear(a, e)) return std::nullopt;
+  if (!arcs_ || e - a < std::max<uint32_t>(o_.min_arc_moves, 1)) return std::nullopt;
   std::span<const Vec3> pts(p_.data() + a, e - a + 1);
   bool flat = true;
   for (const auto& p : pts) flat = flat && std::abs(p.z() - pts.front().z()) <= kLengthEpsMm;
@@ -61,6 +55,7 @@ std::optional<Chosen> RunFitter::make_arc(uint32_t a, uint32_t e, const Vec2& ce
   const double sweep_deg = std::abs(g.sweep) * 180 / kPi;
   if (sweep_deg > o_.max_sweep_deg + 1e-9 || sweep_deg < o_.min_sweep_deg) return std::nullopt;
   if (g.radius_mm * std::abs(g.sweep) < o_.min_arc_length_mm) return std::nullopt;
+  if (!extra_axes_linear(a, e, [&](uint32_t m) { return arc_progress(p_[m], g); })) return std::nullopt;
   const double band = flat ? eps_ : eps_ * kPlaneShare;
   // Where the firmware moves along chords, every point of them lies within their sagitta
   // of the circle, and every point of the circle as near them: a circle inside the band

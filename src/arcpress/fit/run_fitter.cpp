@@ -39,18 +39,12 @@ RunFitter::RunFitter(const Interpretation& in, const Run& run, const FitOptions&
   const auto [low, high] =
       std::minmax_element(p_.begin(), p_.end(), [](const Vec3& x, const Vec3& y) { return x.z() < y.z(); });
   level_ = high->z() - low->z() <= kLengthEpsMm;
-  // The extra axes that move in the run, their values at each vertex, and the path length
-  // to each vertex they are carried along.
+  // The extra axes that move in the run, and their values at each vertex.
   for (int x = kA; x < kE; ++x)
     if (moving >> x & 1) extra_.push_back(x);
   extra_values_.clear();
-  length_.clear();
-  if (!extra_.empty()) {
-    length_.assign(n_ + 1, 0.0);
-    for (uint32_t v = 1; v <= n_; ++v) length_[v] = length_[v - 1] + (p_[v] - p_[v - 1]).norm();
-    for (uint32_t v = 0; v <= n_; ++v)
-      for (int x : extra_) extra_values_.push_back(vertex(v)[x]);
-  }
+  for (uint32_t v = 0; v <= n_ && !extra_.empty(); ++v)
+    for (int x : extra_) extra_values_.push_back(vertex(v)[x]);
   arcs_ = o.arcs && (o.extra_axes || extra_.empty());
   eps_ = o.tolerance_mm * (1.0 - rounding_reserve_share(o));
   hard_.assign(n_ + 1, 0);

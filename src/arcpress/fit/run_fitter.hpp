@@ -233,13 +233,15 @@ class RunFitter : private FitAngles {
   void fan_ends_in(uint32_t a, const Vec2* T, int count, uint32_t limit, uint32_t first_end, Sink& sink) const;
   /// Builds and checks the primitive for candidate `c` from `a` along `T`.
   std::optional<Chosen> make(uint32_t a, const Vec2& T, const Candidate& c) const;
-  /// Whether every extra axis that moves, carried linearly by path length from vertex a to
-  /// vertex e as the controller carries it along one block, passes within the band of its
-  /// value at each vertex between (the band's number read in the axis's unit: mm, or
-  /// degrees for A/B/C, which keeps a point within the band up to 57 mm from the axis).
-  /// The vertices' rates per mm agree with their neighbours' (soft_), but a rate that
-  /// drifts slowly would still bend the axis away from the line over a long primitive.
-  bool extra_axes_linear(uint32_t a, uint32_t e) const;
+  /// Whether every extra axis that moves, carried linearly from vertex a to vertex e with
+  /// the block's progress as the controller carries it (`progress(m)`: where the block passes
+  /// nearest vertex m, line_progress() or arc_progress(), as the check reads it), passes
+  /// within the band of its value at each vertex between (the band's number read in the
+  /// axis's unit: mm, or degrees for A/B/C, which keeps a point within the band up to 57 mm
+  /// from the axis). The vertices' rates per mm agree with their neighbours' (soft_), but a
+  /// rate that drifts slowly would still bend the axis away from the line over a long primitive.
+  template <class Progress>
+  bool extra_axes_linear(uint32_t a, uint32_t e, const Progress& progress) const;
   /// The line from vertex a to vertex e, if the moves between stay inside the band.
   std::optional<Chosen> make_line(uint32_t a, uint32_t e, const Vec2& fallback_tangent) const;
   /// The arc from vertex a to vertex e about `center`, if the moves between stay inside the
@@ -513,7 +515,7 @@ class RunFitter : private FitAngles {
     std::vector<uint32_t> next_soft;
     std::vector<std::optional<Vec2>> heading;
     std::vector<FixedMove> fixed;
-    std::vector<double> extra_values, length;
+    std::vector<double> extra_values;
     std::vector<uint8_t> spike, nowhere, alone, none;  // the constructor's
   };
   /// Buffers the searches reuse from call to call, and from run to run on one thread, so
@@ -737,7 +739,6 @@ class RunFitter : private FitAngles {
   bool arcs_ = true;        // arcs allowed: by the options, and in this run by its extra axes
   std::vector<int> extra_;  // the extra axes (kA .. kW) that move in the run
   std::vector<double>& extra_values_ = b_.extra_values;  // their values at each vertex, extra_.size() per vertex
-  std::vector<double>& length_ = b_.length;  // path length from vertex 0 to each vertex (mm), when extra_ move
 };
 
 }  // namespace arcpress::fit_detail

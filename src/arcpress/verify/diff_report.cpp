@@ -94,6 +94,14 @@ std::string diff_text(const ProgramDiff& d, const DiffNames& n, double tol) {
   t += fmt::format("rapid end points: max {:.6f} mm apart", d.max_rapid_mm);
   if (d.max_rapid_mm > 0) t += fmt::format(" ({} line {}, {} line {})", n.a, d.worst_rapid.line_a, n.b, d.worst_rapid.line_b);
   t += "\n";
+  if (d.extra_axes_compared) {
+    t += fmt::format("extra axes (A/B/C in degrees, U/V/W in mm): max {:.6f} apart", d.max_extra_axis);
+    if (d.extra_axis >= 0)
+      t += fmt::format(" ({} at X{:.4f} Y{:.4f} Z{:.4f}, {} line {}, {} line {})", kAxisLetters[d.extra_axis],
+                       d.worst_extra_axis.at.x(), d.worst_extra_axis.at.y(), d.worst_extra_axis.at.z(), n.a,
+                       d.worst_extra_axis.line_a, n.b, d.worst_extra_axis.line_b);
+    t += "\n";
+  }
   if (d.a.entry_moves + d.b.entry_moves > 0) {
     t += fmt::format("feed moves from an unknown position: end points max {:.6f} mm apart", d.max_entry_mm);
     if (d.max_entry_mm > 0) t += fmt::format(" ({} line {}, {} line {})", n.a, d.worst_entry.line_a, n.b, d.worst_entry.line_b);
@@ -120,8 +128,11 @@ std::string diff_text(const ProgramDiff& d, const DiffNames& n, double tol) {
                                    s->line_b ? fmt::format(", A line {}, B line {}", s->line_a, s->line_b) : "")
                      : fmt::format("band side {}: not measured: {}\n", side, s->why_not);
   }
-  t += fmt::format("{}: max deviation {:.6f} mm {} the {} mm band{}{}{}\n", verdict_word(d.verdict(tol), true),
+  t += fmt::format("{}: max deviation {:.6f} mm {} the {} mm band{}{}{}{}\n", verdict_word(d.verdict(tol), true),
                    d.max_deviation_mm, d.max_deviation_mm <= tol ? "within" : "outside", tol,
+                   d.max_extra_axis <= tol || d.extra_axis < 0
+                       ? ""
+                       : fmt::format(", {} {:.6f} apart", kAxisLetters[d.extra_axis], d.max_extra_axis),
                    d.findings.empty() ? "" : fmt::format(", {} other difference(s)", d.findings.size()),
                    unplaced == 0 ? "" : fmt::format(", {} feed move(s) not compared", unplaced),
                    d.feed_unpaired_mm == 0 ? "" : fmt::format(", the feed along {:.3f} mm of B's path not compared",
@@ -139,6 +150,7 @@ std::string diff_json(const ProgramDiff& d, const DiffNames& n, double tol) {
       "  \"max_deviation_mm\": {:.9f},\n  \"arc_precision_mm\": {:.9f},\n  \"worst\": [{}],\n"
       "  \"rapids\": {{\"max_end_point_distance_mm\": {:.9f}, \"worst\": {}}},\n"
       "  \"entries\": {{\"max_end_point_distance_mm\": {:.9f}, \"worst\": {}}},\n"
+      "  \"extra_axes\": {{\"compared\": {}, \"max_difference\": {:.9f}, \"axis\": {}, \"worst\": {}}},\n"
       "  \"feed\": {{\"max_difference_percent\": {:.6f}, \"line_a\": {}, \"line_b\": {}, "
       "\"compared_share\": {:.6f}, \"unpaired_mm\": {:.9f}, \"unpaired_line_b\": {}}},\n"
       "  \"extrusion\": {{\"max_section_difference_mm\": {:.9f}, \"max_per_mm_difference_percent\": {:.6f}}},\n"
@@ -146,7 +158,9 @@ std::string diff_json(const ProgramDiff& d, const DiffNames& n, double tol) {
       "  \"differences\": [{}],\n  \"band_side\": {}\n}}\n",
       verdict_word(d.verdict(tol), false), tol, summary_json(d.a, n.a), summary_json(d.b, n.b), d.max_deviation_mm,
       d.arc_chord_mm, worst, d.max_rapid_mm, place_json(d.worst_rapid), d.max_entry_mm, place_json(d.worst_entry),
-      d.max_feed_difference_pct, d.worst_feed.line_a, d.worst_feed.line_b, d.feed_compared_share, d.feed_unpaired_mm,
+      d.extra_axes_compared, d.max_extra_axis,
+      d.extra_axis < 0 ? std::string("null") : json_string(std::string(1, kAxisLetters[d.extra_axis])),
+      place_json(d.worst_extra_axis), d.max_feed_difference_pct, d.worst_feed.line_a, d.worst_feed.line_b, d.feed_compared_share, d.feed_unpaired_mm,
       d.feed_unpaired_line_b,
       d.max_extrusion_difference_mm, d.max_extrusion_per_mm_difference_pct, d.a.non_motion, d.b.non_motion,
       d.non_motion_differences, d.comments_compared, findings, side_json(d));

@@ -27,6 +27,35 @@ ArcGeom arc_of_move(const Interpretation& in, size_t i) {
   return g;
 }
 
+double move_progress(const Interpretation& in, size_t i, const Vec3& p) {
+  const Move& m = in.moves[i];
+  if (is_arc(m.kind)) return arc_progress(in_plane(p, m.plane), arc_of_move(in, i));
+  const AxisValues& f = in.from(i);
+  return line_progress(p, Vec3(f[kX], f[kY], f[kZ]), m.xyz());
+}
+
+bool extra_axes_move(const Interpretation& in) {
+  for (size_t i = 0; i < in.moves.size(); ++i)
+    for (int ax = kA; ax < kE; ++ax)
+      if (in.moves[i].to[ax] != in.from(i)[ax]) return true;
+  return false;
+}
+
+std::pair<double, int> extra_axes_apart(const AxisValues& x, const AxisValues& y) {
+  std::pair<double, int> most{0.0, -1};
+  for (int ax = kA; ax < kE; ++ax)
+    if (const double d = std::abs(x[ax] - y[ax]); d > most.first) most = {d, ax};
+  return most;
+}
+
+AxisValues extra_axes_at(const Interpretation& in, size_t i, const Vec3& p) {
+  const AxisValues &f = in.from(i), &e = in.moves[i].to;
+  AxisValues v = e;
+  const double t = move_progress(in, i, p);
+  for (int ax = kA; ax < kE; ++ax) v[ax] = f[ax] + t * (e[ax] - f[ax]);
+  return v;
+}
+
 double flat_arc_sagitta_mm(const ArcGeom& g) {
   const double turn = std::abs(g.sweep);
   if (!(turn <= kPi) || g.h0 != g.h1 || !std::isfinite(g.radius_mm)) return HUGE_VAL;

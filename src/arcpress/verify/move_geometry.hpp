@@ -4,6 +4,7 @@
 // ArcGeom in its plane, any move as points along it, and a flat arc as pieces whose
 // distance to a point is measured exactly.
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "arcpress/core/deviation.hpp"
@@ -14,6 +15,22 @@ namespace arcpress {
 /// Move i (an arc) in its plane's coordinates (first, second, normal). End points that
 /// coincide in the plane make a full turn; a P word adds turns.
 ArcGeom arc_of_move(const Interpretation& in, size_t i);
+
+/// Where move i of `in` passes nearest `p` (XYZ), the share of the move done there: how far
+/// the controller has carried the move's other axes (line_progress(), arc_progress(); an arc
+/// of more than one turn is read on its first).
+double move_progress(const Interpretation& in, size_t i, const Vec3& p);
+
+/// Whether any extra axis (A/B/C, U/V/W) moves anywhere in `in`.
+bool extra_axes_move(const Interpretation& in);
+
+/// The largest difference between the extra axes (A/B/C, U/V/W) of `x` and `y`, each in its
+/// own unit (mm or degrees), and the axis where it is (kAxisLetters; -1 where none differ).
+std::pair<double, int> extra_axes_apart(const AxisValues& x, const AxisValues& y);
+
+/// The extra axes (A/B/C, U/V/W) of move i of `in` where it passes nearest `p`, carried from
+/// its start to its end with its progress (move_progress()); the other axes as at its end.
+AxisValues extra_axes_at(const Interpretation& in, size_t i, const Vec3& p);
 
 /// An arc that bulges off its chord by no more than this (mm: a floating-point epsilon of
 /// lengths, far below any band) is measured as its chord. An arc of a huge radius between

@@ -94,6 +94,9 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
   std::vector<size_t> move_of_point;  // the input move each of `pts` lies on (its end, for a vertex)
   long prev_j = -1;          // previous output feed move, for joints
   bool prev_replaced = false;
+  // Whether any extra axis (A/B/C, U/V/W) moves anywhere in the input: only then are they
+  // measured along each output move that replaces several input moves.
+  const bool extra_move = extra_axes_move(ia);
   for (size_t j = 0; j < ib.moves.size(); ++j) {
     const Move& mb = ib.moves[j];
     // Find the input move that ends where this output move ends.
@@ -199,6 +202,18 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
           r.executed_point = from_plane(pts.front(), mb.plane);
         }
       }
+      // The extra axes at each input vertex inside the output move, against the output move
+      // carrying them from its start to its end.
+      if (extra_move && replaced)
+        for (size_t q = i; q < k; ++q) {
+          const AxisValues& v = ia.moves[q].to;
+          const auto [off, ax] = extra_axes_apart(v, extra_axes_at(ib, j, Vec3(v[kX], v[kY], v[kZ])));
+          if (off <= r.max_extra_axis) continue;
+          r.max_extra_axis = off;
+          r.extra_axis = ax;
+          r.extra_axis_line_a = a.blocks[ia.moves[q].block].line;
+          r.extra_axis_line_b = b.blocks[mb.block].line;
+        }
       if (wrong_side_mm > r.max_wrong_side_mm) {
         r.max_wrong_side_mm = wrong_side_mm;
         r.wrong_side_line_b = b.blocks[mb.block].line;

@@ -73,7 +73,18 @@ struct PathComparison {
   uint32_t executed_line_a = 0, executed_line_b = 0;
   Vec3 executed_point{0, 0, 0};
 
-  bool within(double tolerance_mm) const { return matched && max_deviation_mm <= tolerance_mm; }
+  /// The largest distance, in the axis's own unit (mm for U/V/W, degrees for A/B/C, the
+  /// band's number read in it, as the fitter holds it), between an extra axis as an output
+  /// move carries it (linearly with its progress: line_progress(), arc_progress()) and its
+  /// value at a vertex of the input moves the output move replaces; where (1-based lines,
+  /// input and output), and which axis (kAxisLetters; -1: none moved).
+  double max_extra_axis = 0;
+  uint32_t extra_axis_line_a = 0, extra_axis_line_b = 0;
+  int extra_axis = -1;
+
+  bool within(double tolerance_mm) const {
+    return matched && max_deviation_mm <= tolerance_mm && max_extra_axis <= tolerance_mm;
+  }
 };
 
 /// The direction in which move i leaves its start, and arrives at its end, in the move's plane

@@ -413,6 +413,15 @@ void measure_paths(const Program& a, const Interpretation& ia, const Path& pa, c
     d.max_deviation_mm = shares[0].max();
     d.worst = shares[0].take();
     auto feed_at = [&](const Move& ma, const Move& mb, const Vec3& at) {
+      if (d.extra_axes_compared) {
+        const size_t i = size_t(&ma - ia.moves.data()), j = size_t(&mb - ib.moves.data());
+        const auto [off, ax] = extra_axes_apart(extra_axes_at(ia, i, at), extra_axes_at(ib, j, at));
+        if (off > d.max_extra_axis) {
+          d.max_extra_axis = off;
+          d.extra_axis = ax;
+          d.worst_extra_axis = {off, at, a.blocks[ma.block].line, b.blocks[mb.block].line};
+        }
+      }
       double pct = 100.0 * std::abs(mb.feed_mm_min - ma.feed_mm_min) / ma.feed_mm_min;
       if (pct > d.max_feed_difference_pct) {
         d.max_feed_difference_pct = pct;
@@ -451,6 +460,7 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
     throw std::invalid_argument("diff: the feed is compared along the path measure, which is off");
   ProgramDiff d;
   d.arc_chord_mm = std::max(opt.tolerance_mm * kReadingShare / 2, 1e-7);
+  d.extra_axes_compared = extra_axes_move(ia) || extra_axes_move(ib);
   const double precision_mm = opt.tolerance_mm * kReadingShare / 2;
   // (Without the path measure, no segments: what the rest compares is kept without them.)
   Path pa = feed_path(ia, d.arc_chord_mm, opt.tolerance_mm, opt.measure_path),
@@ -510,7 +520,8 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
   if (d.a.sections != d.b.sections)
     d.findings.push_back(fmt::format("cutting sections between rapids: {} in A, {} in B", d.a.sections, d.b.sections));
 
-  // Rapids, and feed moves from an unknown position: end points in order.
+  // Rapids, and feed moves from an unknown position: end points in order (the extra axes
+  // with them).
   auto end_points = [&](const std::vector<uint32_t>& in_a, const std::vector<uint32_t>& in_b, const char* what,
                         double& max_mm, DiffPlace& worst) {
     if (in_a.size() != in_b.size()) d.findings.push_back(fmt::format("{}: {} in A, {} in B", what, in_a.size(), in_b.size()));
@@ -521,6 +532,11 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
       if (dist > max_mm) {
         max_mm = dist;
         worst = {dist, xyz(ma.to), a.blocks[ma.block].line, b.blocks[mb.block].line};
+      }
+      if (const auto [off, ax] = extra_axes_apart(ma.to, mb.to); d.extra_axes_compared && off > d.max_extra_axis) {
+        d.max_extra_axis = off;
+        d.extra_axis = ax;
+        d.worst_extra_axis = {off, xyz(ma.to), a.blocks[ma.block].line, b.blocks[mb.block].line};
       }
     }
   };

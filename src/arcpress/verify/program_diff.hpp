@@ -135,6 +135,17 @@ struct ProgramDiff {
   /// check that leaves any out is incomplete.
   double feed_unpaired_mm = 0;
   uint32_t feed_unpaired_line_b = 0;
+  /// Where an extra axis (A/B/C, U/V/W) moves in either program: the largest difference of
+  /// one, each in its own unit (mm, or degrees, the band's number read in it), between B and
+  /// A where the feed is compared (each piece of B and its counterpart on A, the axes carried
+  /// along each move with its progress: extra_axes_at()) and at the ends of rapids and of
+  /// moves from an unknown position; where (deviation_mm holds it), and which axis
+  /// (kAxisLetters; -1: none differ). Without the feed pairing (DiffOptions::feed), only at
+  /// those ends.
+  bool extra_axes_compared = false;
+  double max_extra_axis = 0;
+  DiffPlace worst_extra_axis;
+  int extra_axis = -1;
   double max_extrusion_difference_mm = 0;     ///< E total per section
   double max_extrusion_per_mm_difference_pct = 0;
   size_t non_motion_differences = 0;
@@ -171,7 +182,7 @@ struct ProgramDiff {
   /// Whether what was compared agrees within the band.
   bool agrees(double tolerance_mm) const {
     return max_deviation_mm + chord_excess_mm <= tolerance_mm && max_rapid_mm <= tolerance_mm &&
-           max_entry_mm <= tolerance_mm && findings.empty() &&
+           max_entry_mm <= tolerance_mm && max_extra_axis <= tolerance_mm && findings.empty() &&
            (!band_side || !band_side->measured || band_side->max_wrong_side_mm <= band_side->allowance_mm);
   }
   /// The programs are the same: everything compared, and it agrees. A check never passes
