@@ -49,6 +49,7 @@ RandomCase random_case(std::span<const uint8_t> bytes) {
   double x = 0, y = 0, z = 0, hx = 1, hy = 0;
   double e_per_mm = 0.05;  // relative extrusion (M83), its rate changing now and then
   double last_x = 0, last_y = 0;  // the last printed point, for the extrusion of a move
+  bool rotary = false;             // moves carry an A word
   for (size_t i = 3; i + 2 < bytes.size(); i += 3) {
     const auto a = static_cast<int8_t>(bytes[i]), b = static_cast<int8_t>(bytes[i + 1]),
                h = static_cast<int8_t>(bytes[i + 2]);
@@ -73,8 +74,11 @@ RandomCase random_case(std::span<const uint8_t> bytes) {
     // A printer's own macro: the position is unknown until the next move sets every axis,
     // and that move's E is the sum of the relative E words before it.
     if ((h & 0x3f) == 0x27) s += "CLEAN_NOZZLE\n";
+    // From here on a rotary axis turns with the path, faster and slower (a 4th-axis wrap).
+    if ((h & 0x3f) == 0x28) rotary = true;
     const double px = std::stod(fmt::format("{:.{}f}", x, decimals)), py = std::stod(fmt::format("{:.{}f}", y, decimals));
     s += fmt::format("G1 X{:.{}f} Y{:.{}f} Z{:.{}f}", x, decimals, y, decimals, z, decimals);
+    if (rotary) s += fmt::format(" A{:.3f}", 10 * x + 3 * std::sin(y));
     if (extrudes) {
       if ((h & 0x3f) == 0x23) e_per_mm *= 1.5;
       s += fmt::format(" E{:.5f}", e_per_mm * std::hypot(px - last_x, py - last_y));
