@@ -74,7 +74,7 @@ arcpress_status arcpress_options_set_band(arcpress_options* options, const char*
  * ("program" above, or a dialect without a firmware rule): arcpress_compressor_new() refuses
  * it on a firmware's chords. */
 arcpress_status arcpress_options_set_band_side(arcpress_options* options, const char* side);
-/* Share (0 .. 1) by which E per mm may vary between neighbouring moves inside one arc or line. */
+/* Share (0 .. 1) by which the E per mm of each move an arc or line replaces may differ from the arc's or line's. */
 arcpress_status arcpress_options_set_extrusion_variance(arcpress_options* options, double share);
 /* 0: no comment naming arcpress after the program's first line (1, the default: where that
  * line is a comment, as a slicer's is). */

@@ -197,6 +197,12 @@ int compress_file(const CompressArgs& a, FileReport& report, std::atomic<size_t>
     if (c.max_rapid_mm > r.band_mm)
       fmt::format_to(std::back_inserter(log), "arcpress: verification failed: a rapid ends {:.6f} mm away, input line {}, output line {}\n",
                  c.max_rapid_mm, c.worst_rapid.line_a, c.worst_rapid.line_b);
+    if (const PathComparison& pc = r.comparison; pc.max_extrusion_rate_share > pc.extrusion_allowed_share)
+      fmt::format_to(std::back_inserter(log),
+                     "arcpress: verification failed: an output block extrudes {:.2f} % off the E per mm of a move it "
+                     "replaces (allowed {:.2f} %), input line {}, output line {}\n",
+                     100 * pc.max_extrusion_rate_share, 100 * pc.extrusion_allowed_share, pc.extrusion_line_a,
+                     pc.extrusion_line_b);
     if (const PathComparison& pc = r.comparison; pc.max_extra_axis > r.band_mm && pc.extra_axis >= 0)
       fmt::format_to(std::back_inserter(log),
                      "arcpress: verification failed: the output carries {} {:.6f} {} away from the input's (band {}), "
@@ -273,6 +279,12 @@ int compress_file(const CompressArgs& a, FileReport& report, std::atomic<size_t>
                  : unforced.empty()           ? std::string(", each forced by the band or the digits")
                                               : fmt::format(", {} of them not forced (at input line {})", unforced.size(),
                                                             unforced.front()));
+      if (c.max_extrusion_rate_share > 0)
+        fmt::format_to(std::back_inserter(log),
+                       "  extrusion      E per mm at most {:.2f} % off that of a move a block replaces (variance {:.2f} %), "
+                       "input line {}, output line {}\n",
+                       100 * c.max_extrusion_rate_share, 100 * a.opt.fit.extrusion_variance, c.extrusion_line_a,
+                       c.extrusion_line_b);
       if (c.extra_axis >= 0)
         fmt::format_to(std::back_inserter(log),
                        "  extra axes     {} carried at most {:.6f} {} from the input's value at its vertices (band {}), "

@@ -282,8 +282,8 @@ int main(int argc, char** argv) {
   app.add_option("--min-arc-length", a.opt.fit.min_arc_length_mm, "Shorter arcs (mm) become lines")
       ->check(finite_in(kMinArcLengthRange))->capture_default_str();
   app.add_option("--extrusion-variance", a.opt.fit.extrusion_variance,
-                 "How much E per mm may vary between neighbouring moves inside one arc or line, as a share of the "
-                 "larger rate (0.05: 5 %); extrusion starting or stopping always ends one")
+                 "How much the E per mm of each move an arc or line replaces may differ from the arc's or line's own, "
+                 "as a share of the larger rate (0.05: 5 %); extrusion starting or stopping always ends one")
       ->check(finite_in(kExtrusionVarianceRange))->capture_default_str();
   app.add_option("--band-side", a.band_side,
                  "left or right: every point of the output lies on that side of the input path (relative to the "

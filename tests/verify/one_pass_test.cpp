@@ -239,3 +239,44 @@ TEST_CASE("the check measures a rotary axis at every input vertex an output move
     CHECK_FALSE(v.within_band());
   }
 }
+
+TEST_CASE("every input move keeps its E per mm within the extrusion variance of the block that replaces it, which "
+          "the check measures",
+          "[verify][one-pass][extrusion]") {
+  // A quarter circle of 40 mm in 1-degree moves whose extrusion grows by 4 % a move: each
+  // move's rate within 5 % of its neighbours', twelvefold from the first to the last.
+  std::string text = "G21 G90 M83\nG0 X40 Y0 Z0.2\nG1 F1200\n";
+  double rate = 0.03;  // mm of E per mm
+  for (int k = 1; k <= 90; ++k, rate *= 1.04)
+    text += fmt::format("G1 X{:.3f} Y{:.3f} E{:.5f}\n", 40 * std::cos(k * M_PI / 180), 40 * std::sin(k * M_PI / 180),
+                        rate * 0.698);
+  text += "M2\n";
+  CompressOptions opt;
+  opt.dialect = dialect_named("marlin");
+  opt.fit.tolerance_mm = 0.025;
+  DiagnosticSink sink("in");
+  const CompressResult r = compress("in", text, opt, sink);
+  REQUIRE(r.within_band());
+  CHECK(r.runs_kept_as_input == 0);
+  CHECK(r.stats.arcs_out > 10);  // the band alone would take one arc
+  CHECK(r.comparison.max_extrusion_rate_share > 0);
+  CHECK(r.comparison.max_extrusion_rate_share <= 0.05 + 1e-9);
+  SECTION("with the variance at 1 the rate may change anywhere: one arc") {
+    opt.fit.extrusion_variance = 1;
+    const CompressResult one = compress("in", text, opt, sink);
+    CHECK(one.within_band());
+    CHECK(one.stats.arcs_out + one.stats.lines_out == 1);
+  }
+  SECTION("one arc over all of it, printed by hand, is refused: its first move extrudes a ninth of the arc's "
+          "average rate") {
+    double e = 0;
+    for (double x = 0.03, k = 0; k < 90; ++k, x *= 1.04) e += std::round(x * 0.698 * 1e5) / 1e5;
+    const std::string one = fmt::format("G21 G90 M83\nG0 X40 Y0 Z0.2\nG1 F1200\nG3 X0.000 Y40.000 I-40 J0 E{:.5f}\nM2\n", e);
+    const CompressResult v = checked(text, one, opt);
+    CHECK(v.comparison.matched);
+    CHECK(v.comparison.max_deviation_mm < 0.025);
+    CHECK(v.comparison.max_extrusion_rate_share == Approx(1 - 0.03 / (e / (20 * M_PI))).margin(0.001));
+    CHECK(v.comparison.extrusion_line_b == 4);
+    CHECK_FALSE(v.within_band());
+  }
+}

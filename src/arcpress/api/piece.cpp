@@ -106,6 +106,7 @@ void verify_piece_output(const Program& input, const Interpretation& in, const C
   co.g1_angle_deg = opt.fit.g1_angle_deg;
   co.corner_angle_deg = opt.fit.corner_angle_deg;
   co.band_side = opt.fit.band_side;
+  co.extrusion_variance = opt.fit.extrusion_variance;
   if (!runs.empty()) {
     co.fitted_plane.reserve(in.moves.size());
     for (const Move& m : in.moves) co.fitted_plane.push_back(m.plane);
@@ -228,6 +229,7 @@ std::vector<uint32_t> refused_output_lines(const CompressResult& r) {
   if (!c.matched) lines.push_back(c.mismatch_line_b);
   if (c.max_deviation_mm > r.band_mm) lines.push_back(c.worst_line_b);
   if (c.max_extra_axis > r.band_mm) lines.push_back(c.extra_axis_line_b);
+  if (c.max_extrusion_rate_share > c.extrusion_allowed_share) lines.push_back(c.extrusion_line_b);
   if (c.max_wrong_side_mm > r.side_allowance_mm) lines.push_back(c.wrong_side_line_b);
   for (const DiffPlace& p : r.check.worst)
     if (p.deviation_mm > r.band_mm) lines.push_back(p.line_b);
@@ -498,6 +500,12 @@ void add_comparison(PathComparison& into, const PathComparison& c, size_t lines_
     into.worst_point = c.worst_point;
   }
   into.covers_path = into.covers_path && c.covers_path;
+  if (c.max_extrusion_rate_share > into.max_extrusion_rate_share) {
+    into.max_extrusion_rate_share = c.max_extrusion_rate_share;
+    into.extrusion_line_a = c.extrusion_line_a;
+    into.extrusion_line_b = c.extrusion_line_b ? c.extrusion_line_b + uint32_t(lines_before) : 0;
+  }
+  into.extrusion_allowed_share = std::min(into.extrusion_allowed_share, c.extrusion_allowed_share);
   if (c.max_extra_axis > into.max_extra_axis) {
     into.max_extra_axis = c.max_extra_axis;
     into.extra_axis = c.extra_axis;

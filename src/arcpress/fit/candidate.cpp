@@ -25,9 +25,20 @@ bool RunFitter::extra_axes_linear(uint32_t a, uint32_t e, const Progress& progre
   return true;
 }
 
+bool RunFitter::extrusion_even(uint32_t a, uint32_t e, double length_mm) const {
+  if (e_rate_.empty()) return true;  // (over one move too: an arc is longer than the move's chord)
+  const double rate = length_mm > kLengthEpsMm ? std::abs(e_values_[e] - e_values_[a]) / length_mm : 0.0;
+  const double v = o_.extrusion_variance;
+  for (uint32_t m = a; m < e; ++m)
+    if (std::abs(e_rate_[m] - rate) > v * std::max(e_rate_[m], rate)) return false;
+  return true;
+}
+
 /// The line from vertex a to vertex e, if the moves between stay inside the band.
 std::optional<Chosen> RunFitter::make_line(uint32_t a, uint32_t e, const Vec2& fallback_tangent) const {
-  if (!extra_axes_linear(a, e, [&](uint32_t m) { return line_progress(p_[m], p_[a], p_[e]); })) return std::nullopt;
+  if (!extra_axes_linear(a, e, [&](uint32_t m) { return line_progress(p_[m], p_[a], p_[e]); }) ||
+      !extrusion_even(a, e, (p_[e] - p_[a]).norm()))
+    return std::nullopt;
   std::span<const Vec3> pts(p_.data() + a, e - a + 1);
   Deviation d = line_deviation(pts, eps_);
   if (!d.ordered || d.max_mm > eps_) return std::nullopt;
@@ -55,7 +66,9 @@ std::optional<Chosen> RunFitter::make_arc(uint32_t a, uint32_t e, const Vec2& ce
   const double sweep_deg = std::abs(g.sweep) * 180 / kPi;
   if (sweep_deg > o_.max_sweep_deg + 1e-9 || sweep_deg < o_.min_sweep_deg) return std::nullopt;
   if (g.radius_mm * std::abs(g.sweep) < o_.min_arc_length_mm) return std::nullopt;
-  if (!extra_axes_linear(a, e, [&](uint32_t m) { return arc_progress(p_[m], g); })) return std::nullopt;
+  if (!extra_axes_linear(a, e, [&](uint32_t m) { return arc_progress(p_[m], g); }) ||
+      !extrusion_even(a, e, std::hypot(g.radius_mm * g.sweep, g.h1 - g.h0)))
+    return std::nullopt;
   const double band = flat ? eps_ : eps_ * kPlaneShare;
   // Where the firmware moves along chords, every point of them lies within their sagitta
   // of the circle, and every point of the circle as near them: a circle inside the band

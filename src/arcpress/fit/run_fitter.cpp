@@ -117,6 +117,18 @@ RunFitter::RunFitter(const Interpretation& in, const Run& run, const FitOptions&
       if (rate_changes(x)) soft_[v] = 1;
     if (!pinned.empty() && pinned[v]) soft_[v] = 1;
   }
+  // E per mm of each move, where E moves in the run (the primitives' own rate is held to it).
+  e_values_.clear();
+  e_rate_.clear();
+  bool e_moves = false;
+  for (uint32_t v = 1; v <= n_ && !e_moves; ++v) e_moves = vertex(v)[kE] != vertex(v - 1)[kE];
+  if (e_moves) {
+    for (uint32_t v = 0; v <= n_; ++v) e_values_.push_back(vertex(v)[kE]);
+    for (uint32_t v = 0; v < n_; ++v) {
+      const double len = (p_[v + 1] - p_[v]).norm();
+      e_rate_.push_back(len > kLengthEpsMm ? std::abs(e_values_[v + 1] - e_values_[v]) / len : 0.0);
+    }
+  }
   next_soft_.assign(n_ + 1, n_ + 1);
   for (uint32_t v = n_; v-- > 0;) next_soft_[v] = soft_[v + 1] ? v + 1 : next_soft_[v + 1];
 }

@@ -242,6 +242,13 @@ class RunFitter : private FitAngles {
   /// rate that drifts slowly would still bend the axis away from the line over a long primitive.
   template <class Progress>
   bool extra_axes_linear(uint32_t a, uint32_t e, const Progress& progress) const;
+  /// Whether a primitive from vertex a to vertex e, `length_mm` long, which extrudes its E
+  /// evenly along itself as the controller does, keeps every move it replaces at its own
+  /// rate: each move's E per mm within the extrusion variance of the primitive's (a share
+  /// of the larger). Neighbouring moves' rates agree (soft_), but rates that drift move by
+  /// move would put the plastic elsewhere along a long primitive: a wall whose width grows
+  /// 4 % a move, twelvefold over a quarter circle, printed at its average width.
+  bool extrusion_even(uint32_t a, uint32_t e, double length_mm) const;
   /// The line from vertex a to vertex e, if the moves between stay inside the band.
   std::optional<Chosen> make_line(uint32_t a, uint32_t e, const Vec2& fallback_tangent) const;
   /// The arc from vertex a to vertex e about `center`, if the moves between stay inside the
@@ -515,7 +522,7 @@ class RunFitter : private FitAngles {
     std::vector<uint32_t> next_soft;
     std::vector<std::optional<Vec2>> heading;
     std::vector<FixedMove> fixed;
-    std::vector<double> extra_values;
+    std::vector<double> extra_values, e_values, e_rate;
     std::vector<uint8_t> spike, nowhere, alone, none;  // the constructor's
   };
   /// Buffers the searches reuse from call to call, and from run to run on one thread, so
@@ -739,6 +746,10 @@ class RunFitter : private FitAngles {
   bool arcs_ = true;        // arcs allowed: by the options, and in this run by its extra axes
   std::vector<int> extra_;  // the extra axes (kA .. kW) that move in the run
   std::vector<double>& extra_values_ = b_.extra_values;  // their values at each vertex, extra_.size() per vertex
+  // Where E moves in the run: E at each vertex, and each move's E per mm of its length
+  // (|ΔE| / length; empty where E stays).
+  std::vector<double>& e_values_ = b_.e_values;
+  std::vector<double>& e_rate_ = b_.e_rate;
 };
 
 }  // namespace arcpress::fit_detail

@@ -34,6 +34,16 @@ double move_progress(const Interpretation& in, size_t i, const Vec3& p) {
   return line_progress(p, Vec3(f[kX], f[kY], f[kZ]), m.xyz());
 }
 
+double move_length_mm(const Interpretation& in, size_t i) {
+  const Move& m = in.moves[i];
+  if (!is_arc(m.kind)) {
+    const AxisValues& f = in.from(i);
+    return (m.xyz() - Vec3(f[kX], f[kY], f[kZ])).norm();
+  }
+  const ArcGeom g = arc_of_move(in, i);
+  return std::hypot(g.radius_mm * g.sweep, g.h1 - g.h0);
+}
+
 bool extra_axes_move(const Interpretation& in) {
   for (size_t i = 0; i < in.moves.size(); ++i)
     for (int ax = kA; ax < kE; ++ax)

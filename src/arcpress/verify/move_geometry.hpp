@@ -21,6 +21,10 @@ ArcGeom arc_of_move(const Interpretation& in, size_t i);
 /// of more than one turn is read on its first).
 double move_progress(const Interpretation& in, size_t i, const Vec3& p);
 
+/// The length of move i's path (mm): a line's, or an arc's (a helix's climb included, every
+/// turn of it).
+double move_length_mm(const Interpretation& in, size_t i);
+
 /// Whether any extra axis (A/B/C, U/V/W) moves anywhere in `in`.
 bool extra_axes_move(const Interpretation& in);
 

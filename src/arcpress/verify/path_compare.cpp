@@ -97,6 +97,7 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
   // Whether any extra axis (A/B/C, U/V/W) moves anywhere in the input: only then are they
   // measured along each output move that replaces several input moves.
   const bool extra_move = extra_axes_move(ia);
+  if (opt.extrusion_variance >= 0) r.extrusion_allowed_share = opt.extrusion_variance + kExtrusionRateSlack;
   for (size_t j = 0; j < ib.moves.size(); ++j) {
     const Move& mb = ib.moves[j];
     // Find the input move that ends where this output move ends.
@@ -214,6 +215,22 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
           r.extra_axis_line_a = a.blocks[ia.moves[q].block].line;
           r.extra_axis_line_b = b.blocks[mb.block].line;
         }
+      // Each input move's E per mm against the output move's, which extrudes evenly.
+      if (opt.extrusion_variance >= 0 && replaced && mb.to[kE] != ib.from(j)[kE]) {
+        const double len_b = move_length_mm(ib, j);
+        const double rate_b = len_b > kLengthEpsMm ? std::abs(mb.to[kE] - ib.from(j)[kE]) / len_b : 0.0;
+        for (size_t q = i; q <= k; ++q) {
+          if (ia.goes_nowhere(q)) continue;
+          const double len_a = move_length_mm(ia, q);
+          if (len_a <= kLengthEpsMm) continue;
+          const double rate_a = std::abs(ia.moves[q].to[kE] - ia.from(q)[kE]) / len_a;
+          const double share = std::abs(rate_a - rate_b) / std::max(rate_a, rate_b);
+          if (share <= r.max_extrusion_rate_share) continue;
+          r.max_extrusion_rate_share = share;
+          r.extrusion_line_a = a.blocks[ia.moves[q].block].line;
+          r.extrusion_line_b = b.blocks[mb.block].line;
+        }
+      }
       if (wrong_side_mm > r.max_wrong_side_mm) {
         r.max_wrong_side_mm = wrong_side_mm;
         r.wrong_side_line_b = b.blocks[mb.block].line;

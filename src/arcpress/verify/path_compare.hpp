@@ -6,6 +6,7 @@
 // stretch of input moves that ends at the same point, and the two-sided distance between
 // them is measured exactly (core/deviation). A move that does not end on the input path is
 // a mismatch and fails the check.
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -33,7 +34,18 @@ struct CompareOptions {
   /// measured as it is executed: its chords, cut as the firmware cuts them, against the
   /// input moves it replaces (PathComparison::max_executed_mm).
   ArcSegmentation executed;
+  /// Where at least 0: each output move that replaces several input moves and extrudes (its
+  /// E moves) extrudes evenly along itself as the controller does, and each input move's E
+  /// per mm must lie within this share (of the larger) of the output move's
+  /// (PathComparison::max_extrusion_rate_share), as the fitter holds them
+  /// (FitOptions::extrusion_variance). Negative: not measured (`arcpress diff`).
+  double extrusion_variance = -1;
 };
+
+/// What the printed numbers may change of an output move's E per mm beyond the fitter's own
+/// arc, as a share: its length from the centre rounded to the printed digits (an arc of
+/// 0.05 mm radius, the smallest fitted by default, moves by 0.07 % with 4 decimals).
+inline constexpr double kExtrusionRateSlack = 0.002;
 
 struct PathComparison {
   bool matched = true;              ///< every output move ends on the input path
@@ -81,9 +93,17 @@ struct PathComparison {
   double max_extra_axis = 0;
   uint32_t extra_axis_line_a = 0, extra_axis_line_b = 0;
   int extra_axis = -1;
+  /// With CompareOptions::extrusion_variance: the largest difference between an input
+  /// move's E per mm and that of the output move that replaces it, as a share of the larger,
+  /// and where (1-based lines, input and output); and what is allowed (the variance and
+  /// kExtrusionRateSlack; infinite where not measured).
+  double max_extrusion_rate_share = 0;
+  uint32_t extrusion_line_a = 0, extrusion_line_b = 0;
+  double extrusion_allowed_share = HUGE_VAL;
 
   bool within(double tolerance_mm) const {
-    return matched && max_deviation_mm <= tolerance_mm && max_extra_axis <= tolerance_mm;
+    return matched && max_deviation_mm <= tolerance_mm && max_extra_axis <= tolerance_mm &&
+           max_extrusion_rate_share <= extrusion_allowed_share;
   }
 };
 
