@@ -71,23 +71,57 @@ Vec3 nearest_on_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
   return t <= 0.5 ? Vec3(a + t * d) : Vec3(b - (1 - t) * d);
 }
 
-double line_progress(const Vec3& p, const Vec3& a, const Vec3& b) {
-  const Vec3 d = b - a;
-  const double len2 = d.squaredNorm();
-  if (len2 <= kLengthEpsMm * kLengthEpsMm) return 0;
-  return std::clamp((p - a).dot(d) / len2, 0.0, 1.0);
+double ProgressWindow::least_gap(double v0, double v1, double target) const {
+  double least = HUGE_VAL;
+  for (int k = 0; k < count; ++k) {
+    const double x = v0 + lo[k] * (v1 - v0), y = v0 + hi[k] * (v1 - v0);
+    const double gap = target < std::min(x, y) ? std::min(x, y) - target : target > std::max(x, y) ? target - std::max(x, y) : 0.0;
+    least = std::min(least, gap);
+  }
+  return least;
 }
 
-double arc_progress(const Vec3& p, const ArcGeom& arc) {
+ProgressWindow line_progress_near(const Vec3& p, const Vec3& a, const Vec3& b, double slack_mm) {
+  ProgressWindow w;
+  const Vec3 d = b - a;
+  const double len2 = d.squaredNorm();
+  if (len2 <= kLengthEpsMm * kLengthEpsMm) return w;
+  const double t = std::clamp((p - a).dot(d) / len2, 0.0, 1.0), half = slack_mm / std::sqrt(len2);
+  w.lo[0] = std::max(t - half, 0.0);
+  w.hi[0] = std::min(t + half, 1.0);
+  return w;
+}
+
+ProgressWindow arc_progress_near(const Vec3& p, const ArcGeom& arc, double slack_mm) {
+  ProgressWindow w;
   const double turn = std::abs(arc.sweep);
-  if (turn <= 0) return 0;
-  // The turn from the start towards p, the arc's way round, in [0, 2π).
-  double d = std::atan2(p.y() - arc.center.y(), p.x() - arc.center.x()) - arc.start_angle;
-  if (arc.sweep < 0) d = -d;
-  d = std::fmod(d, 2 * kPi);
-  if (d < 0) d += 2 * kPi;
-  if (d <= turn) return d / turn;
-  return d - turn < 2 * kPi - d ? 1.0 : 0.0;  // past the end, or before the start
+  if (turn <= 0) return w;
+  const double dx = p.x() - arc.center.x(), dy = p.y() - arc.center.y();
+  const double d = std::hypot(dx, dy);
+  if (d <= slack_mm) {  // every point of the arc as near, for all that is known of the centre
+    w.hi[0] = 1;
+    return w;
+  }
+  // p's direction as the turn from the start, the arc's way round, in [0, 2π), and the
+  // turn that moving p or the centre by `slack_mm` can make of it.
+  double at = std::atan2(dy, dx) - arc.start_angle;
+  if (arc.sweep < 0) at = -at;
+  at = std::fmod(at, 2 * kPi);
+  if (at < 0) at += 2 * kPi;
+  const double half = std::asin(slack_mm / d);
+  w.count = 0;
+  for (const double centre : {at, at - 2 * kPi}) {
+    const double lo = std::max(centre - half, 0.0), hi = std::min(centre + half, turn);
+    if (lo > hi) continue;
+    w.lo[w.count] = lo / turn;
+    w.hi[w.count] = hi / turn;
+    ++w.count;
+  }
+  if (w.count == 0) {  // past either end: the nearer end
+    w.lo[0] = w.hi[0] = at - turn < 2 * kPi - at ? 1.0 : 0.0;
+    w.count = 1;
+  }
+  return w;
 }
 
 double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {

@@ -104,13 +104,26 @@ bool is_corner(const Vec3& a, const Vec3& b, const Vec3& c, double band_mm, doub
 bool is_corner_beside_corner(const Vec3* z, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3* d,
                              bool a_is_corner, bool c_is_corner, double band_mm);
 
-/// How far along a block the controller has carried the block's other axes (A/B/C, U/V/W,
-/// which it moves linearly with the block's progress) where the tool passes nearest p, from
-/// 0 at its start to 1 at its end: the share of the line a-b at p's foot on it (0 for a line
-/// shorter than kLengthEpsMm), or of the arc's sweep at p's direction from its centre (p in
-/// the arc's plane's coordinates; past either end, the nearer end).
-double line_progress(const Vec3& p, const Vec3& a, const Vec3& b);
-double arc_progress(const Vec3& p, const ArcGeom& arc);
+/// Where along a block (its progress, 0 at its start to 1 at its end, with which the
+/// controller carries the block's other axes, A/B/C and U/V/W, linearly) the tool passes
+/// nearest a point, as far as moving the point, or the arc's centre, by `slack_mm` can move
+/// that: one or two stretches of progress (two where an arc's window wraps past its start).
+/// Around the point's foot on a line (`slack_mm` of the line's length either way), or its
+/// direction from an arc's centre (the turn `slack_mm` makes at its distance); the whole arc
+/// for a point within `slack_mm` of its centre, where every point of it is about as near.
+/// The slack of the fitter's windows (ProgressWindow), as a share of its band.
+inline constexpr double kFitNearShare = 0.01;
+struct ProgressWindow {
+  double lo[2] = {0, 0}, hi[2] = {0, 0};
+  int count = 1;
+  /// The least |v0 + t (v1 - v0) - target| for t in the window: how near the block carries
+  /// an axis going from v0 to v1 to `target` while it passes within the band of the point.
+  double least_gap(double v0, double v1, double target) const;
+};
+/// Along the line a-b (a line shorter than kLengthEpsMm: its start).
+ProgressWindow line_progress_near(const Vec3& p, const Vec3& a, const Vec3& b, double slack_mm);
+/// Along `arc`, p in its plane's coordinates, measured in the plane.
+ProgressWindow arc_progress_near(const Vec3& p, const ArcGeom& arc, double slack_mm);
 
 /// The point of the segment a-b nearest p (a, for a segment shorter than kLengthEpsMm).
 Vec3 nearest_on_segment(const Vec3& p, const Vec3& a, const Vec3& b);

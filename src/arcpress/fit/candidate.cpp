@@ -11,16 +11,14 @@ std::optional<Chosen> RunFitter::make(uint32_t a, const Vec2& T, const Candidate
   return make_arc(a, c.e, q(a) + left_normal(T) / c.k, c.k > 0);
 }
 
-template <class Progress>
-bool RunFitter::extra_axes_linear(uint32_t a, uint32_t e, const Progress& progress) const {
+template <class Window>
+bool RunFitter::extra_axes_linear(uint32_t a, uint32_t e, const Window& window) const {
   const size_t k = extra_.size();
   if (k == 0 || e <= a + 1) return true;
   for (uint32_t m = a + 1; m < e; ++m) {
-    const double t = progress(m);
-    for (size_t i = 0; i < k; ++i) {
-      const double va = extra_values_[a * k + i], ve = extra_values_[e * k + i];
-      if (std::abs(extra_values_[m * k + i] - (va + t * (ve - va))) > eps_) return false;
-    }
+    const ProgressWindow w = window(m);
+    for (size_t i = 0; i < k; ++i)
+      if (w.least_gap(extra_values_[a * k + i], extra_values_[e * k + i], extra_values_[m * k + i]) > eps_) return false;
   }
   return true;
 }
@@ -36,7 +34,7 @@ bool RunFitter::extrusion_even(uint32_t a, uint32_t e, double length_mm) const {
 
 /// The line from vertex a to vertex e, if the moves between stay inside the band.
 std::optional<Chosen> RunFitter::make_line(uint32_t a, uint32_t e, const Vec2& fallback_tangent) const {
-  if (!extra_axes_linear(a, e, [&](uint32_t m) { return line_progress(p_[m], p_[a], p_[e]); }) ||
+  if (!extra_axes_linear(a, e, [&](uint32_t m) { return line_progress_near(p_[m], p_[a], p_[e], kFitNearShare * eps_); }) ||
       !extrusion_even(a, e, (p_[e] - p_[a]).norm()))
     return std::nullopt;
   std::span<const Vec3> pts(p_.data() + a, e - a + 1);
@@ -66,7 +64,7 @@ std::optional<Chosen> RunFitter::make_arc(uint32_t a, uint32_t e, const Vec2& ce
   const double sweep_deg = std::abs(g.sweep) * 180 / kPi;
   if (sweep_deg > o_.max_sweep_deg + 1e-9 || sweep_deg < o_.min_sweep_deg) return std::nullopt;
   if (g.radius_mm * std::abs(g.sweep) < o_.min_arc_length_mm) return std::nullopt;
-  if (!extra_axes_linear(a, e, [&](uint32_t m) { return arc_progress(p_[m], g); }) ||
+  if (!extra_axes_linear(a, e, [&](uint32_t m) { return arc_progress_near(p_[m], g, kFitNearShare * eps_); }) ||
       !extrusion_even(a, e, std::hypot(g.radius_mm * g.sweep, g.h1 - g.h0)))
     return std::nullopt;
   const double band = flat ? eps_ : eps_ * kPlaneShare;

@@ -234,14 +234,16 @@ class RunFitter : private FitAngles {
   /// Builds and checks the primitive for candidate `c` from `a` along `T`.
   std::optional<Chosen> make(uint32_t a, const Vec2& T, const Candidate& c) const;
   /// Whether every extra axis that moves, carried linearly from vertex a to vertex e with
-  /// the block's progress as the controller carries it (`progress(m)`: where the block passes
-  /// nearest vertex m, line_progress() or arc_progress(), as the check reads it), passes
-  /// within the band of its value at each vertex between (the band's number read in the
-  /// axis's unit: mm, or degrees for A/B/C, which keeps a point within the band up to 57 mm
-  /// from the axis). The vertices' rates per mm agree with their neighbours' (soft_), but a
-  /// rate that drifts slowly would still bend the axis away from the line over a long primitive.
-  template <class Progress>
-  bool extra_axes_linear(uint32_t a, uint32_t e, const Progress& progress) const;
+  /// the block's progress as the controller carries it, comes within the band of its value
+  /// at each vertex between where the block passes nearest that vertex, within kFitNearShare
+  /// of the band (`window(m)`: line_progress_near() or arc_progress_near(), as the check
+  /// reads it, within more: kCheckNearShare; at an arc's centre every point is as near;
+  /// the band's number read in the axis's unit: mm, or degrees for A/B/C, which keeps a
+  /// point within the band up to 57 mm from the axis). The vertices' rates per mm agree with
+  /// their neighbours' (soft_), but a rate that drifts slowly would still bend the axis away
+  /// from the line over a long primitive.
+  template <class Window>
+  bool extra_axes_linear(uint32_t a, uint32_t e, const Window& window) const;
   /// Whether a primitive from vertex a to vertex e, `length_mm` long, which extrudes its E
   /// evenly along itself as the controller does, keeps every move it replaces at its own
   /// rate: each move's E per mm within the extrusion variance of the primitive's (a share

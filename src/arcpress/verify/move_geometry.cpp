@@ -27,11 +27,11 @@ ArcGeom arc_of_move(const Interpretation& in, size_t i) {
   return g;
 }
 
-double move_progress(const Interpretation& in, size_t i, const Vec3& p) {
+ProgressWindow move_progress_near(const Interpretation& in, size_t i, const Vec3& p, double slack_mm) {
   const Move& m = in.moves[i];
-  if (is_arc(m.kind)) return arc_progress(in_plane(p, m.plane), arc_of_move(in, i));
+  if (is_arc(m.kind)) return arc_progress_near(in_plane(p, m.plane), arc_of_move(in, i), slack_mm);
   const AxisValues& f = in.from(i);
-  return line_progress(p, Vec3(f[kX], f[kY], f[kZ]), m.xyz());
+  return line_progress_near(p, Vec3(f[kX], f[kY], f[kZ]), m.xyz(), slack_mm);
 }
 
 double move_length_mm(const Interpretation& in, size_t i) {
@@ -61,9 +61,20 @@ std::pair<double, int> extra_axes_apart(const AxisValues& x, const AxisValues& y
 AxisValues extra_axes_at(const Interpretation& in, size_t i, const Vec3& p) {
   const AxisValues &f = in.from(i), &e = in.moves[i].to;
   AxisValues v = e;
-  const double t = move_progress(in, i, p);
+  const ProgressWindow at = move_progress_near(in, i, p, 0);
+  const double t = 0.5 * (at.lo[0] + at.hi[0]);
   for (int ax = kA; ax < kE; ++ax) v[ax] = f[ax] + t * (e[ax] - f[ax]);
   return v;
+}
+
+std::pair<double, int> extra_axes_gap(const Interpretation& in, size_t i, const Vec3& p, const AxisValues& target,
+                                      double slack_mm) {
+  const AxisValues &f = in.from(i), &e = in.moves[i].to;
+  const ProgressWindow w = move_progress_near(in, i, p, slack_mm);
+  std::pair<double, int> most{0.0, -1};
+  for (int ax = kA; ax < kE; ++ax)
+    if (const double gap = w.least_gap(f[ax], e[ax], target[ax]); gap > most.first) most = {gap, ax};
+  return most;
 }
 
 double flat_arc_sagitta_mm(const ArcGeom& g) {

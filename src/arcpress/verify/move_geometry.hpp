@@ -16,10 +16,14 @@ namespace arcpress {
 /// coincide in the plane make a full turn; a P word adds turns.
 ArcGeom arc_of_move(const Interpretation& in, size_t i);
 
-/// Where move i of `in` passes nearest `p` (XYZ), the share of the move done there: how far
-/// the controller has carried the move's other axes (line_progress(), arc_progress(); an arc
-/// of more than one turn is read on its first).
-double move_progress(const Interpretation& in, size_t i, const Vec3& p);
+/// Where move i of `in` passes nearest `p` (XYZ), to within `slack_mm` (see ProgressWindow):
+/// the shares of the move done there, with which the controller carries the move's other axes
+/// (line_progress_near(), arc_progress_near(); an arc of more than one turn is read on its first).
+ProgressWindow move_progress_near(const Interpretation& in, size_t i, const Vec3& p, double slack_mm);
+/// The slack of the check's windows, as a share of the band: the fitter's (kFitNearShare of
+/// its own band) and what printing the centre moves an arc (at most 1.5 % of the band) fit
+/// inside it.
+inline constexpr double kCheckNearShare = 0.1;
 
 /// The length of move i's path (mm): a line's, or an arc's (a helix's climb included, every
 /// turn of it).
@@ -32,9 +36,14 @@ bool extra_axes_move(const Interpretation& in);
 /// own unit (mm or degrees), and the axis where it is (kAxisLetters; -1 where none differ).
 std::pair<double, int> extra_axes_apart(const AxisValues& x, const AxisValues& y);
 
-/// The extra axes (A/B/C, U/V/W) of move i of `in` where it passes nearest `p`, carried from
-/// its start to its end with its progress (move_progress()); the other axes as at its end.
+/// The extra axes (A/B/C, U/V/W) of move i of `in` at `p`, a point of its path, carried from
+/// its start to its end with its progress; the other axes as at its end.
 AxisValues extra_axes_at(const Interpretation& in, size_t i, const Vec3& p);
+/// How near move i of `in` carries its extra axes to `target`'s where it passes nearest `p`
+/// (move_progress_near() with `slack_mm`, ProgressWindow::least_gap()): the largest such gap
+/// of one axis, each in its own unit, and that axis (kAxisLetters; -1 where none is apart).
+std::pair<double, int> extra_axes_gap(const Interpretation& in, size_t i, const Vec3& p, const AxisValues& target,
+                                      double slack_mm);
 
 /// An arc that bulges off its chord by no more than this (mm: a floating-point epsilon of
 /// lengths, far below any band) is measured as its chord. An arc of a huge radius between

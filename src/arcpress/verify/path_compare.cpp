@@ -204,11 +204,11 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
         }
       }
       // The extra axes at each input vertex inside the output move, against the output move
-      // carrying them from its start to its end.
+      // carrying them from its start to its end where it passes nearest the vertex.
       if (extra_move && replaced)
         for (size_t q = i; q < k; ++q) {
           const AxisValues& v = ia.moves[q].to;
-          const auto [off, ax] = extra_axes_apart(v, extra_axes_at(ib, j, Vec3(v[kX], v[kY], v[kZ])));
+          const auto [off, ax] = extra_axes_gap(ib, j, Vec3(v[kX], v[kY], v[kZ]), v, kCheckNearShare * opt.tolerance_mm);
           if (off <= r.max_extra_axis) continue;
           r.max_extra_axis = off;
           r.extra_axis = ax;

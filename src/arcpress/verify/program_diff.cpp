@@ -415,7 +415,7 @@ void measure_paths(const Program& a, const Interpretation& ia, const Path& pa, c
     auto feed_at = [&](const Move& ma, const Move& mb, const Vec3& at) {
       if (d.extra_axes_compared) {
         const size_t i = size_t(&ma - ia.moves.data()), j = size_t(&mb - ib.moves.data());
-        const auto [off, ax] = extra_axes_apart(extra_axes_at(ia, i, at), extra_axes_at(ib, j, at));
+        const auto [off, ax] = extra_axes_gap(ia, i, at, extra_axes_at(ib, j, at), kCheckNearShare * opt.tolerance_mm);
         if (off > d.max_extra_axis) {
           d.max_extra_axis = off;
           d.extra_axis = ax;
