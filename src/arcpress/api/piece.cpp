@@ -353,6 +353,7 @@ void compress_piece(Piece& piece, const CompressOptions& options) {
   eo.tangent_slack_deg = 0.05 * opt.fit.g1_angle_deg;
   eo.threads = opt.threads;
   eo.executed = opt.executed_rule();
+  eo.extrusion_variance = opt.fit.extrusion_variance;
   eo.start = piece.emit;
   r.output = emit_program(prog, in, runs, fits, eo, &r.stats);
   r.ok = true;

@@ -274,6 +274,8 @@ class Emitter {
   /// What printing one arc works on: the input points it replaces, its fitted centre.
   struct ArcScratch {
     std::vector<Vec3> pts;
+    std::vector<double> e_rates;  // each replaced move's E per mm, where E moves
+    double e_mm = 0;              // E over the arc
     Vec2 ideal{0, 0};
     std::vector<Vec3> flat_pts;
     std::vector<Vec2> chord_ends;
@@ -408,6 +410,14 @@ class Emitter {
     scratch.pts.clear();
     for (uint32_t k = a; k <= pr.end_vertex; ++k) scratch.pts.push_back(plane3(run.vertex(in_, k)));
     scratch.pts.back() = e3;
+    // Their E per mm, where the arc extrudes.
+    scratch.e_rates.clear();
+    scratch.e_mm = std::abs(run.vertex(in_, pr.end_vertex)[kE] - from[kE]);
+    for (uint32_t k = a; k < pr.end_vertex && opt_.extrusion_variance >= 0 && scratch.e_mm > 0; ++k) {
+      const AxisValues &p = run.vertex(in_, k), &q = run.vertex(in_, k + 1);
+      const double len = (Vec3(q[kX], q[kY], q[kZ]) - Vec3(p[kX], p[kY], p[kZ])).norm();
+      if (len > kLengthEpsMm) scratch.e_rates.push_back(std::abs(q[kE] - p[kE]) / len);
+    }
 
     const NumberDigits& dig = d().digits(fr.unit_mm != 1.0);
     const double unit = fr.unit_mm;
@@ -505,6 +515,13 @@ class Emitter {
     double sweep_deg = rad_to_deg(std::abs(g.sweep));
     if (sweep_deg < d().min_sweep_deg || sweep_deg > d().max_sweep_deg + 1e-9) return false;
     if (rs * std::abs(g.sweep) < d().min_arc_length_mm) return false;
+    // The moves it replaces keep their E per mm, which the printed arc's length sets.
+    if (!scratch.e_rates.empty()) {
+      const double len = std::hypot(rs * g.sweep, g.h1 - g.h0);
+      const double rate = len > kLengthEpsMm ? scratch.e_mm / len : 0.0;
+      for (const double r : scratch.e_rates)
+        if (std::abs(r - rate) > opt_.extrusion_variance * std::max(r, rate)) return false;
+    }
     // The firmware must be able to count the chords it cuts the arc into.
     if (d().executed.moves_on_chords() && executed_segments(d().executed, rs, g.sweep, g.h1 - g.h0) >= kMaxArcSegments)
       return false;
