@@ -74,6 +74,11 @@ arcpress_status arcpress_options_set_band(arcpress_options* options, const char*
  * ("program" above, or a dialect without a firmware rule): arcpress_compressor_new() refuses
  * it on a firmware's chords. */
 arcpress_status arcpress_options_set_band_side(arcpress_options* options, const char* side);
+/* The units a program is in until its first G20 or G21, as the controller starts: "mm" or
+ * "inch". Unset, the dialect's: printer firmwares start in mm; a CNC controller's start is
+ * its own setting, read as mm with a warning where a program gives a length before G20 or
+ * G21. Kept when a dialect is chosen after it. */
+arcpress_status arcpress_options_set_units(arcpress_options* options, const char* units);
 /* Share (0 .. 1) by which the E per mm of each move an arc or line replaces may differ from the arc's or line's. */
 arcpress_status arcpress_options_set_extrusion_variance(arcpress_options* options, double share);
 /* 0: no comment naming arcpress after the program's first line (1, the default: where that

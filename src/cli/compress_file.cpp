@@ -51,6 +51,7 @@ Dialect dialect_for(const std::string& name, bool name_given, const std::string&
                     std::string_view tail, std::string* why) {
   std::string reason = !file.empty() ? "--dialect-file" : name_given ? "--dialect" : "the default";
   std::string picked = name;
+  bool slicer_program = false;  // a slicer's flavor line: a printer's program, in millimetres
   if (file.empty() && !name_given) {
     // `tail`: the end of a program of which `program` is the start (a slicer's config block
     // is at the end); its first line may be cut.
@@ -59,6 +60,7 @@ Dialect dialect_for(const std::string& name, bool name_given, const std::string&
     std::optional<ProgramFlavor> flavor = program_flavor(program);
     const bool at_end = !flavor && (flavor = program_flavor(tail_lines));
     if (flavor) {
+      slicer_program = true;
       const std::string where = at_end ? fmt::format("the program's '{}' near its end", flavor->evidence)
                                        : fmt::format("the program's '{}' at line {}", flavor->evidence, flavor->line);
       if (flavor->dialect.empty()) {
@@ -71,7 +73,15 @@ Dialect dialect_for(const std::string& name, bool name_given, const std::string&
     }
   }
   if (why) *why = reason;
-  return !file.empty() ? load_dialect_file(file) : find_dialect(picked, dialect_search_path(exe_dir()));
+  Dialect d = !file.empty() ? load_dialect_file(file) : find_dialect(picked, dialect_search_path(exe_dir()));
+  // Every printer firmware starts in millimetres, whichever the flavor names.
+  if (slicer_program) d.start_units = StartUnits::Mm;
+  return d;
+}
+
+void set_start_units(Dialect& dialect, const std::string& units) {
+  if (units == "mm") dialect.start_units = StartUnits::Mm;
+  if (units == "inch") dialect.start_units = StartUnits::Inch;
 }
 
 BandSide band_side_named(const std::string& word) {
@@ -134,6 +144,7 @@ int compress_file(const CompressArgs& a, FileReport& report, std::atomic<size_t>
   std::string why_dialect;
   opt.dialect = dialect_for(a.dialect, a.dialect_given, a.dialect_file, chunk,
                             head == 0 || chunk.size() < head ? std::string() : input.tail(kFlavorBytes), &why_dialect);
+  set_start_units(opt.dialect, a.units);
   if (opt.band == CompressOptions::Band::Executed) require_executed_rule(opt.dialect, "--band executed");
   opt.block_rate = a.stats;
   DiagnosticSink sink(name);

@@ -24,6 +24,7 @@ struct CompressArgs {
   std::string method = "arcs";
   std::string band;  ///< "program", "executed"; empty: the dialect's choice
   std::string band_side = "both";  ///< "left", "right", "both"
+  std::string units;  ///< "mm", "inch": the program's units until its G20 or G21; empty: the dialect's
   bool in_place = false;
   bool stats = false;
   bool quiet = false;
@@ -55,6 +56,7 @@ std::string diagnostics_text(std::initializer_list<const DiagnosticSink*> sinks)
 /// The dialect to read `program` with: the one the command line names (`--dialect-file`,
 /// `--dialect` where `name_given`), or else the one the program names for itself (a
 /// slicer's flavor line, at its start or in `tail`, its end), or else `name`. `why` says which.
+/// A program with a slicer's flavor line starts in millimetres, as every printer firmware does.
 Dialect dialect_for(const std::string& name, bool name_given, const std::string& file, std::string_view program,
                     std::string_view tail = {}, std::string* why = nullptr);
 
@@ -64,6 +66,9 @@ void require_executed_rule(const Dialect& dialect, const char* option);
 
 /// The side a --band-side word names.
 BandSide band_side_named(const std::string& word);
+/// Sets the units `dialect` reads a program in until its first G20 or G21: "mm", "inch"
+/// (--units), or leaves the dialect's own where `units` is empty.
+void set_start_units(Dialect& dialect, const std::string& units);
 
 /// The folder of the running program.
 std::string exe_dir();

@@ -139,6 +139,7 @@ struct DiffArgs {
   bool executed = false;  ///< compare the paths the dialect's firmware moves along (arcs as its chords)
   std::string band_side = "both";  ///< measure on which side of A the moves of B lie
   bool ignore_comments = false;    ///< leave comments out of the non-motion blocks compared
+  std::string units;               ///< "mm", "inch": both programs' units until their G20 or G21
 };
 
 /// `arcpress diff A B`: any two programs, read the same way, compared by path, rapids,
@@ -160,7 +161,8 @@ int run_compress(const cli::CompressArgs& a) {
 int run_diff(const DiffArgs& d) {
   std::string text_a = cli::read_input(d.a), text_b = cli::read_input(d.b);
   // Both programs are read the same way, in the dialect A would be compressed for.
-  const Dialect dialect = cli::dialect_for(d.dialect, d.dialect_given, d.dialect_file, text_a);
+  Dialect dialect = cli::dialect_for(d.dialect, d.dialect_given, d.dialect_file, text_a);
+  cli::set_start_units(dialect, d.units);
   DiagnosticSink sa(d.a), sb(d.b);
   Program pa = lex(d.a, std::move(text_a), sa);
   Program pb = lex(d.b, std::move(text_b), sb);
@@ -294,6 +296,11 @@ int main(int argc, char** argv) {
                  "dialect's firmware cuts each arc into (its [arcs.executed] rule); absent: executed where the "
                  "dialect names a rule")
       ->check(CLI::IsMember({"program", "executed"}));
+  app.add_option("--units", a.units,
+                 "The units a program is in until its first G20 or G21 (the controller's own setting at power-up); absent: "
+                 "the dialect's (printers: mm; CNC controllers: mm, with a warning where a program gives a length "
+                 "before G20 or G21)")
+      ->check(CLI::IsMember({"mm", "inch"}));
   bool no_header = false;
   app.add_flag("--no-header", no_header,
                "Write no comment naming arcpress, its version and options after the program's first line (written "
@@ -331,6 +338,9 @@ int main(int argc, char** argv) {
                        "line), else rs274")
           ->type_name("NAME");
   diff_cmd->add_option("--dialect-file", diff.dialect_file, "Read both programs with this dialect file");
+  diff_cmd->add_option("--units", diff.units,
+                       "The units both programs are in until their first G20 or G21; absent: the dialect's")
+      ->check(CLI::IsMember({"mm", "inch"}));
   diff_cmd->add_flag("--ignore-comments", diff.ignore_comments,
                      "Compare M, T, S and dwell blocks but not comments (another tool's output, with header "
                      "comments of its own)");

@@ -165,6 +165,47 @@ TEST_CASE("the C library sets the band, the extrusion variance and the header as
   arcpress_options_free(o);
 }
 
+TEST_CASE("the C library reads a program in the units the controller starts in, set before or after the dialect",
+          "[capi][units]") {
+  // Quarter circle printed without G21: read in inches it is 25.4 times as large.
+  const std::string program = kProgram.substr(kProgram.find('\n') + 1);
+  auto compressed = [&](const char* units, bool units_first) {
+    arcpress_options* o = arcpress_options_new();
+    REQUIRE(o);
+    if (units_first) REQUIRE(arcpress_options_set_units(o, units) == ARCPRESS_OK);
+    REQUIRE(arcpress_options_set_dialect(o, "linuxcnc") == ARCPRESS_OK);
+    if (!units_first) REQUIRE(arcpress_options_set_units(o, units) == ARCPRESS_OK);
+    arcpress_compressor* c = nullptr;
+    REQUIRE(arcpress_compressor_new(o, "c", &c) == ARCPRESS_OK);
+    REQUIRE(arcpress_push(c, program.data(), program.size()) == ARCPRESS_OK);
+    REQUIRE(arcpress_finish(c) == ARCPRESS_OK);
+    const char* text = nullptr;
+    size_t n = 0;
+    REQUIRE(arcpress_take(c, &text, &n) == ARCPRESS_OK);
+    const std::string out(text, n), said = arcpress_diagnostics(c);
+    arcpress_compressor_free(c);
+    arcpress_options_free(o);
+    return std::pair(out, said);
+  };
+  auto engine = [&](arcpress::StartUnits units) {
+    arcpress::CompressOptions opt;
+    opt.dialect = arcpress::dialect_named("linuxcnc");
+    opt.dialect.start_units = units;
+    arcpress::DiagnosticSink sink;
+    return arcpress::compress("c", program, opt, sink).output;
+  };
+  for (bool first : {true, false}) {
+    CHECK(compressed("inch", first).first == engine(arcpress::StartUnits::Inch));
+    CHECK(compressed("mm", first).first == engine(arcpress::StartUnits::Mm));
+    CHECK(compressed("mm", first).second.find("W-MODEL-UNITS") == std::string::npos);
+  }
+  CHECK(engine(arcpress::StartUnits::Inch) != engine(arcpress::StartUnits::Mm));
+  arcpress_options* o = arcpress_options_new();
+  CHECK(arcpress_options_set_units(o, "cm") == ARCPRESS_BAD_INPUT);
+  CHECK(std::string(arcpress_options_last_error(o)).find("unknown units 'cm'") != std::string::npos);
+  arcpress_options_free(o);
+}
+
 TEST_CASE("a compressor owns what it reads: options changed or freed after it is made change nothing", "[capi]") {
   const auto expected = through_c(kProgram, 1000, "fanuc");
   REQUIRE(expected.second == ARCPRESS_OK);

@@ -254,3 +254,75 @@ TEST_CASE("a run too far from the origin for the check to measure is written as 
   const std::string far = t.substr(t.find("G1 Z0\n"));
   CHECK(r.output.find(far) != std::string::npos);
 }
+
+namespace {
+
+/// A circle of 1 inch radius in 48 G1 moves, written in inches with no G20 (`units_word`
+/// before the first move, where given): each chord lies 0.0021 in (0.054 mm) inside the
+/// circle through its ends, within a 0.01 band only if the numbers are read as mm.
+std::string inch_circle(const std::string& units_word) {
+  std::string t = units_word + "G90 G17\nG0 X1 Y0\nG1 F20\n";
+  for (int k = 1; k <= 48; ++k)
+    t += fmt::format("G1 X{:.4f} Y{:.4f}\n", std::cos(k * 2 * M_PI / 48), std::sin(k * 2 * M_PI / 48));
+  return t + "M2\n";
+}
+
+CompressResult compressed_in(const std::string& text, DiagnosticSink& sink, StartUnits units) {
+  CompressOptions opt;
+  opt.fit.tolerance_mm = 0.01;
+  opt.dialect.start_units = units;
+  CompressResult r = compress("t.nc", text, opt, sink);
+  REQUIRE(r.ok);
+  REQUIRE(r.within_band());
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("a program that gives lengths before G20 or G21 is read in the units its controller starts in, and where "
+          "that is the machine's own setting a warning says so",
+          "[api][units]") {
+  Dialect inch_start;
+  inch_start.start_units = StartUnits::Inch;
+  DiffOptions band;
+  band.tolerance_mm = 0.01;
+  SECTION("read as millimetres where the controller starts in inches, the chords' 0.054 mm pass for 0.0021 mm") {
+    DiagnosticSink sink("t.nc");
+    const CompressResult r = compressed_in(inch_circle(""), sink, StartUnits::Machine);
+    CHECK(sink.warning_count("W-MODEL-UNITS") == 1);
+    CHECK(sink.format_all().find("t.nc:2:4: warning: W-MODEL-UNITS") != std::string::npos);
+    CHECK(r.stats.arcs_out > 0);
+    // On a machine that starts in inches, that output leaves the band 5 times over.
+    const ProgramDiff d = test::diff_texts(inch_circle(""), r.output, band, inch_start);
+    CHECK_FALSE(d.agrees(0.01));
+    CHECK(d.max_deviation_mm > 0.05);
+  }
+  SECTION("read in inches, nothing is fitted, the band holds, and nothing is warned of") {
+    DiagnosticSink sink("t.nc");
+    const CompressResult r = compressed_in(inch_circle(""), sink, StartUnits::Inch);
+    CHECK(sink.warning_count("W-MODEL-UNITS") == 0);
+    CHECK(r.stats.arcs_out == 0);
+    CHECK(test::diff_texts(inch_circle(""), r.output, band, inch_start).agrees(0.01));
+  }
+  SECTION("a program that states its units is read in them, whatever the start, and is not warned of") {
+    for (StartUnits start : {StartUnits::Mm, StartUnits::Inch, StartUnits::Machine}) {
+      DiagnosticSink sink("t.nc");
+      const CompressResult r = compressed_in(inch_circle("G20\n"), sink, start);
+      CHECK(sink.warning_count("W-MODEL-UNITS") == 0);
+      CHECK(r.stats.arcs_out == 0);
+      DiagnosticSink metric("t.nc");
+      CHECK(compressed_in(inch_circle("G21\n"), metric, start).stats.arcs_out > 0);
+      CHECK(metric.warning_count("W-MODEL-UNITS") == 0);
+    }
+  }
+  SECTION("printer firmwares start in millimetres: their dialects say so, and nothing is warned of") {
+    for (const char* name : {"marlin", "klipper", "prusa", "reprapfirmware", "smoothieware"}) {
+      INFO(name);
+      DiagnosticSink sink("t.nc");
+      CHECK(load_dialect_file(ARCPRESS_SOURCE_DIR "/dialects/" + std::string(name) + ".toml").start_units ==
+            StartUnits::Mm);
+      compressed(inch_circle(""), sink, name);
+      CHECK(sink.warning_count("W-MODEL-UNITS") == 0);
+    }
+  }
+}

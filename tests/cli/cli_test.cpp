@@ -222,6 +222,29 @@ TEST_CASE("diff passes a compressed program within the band and fails it outside
   CHECK(moved.out.find("moved.nc") != std::string::npos);
 }
 
+TEST_CASE("with --units inch a program that never states its units is read as a controller that starts in inches reads it",
+          "[cli][units]") {
+  auto d = arcpress::test::temp_dir("units");
+  // A circle of 1 inch radius in 48 moves: its chords lie 0.054 mm inside the circle.
+  std::string program = "(a program in inches that never says so)\nG90 G17\nG0 X1 Y0\nG1 F20\n";
+  for (int k = 1; k <= 48; ++k)
+    program += fmt::format("G1 X{:.4f} Y{:.4f}\n", std::cos(k * 2 * M_PI / 48), std::sin(k * 2 * M_PI / 48));
+  arcpress::test::write_file(d / "in.nc", program + "M2\n");
+  const std::string in = "'" + (d / "in.nc").string() + "'";
+  auto as_mm = run_arcpress(in + " -o '" + (d / "mm.nc").string() + "'");
+  REQUIRE(as_mm.exit_code == 0);
+  CHECK(as_mm.err.find("in.nc:3:4: warning: W-MODEL-UNITS") != std::string::npos);
+  auto mm_in_inches = run_arcpress("diff " + in + " '" + (d / "mm.nc").string() + "' --units inch");
+  CHECK(mm_in_inches.exit_code == 1);
+  CHECK(mm_in_inches.out.find("DIFFERENT") != std::string::npos);
+  auto as_inch = run_arcpress(in + " -o '" + (d / "inch.nc").string() + "' --units inch");
+  REQUIRE(as_inch.exit_code == 0);
+  CHECK(as_inch.err.find("W-MODEL-UNITS") == std::string::npos);
+  CHECK(arcpress::test::read_file(d / "inch.nc").find(" --units inch)") != std::string::npos);
+  CHECK(run_arcpress("diff " + in + " '" + (d / "inch.nc").string() + "' --units inch").exit_code == 0);
+  CHECK(run_arcpress(in + " --units cm").exit_code == 2);
+}
+
 TEST_CASE("diff of a 2-D arc against its chord fails with the sagitta, and what it could not place is never a pass",
           "[cli][diff][2d]") {
   auto d = arcpress::test::temp_dir("diff-2d");

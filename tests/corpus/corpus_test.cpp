@@ -94,6 +94,12 @@ TEST_CASE("strict mode reads every corpus file but for unexpanded slicer templat
     // A lathe program read as a mill's has arcs no mill can run (X in diameters).
     if (f.filename().string().rfind("haas-lathe", 0) == 0)
       opt.dialect = load_dialect_file(ARCPRESS_SOURCE_DIR "/dialects/haas-lathe.toml");
+    // Read in the units their machines start in, where a program never states them (the
+    // warning that it does not is true, and no matter of reading): LinuxCNC's engraving
+    // sample in inches (its sample configurations' nc_files), printers' in mm.
+    const std::string name = f.filename().string();
+    if (name.rfind("linuxcnc_systems_ttt", 0) == 0) opt.dialect.start_units = StartUnits::Inch;
+    if (f.parent_path().filename() == "printer") opt.dialect.start_units = StartUnits::Mm;
     std::string text = test::read_file(f);
     auto r = compress(f.string(), text, opt, sink);
     INFO(sink.format_all());

@@ -117,6 +117,7 @@ TEST_CASE("rs274.toml spells out exactly the built-in default dialect", "[dialec
   CHECK(file.decimal_point == builtin.decimal_point);
   CHECK(file.max_line_length == builtin.max_line_length);
   CHECK(file.refused == builtin.refused);
+  CHECK(file.start_units == builtin.start_units);
 }
 
 TEST_CASE("a mistake in a dialect file is reported with the file, line, column and key", "[dialect]") {
@@ -132,6 +133,8 @@ TEST_CASE("a mistake in a dialect file is reported with the file, line, column a
   CHECK(error_of("name = \"x\"\n[arcs\n").rfind("user.toml:2:", 0) == 0);  // TOML syntax, from toml++
   CHECK(error_of("name = \"x\"\n[arcs]\nradius_word = false\nformat = \"radius\"\n") ==
         "user.toml:2:1: arcs.format: \"radius\" needs radius_word = true");
+  CHECK(error_of("name = \"x\"\n[startup]\nunits = \"inches\"\n") ==
+        "user.toml:3:9: startup.units: expected one of \"mm\", \"inch\", \"machine\"");
   CHECK(error_of("name = \"x\"\n").empty());
 }
 

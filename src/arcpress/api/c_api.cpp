@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <new>
+#include <optional>
 #include <string>
 
 #include "arcpress/arcpress.hpp"
@@ -12,6 +13,12 @@
 struct arcpress_options {
   arcpress::CompressOptions options;
   std::string error;
+  /// arcpress_options_set_units(): kept apart, so that a dialect chosen after it keeps it.
+  std::optional<arcpress::StartUnits> units;
+  void set_dialect(arcpress::Dialect d) {
+    if (units) d.start_units = *units;
+    options.dialect = std::move(d);
+  }
 };
 
 struct arcpress_compressor {
@@ -94,7 +101,7 @@ arcpress_status arcpress_options_set_method(arcpress_options* o, const char* met
 arcpress_status arcpress_options_set_dialect(arcpress_options* o, const char* name) {
   if (!o || !name) return ARCPRESS_BAD_INPUT;
   return guarded(o->error, [&] {
-    o->options.dialect = arcpress::dialect_named(name);
+    o->set_dialect(arcpress::dialect_named(name));
     return ARCPRESS_OK;
   });
 }
@@ -102,7 +109,7 @@ arcpress_status arcpress_options_set_dialect(arcpress_options* o, const char* na
 arcpress_status arcpress_options_set_dialect_file(arcpress_options* o, const char* path) {
   if (!o || !path) return ARCPRESS_BAD_INPUT;
   return guarded(o->error, [&] {
-    o->options.dialect = arcpress::load_dialect_file(path);
+    o->set_dialect(arcpress::load_dialect_file(path));
     return ARCPRESS_OK;
   });
 }
@@ -148,6 +155,18 @@ arcpress_status arcpress_options_set_band_side(arcpress_options* o, const char* 
   }
   o->options.fit.band_side = s == "left" ? arcpress::BandSide::Left : s == "right" ? arcpress::BandSide::Right
                                                                                    : arcpress::BandSide::Both;
+  o->error.clear();
+  return ARCPRESS_OK;
+}
+arcpress_status arcpress_options_set_units(arcpress_options* o, const char* units) {
+  if (!o || !units) return ARCPRESS_BAD_INPUT;
+  const std::string u = units;
+  if (u != "mm" && u != "inch") {
+    o->error = "unknown units '" + u + "' (mm or inch)";
+    return ARCPRESS_BAD_INPUT;
+  }
+  o->units = u == "mm" ? arcpress::StartUnits::Mm : arcpress::StartUnits::Inch;
+  o->options.dialect.start_units = *o->units;
   o->error.clear();
   return ARCPRESS_OK;
 }

@@ -50,7 +50,8 @@ std::string header_comment(const CompressOptions& o, char like) {
       o.fit.g1_angle_deg, o.fit.corner_angle_deg, method_name(o.fit.method));
   const std::string sided = o.fit.band_side == BandSide::Both ? text
                            : text + (o.fit.band_side == BandSide::Left ? " --band-side left" : " --band-side right");
-  return like == ';' ? "; " + sided : "(" + sided + ")";
+  const std::string units = o.dialect.start_units == StartUnits::Inch ? sided + " --units inch" : sided;
+  return like == ';' ? "; " + units : "(" + units + ")";
 }
 
 }  // namespace

@@ -26,6 +26,14 @@ enum class ArcFormat : uint8_t {
   Radius,  ///< R, negative for sweeps over 180 degrees
 };
 
+/// The units a program is read in until its first G20 or G21.
+enum class StartUnits : uint8_t {
+  Mm,       ///< the controller always starts in millimetres (printer firmwares)
+  Inch,     ///< it starts in inches
+  Machine,  ///< a setting of the machine's decides (a parameter, a startup block, an INI file):
+            ///< read in millimetres, and a program that gives lengths before G20 or G21 is warned of
+};
+
 /// Digits for numbers arcpress computes itself (centres, relative moves). Numbers copied
 /// from the input keep the input's own text.
 struct NumberDigits {
@@ -70,6 +78,8 @@ struct Dialect {
   ArcSegmentation executed;
 
   // --- machine ----------------------------------------------------------------------
+  /// What a length means before the program's first G20 or G21 ([startup] units).
+  StartUnits start_units = StartUnits::Machine;
   /// X words are diameters from the start, as on lathes that power up in diameter mode
   /// (Haas, Fanuc); G7/G8 still switch where the program writes them.
   bool diameter_x = false;

@@ -225,6 +225,11 @@ Dialect parse_dialect(const std::string& text, const std::string& path) {
     if (d.format == ArcFormat::Radius && !d.radius_word)
       top.fail(t->source(), "arcs.format", "\"radius\" needs radius_word = true");
   }
+  if (const toml::table* t = top.table("startup")) {
+    TableReader r(*t, path, "startup.");
+    if (int c = r.choice("units", {"mm", "inch", "machine"}); c >= 0) d.start_units = StartUnits(c);
+    r.finish();
+  }
   if (const toml::table* t = top.table("lathe")) {
     TableReader r(*t, path, "lathe.");
     r.boolean("diameter", d.diameter_x);

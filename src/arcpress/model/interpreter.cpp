@@ -109,6 +109,7 @@ class Interpreter {
     uint32_t g11_col = 0;  // column of a G11 the firmware reads as its recovery (0: none)
     // Bit per axis: written with a value, with an expression, as a flag.
     uint32_t words_seen = 0, expr_axis = 0, flag_axis = 0;
+    uint32_t length_col = 0;  // column of the block's first length (a linear axis's word)
     double value[kAxisCount] = {};
     double ijk[3] = {0, 0, 0};
     bool ijk_seen[3] = {};
@@ -143,6 +144,7 @@ class Interpreter {
           continue;
         }
         words_seen |= 1u << ax;
+        if (kAxisIsLinear[ax] && length_col == 0) length_col = w->col;
         expr_axis = w->is_expr ? expr_axis | 1u << ax : expr_axis & ~(1u << ax);
         value[ax] = ax == kE ? w->value : number(*w);
         continue;
@@ -169,8 +171,8 @@ class Interpreter {
             case 170: s_.plane = Plane::XY; break;
             case 180: s_.plane = Plane::ZX; break;
             case 190: s_.plane = Plane::YZ; break;
-            case 200: F().unit_mm = 25.4; break;
-            case 210: F().unit_mm = 1.0; break;
+            case 200: F().unit_mm = 25.4, s_.units_told = true; break;
+            case 210: F().unit_mm = 1.0, s_.units_told = true; break;
             case 70: F().diameter_mode = true; break;
             case 80: F().diameter_mode = false; break;
             case 900: F().absolute = true; F().e_relative = false; break;
@@ -260,6 +262,14 @@ class Interpreter {
           other_words = true;
           break;
       }
+    }
+    if (length_col > 0 && !s_.units_told) {
+      // Read as the frame says (millimetres, unless the dialect starts in inches); said once.
+      sink_.warning({b.line, length_col}, "W-MODEL-UNITS",
+                    "a length before any G20 or G21: read in millimetres until the program states its units; a controller "
+                    "set to start in inches reads it 25.4 times larger (--units inch; --units mm, or a printer's "
+                    "--dialect, says it starts in millimetres)");
+      s_.units_told = true;
     }
     // Where the firmware retracts (d_.firmware_retraction), G10 without L and without axis
     // words retracts (or sets a tool's temperatures) and G11 recovers: the programmed position
@@ -535,6 +545,8 @@ class Interpreter {
 ModalState initial_state(const Dialect& dialect) {
   ModalState s;
   s.frame.diameter_mode = dialect.diameter_x;
+  s.frame.unit_mm = dialect.start_units == StartUnits::Inch ? 25.4 : 1.0;
+  s.units_told = dialect.start_units != StartUnits::Machine;
   return s;
 }
 

@@ -35,6 +35,10 @@ struct ModalState {
   int motion = 0;                   ///< modal motion G-code x10; G0 at power-up
   double feed_mm = 0;               ///< F in force, mm/min (or inverse time)
   bool feed_known = false;
+  /// G20 or G21 has been read, or lengths were read in the dialect's start units and a
+  /// warning said so (once): either way, nothing more to say of the units. It changes no
+  /// reading, so reads_as() does not compare it.
+  bool units_told = false;
 
   /// Whether a reader in state `o` reads every following block as one in this state does:
   /// the same position, known axes, frame, plane, feed and spindle, and (where
