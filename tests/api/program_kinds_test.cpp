@@ -326,3 +326,30 @@ TEST_CASE("a program that gives lengths before G20 or G21 is read in the units i
     }
   }
 }
+
+TEST_CASE("after a tool change (M6) the tool is where the controller left it: the first move after it is kept as it "
+          "is, and what follows is fitted from its end",
+          "[api][toolchange]") {
+  // A quarter circle cut after a tool change, whose first G1 starts from wherever the tool
+  // change left the tool (LinuxCNC re-reads its position after M6; Haas sends Z home).
+  std::string program = "G21 G90 G17\nT1 M6\nG0 X10 Y0 Z1\nG1 Z-1 F300\nT2 M6\n";
+  for (int k = 1; k <= 180; ++k)
+    program += fmt::format("G1 X{:.4f} Y{:.4f}\n", 10 * std::cos(k * M_PI / 180), 10 * std::sin(k * M_PI / 180));
+  program += "M2\n";
+  DiagnosticSink sink("t.nc");
+  const CompressResult r = compressed(program, sink, "linuxcnc");
+  CHECK(r.stats.arcs_out > 0);
+  REQUIRE_FALSE(r.not_fitted.empty());
+  bool told = false;
+  for (const NotFitted& n : r.not_fitted)
+    if (n.why == Unfit::UnknownAfterToolChange) told = n.first_line == 6 && n.cause_line == 5 && n.moves == 1;
+  CHECK(told);
+  const size_t after = r.output.find("T2 M6\n") + 6;
+  CHECK(r.output.compare(after, 21, "G1 X9.9985 Y0.1745\nG3") == 0);
+  // Where the controller parks the tool for the change, both programs move the same from it.
+  auto parked = [](std::string text) { return text.replace(text.find("T2 M6\n"), 6, "T2 M6\nG0 X0 Y0 Z50\n"); };
+  DiffOptions band;
+  band.tolerance_mm = 0.01;
+  const ProgramDiff d = test::diff_texts(parked(program), parked(r.output), band);
+  CHECK(d.same(0.01));
+}

@@ -81,6 +81,7 @@ enum class Unfit : uint8_t {
   UnknownAfterExpression,  ///< an expression set it
   UnknownAfterControl,  ///< flow control, a subprogram, a macro or host command ran
   UnknownAfterOffset,   ///< a work offset (G54..) changed under it
+  UnknownAfterToolChange,  ///< a tool change (M6): the controller may move the tool, and goes on from where it is
   UnknownAfterUnmodelled,  ///< a G-code arcpress does not model
   // The block cannot be read as a path: no controller runs it as written.
   UnreadableArc,    ///< G2/G3 without a centre (no I/J/K in its plane, no R), or R shorter than half its chord
