@@ -353,3 +353,31 @@ TEST_CASE("after a tool change (M6) the tool is where the controller left it: th
   const ProgramDiff d = test::diff_texts(parked(program), parked(r.output), band);
   CHECK(d.same(0.01));
 }
+
+TEST_CASE("moves in polar coordinates (G16) are kept as they are, and a check of them is never a pass", "[api][polar]") {
+  // A quarter circle of radius 10 mm in Fanuc's polar coordinates (X the radius, Y the
+  // angle): read as X and Y, a straight line, which one G1 would replace, cutting across.
+  std::string program = "G21 G90 G17\nG0 X10 Y0 Z1\nG1 Z-1 F300\nG16\n";
+  for (int k = 1; k <= 180; ++k) program += fmt::format("G1 X10. Y{:.3f}\n", k * 0.5);
+  const std::string after = "G15\nG0 X0 Y0\nG1 X5 Y0\nG1 X5.5 Y0.1\nG1 X6 Y0\nM30\n";
+  DiagnosticSink sink("t.nc");
+  CompressOptions opt;
+  opt.fit.tolerance_mm = 0.01;
+  opt.dialect = load_dialect_file(ARCPRESS_SOURCE_DIR "/dialects/fanuc.toml");
+  const CompressResult r = compress("t.nc", program + after, opt, sink);
+  REQUIRE(r.ok);
+  CHECK(r.output == program + after);
+  bool told = false;
+  for (const NotFitted& n : r.not_fitted) told = told || (n.why == Unfit::UnknownInPolar && n.moves == 180);
+  CHECK(told);
+  // The chord in place of the arc: never SAME.
+  DiffOptions band;
+  band.tolerance_mm = 0.01;
+  const std::string chord = "G21 G90 G17\nG0 X10 Y0 Z1\nG1 Z-1 F300\nG16\nG1 X10. Y0.5\nG1 X10. Y90.\n" + after;
+  const ProgramDiff d = test::diff_texts(program + after, chord, band, opt.dialect);
+  CHECK_FALSE(d.same(0.01));
+  CHECK(d.a.unplaced_feed_moves == 180);
+  // After G15 the plane's words are X and Y again, placed once both are written.
+  const ProgramDiff back = test::diff_texts(after, after, band, opt.dialect);
+  CHECK(back.same(0.01));
+}

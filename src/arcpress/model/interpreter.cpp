@@ -200,7 +200,9 @@ class Interpreter {
             case 400: case 410: case 411: case 420: case 421:  // cutter compensation
             case 430: case 431: case 432: case 490:             // tool length
             case 610: case 611: case 640:                       // path control
-            case 980: case 990: case 150: case 160:             // canned-cycle return, polar
+            case 150: F().polar = false; break;
+            case 160: F().polar = true; break;
+            case 980: case 990:                                 // canned-cycle return
             case 290:                                           // Marlin bed levelling
             case 310: case 320:
             case 500: case 960: case 970:                       // lathe spindle limits, CSS
@@ -367,6 +369,18 @@ class Interpreter {
         target[ax] = fr.to_mm(ax, v);
         known_after |= (1u << ax);
       }
+    }
+
+    // In polar coordinates the plane's words are a radius and an angle (about the origin or,
+    // under G91, the present point): the point they name is not computed, and both the
+    // plane's axes move when either word does.
+    const uint32_t plane_axes = (1u << axes_of(s_.plane).first) | (1u << axes_of(s_.plane).second);
+    if (fr.polar && (written & plane_axes)) {
+      for (int ax : {axes_of(s_.plane).first, axes_of(s_.plane).second}) {
+        known_after &= ~(1u << ax);
+        set_why(ax, Unfit::UnknownInPolar);
+      }
+      written |= plane_axes;
     }
 
     MoveKind kind = MoveKind::Other;

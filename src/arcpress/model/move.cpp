@@ -14,6 +14,7 @@ const char* describe(Unfit why) {
     case Unfit::UnknownAfterControl:
       return "position unknown after flow control, a macro or parameter line, a subprogram or a host command";
     case Unfit::UnknownAfterOffset: return "position unknown after a work-offset change";
+    case Unfit::UnknownInPolar: return "position not computed in polar coordinates (G16)";
     case Unfit::UnknownAfterToolChange: return "position unknown after a tool change (M6), which may move the tool";
     case Unfit::UnknownAfterUnmodelled: return "position unknown after a G-code arcpress does not model";
     case Unfit::UnreadableArc: return "an arc the controller cannot run: no centre, or R too short for its chord";

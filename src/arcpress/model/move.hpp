@@ -40,6 +40,7 @@ struct Frame {
   bool diameter_mode = false;///< lathe G7: X words are diameters
   bool inverse_time = false; ///< G93: F is 1/minutes per block
   int work_offset = 54;      ///< G54..G59 as 540..593 / 10; tracked, values unknown
+  bool polar = false;        ///< G16 (G15 off): the plane's two words are a radius and an angle, not computed
 
   double to_mm(int axis, double programmed) const {
     return programmed * (kAxisIsLinear[axis] ? unit_mm : 1.0) + offset[axis];
@@ -51,7 +52,7 @@ struct Frame {
     return unit_mm == o.unit_mm && offset == o.offset && absolute == o.absolute &&
            arc_absolute == o.arc_absolute && e_relative == o.e_relative &&
            diameter_mode == o.diameter_mode && inverse_time == o.inverse_time &&
-           work_offset == o.work_offset;
+           work_offset == o.work_offset && polar == o.polar;
   }
 };
 
@@ -81,6 +82,7 @@ enum class Unfit : uint8_t {
   UnknownAfterExpression,  ///< an expression set it
   UnknownAfterControl,  ///< flow control, a subprogram, a macro or host command ran
   UnknownAfterOffset,   ///< a work offset (G54..) changed under it
+  UnknownInPolar,          ///< polar coordinates (G16): the plane's words are a radius and an angle
   UnknownAfterToolChange,  ///< a tool change (M6): the controller may move the tool, and goes on from where it is
   UnknownAfterUnmodelled,  ///< a G-code arcpress does not model
   // The block cannot be read as a path: no controller runs it as written.
