@@ -163,6 +163,63 @@ TEST_CASE("canned cycles, homing and work-offset changes are barriers", "[model]
   CHECK_FALSE(r.in.moves.back().known);
 }
 
+TEST_CASE("bed probing, a skip move, a threading pass and a tool change move the tool where the program does not "
+          "say, and leave its position unknown",
+          "[model]") {
+  // G29 probes the bed and ends where it likes; its X and Y are a grid's size, its F an edge.
+  auto probe = run("G0 X0 Y0 Z5\nG1 X10 F3000\nG29 X3 Y3 F0\nG1 X20 Y20\nG1 Z1\n");
+  REQUIRE(probe.in.moves.size() == 4);
+  CHECK_FALSE(probe.in.moves[2].known);
+  CHECK(probe.in.moves[2].unfit == Unfit::UnknownAfterHoming);
+  CHECK(probe.in.moves[2].feed_mm_min == 3000);
+  CHECK_FALSE(probe.in.moves[3].known);  // Z after the probing
+  // G31 stops where a signal comes; G32 cuts a thread, as G33 does: neither is a G1.
+  auto skip = run("G0 X0 Y0 Z0\nG1 X1 F100\nG31 X10 F50\nG1 X11\nG1 X12 Y0 Z0\nG1 X13\n");
+  REQUIRE(skip.in.moves.size() == 6);
+  CHECK(skip.in.moves[2].kind == MoveKind::Other);
+  CHECK_FALSE(skip.in.moves[3].known);  // from wherever the signal stopped it
+  CHECK_FALSE(skip.in.moves[4].known);  // Y and Z still from there
+  CHECK(skip.in.moves[4].end_known);
+  CHECK(skip.in.moves[5].known);
+  auto thread = run("G18 G0 X20 Z5\nG32 Z-20 F1.5\nG0 X22\nZ5\nX19.5\nG32 Z-20\n");
+  for (size_t k : {1, 5}) {
+    CHECK(thread.in.moves[k].kind == MoveKind::Other);
+    CHECK_FALSE(thread.in.moves[k].fittable());
+  }
+  // A lathe's G50 with axis words names the present point, as G92; with S alone, a speed limit.
+  auto g50 = run("G0 X10 Z10\nG50 X100 Z50\nG1 X99 F100\nG50 S2000\nG1 X98\n");
+  REQUIRE(g50.in.moves.size() == 3);
+  CHECK(g50.in.moves[1].to[kX] == 9.0);
+  CHECK(g50.in.moves[1].to[kZ] == 10.0);
+  CHECK(g50.in.moves[2].to[kX] == 8.0);
+  // A tool length offset changes what Z names; G43.1's words are the offset, not a place.
+  auto length = run("G0 X0 Y0 Z5\nG43 H1\nG1 X1 F100\nG1 Z2\nG43.1 Z0.5\nG1 X2\nG1 Z1\n");
+  REQUIRE(length.in.moves.size() == 5);
+  CHECK(length.in.moves[1].known);        // X alone: Z stays where the tool is
+  CHECK_FALSE(length.in.moves[2].known);  // Z from a point the offset moved
+  CHECK(length.in.moves[2].end_known);
+  // G43.1 Z0.5 made no move (five moves in all), and what follows is read anew.
+  CHECK_FALSE(length.in.moves[3].known);
+  CHECK(length.in.moves[3].end_known);
+  // A tool change may take the tool anywhere.
+  auto m6 = run("G0 X0 Y0 Z0\nG1 X1 F100\nT2 M6\nG1 X2 Y1\nG1 Z1\n");
+  CHECK(m6.in.moves[2].end_known);
+  CHECK_FALSE(m6.in.moves[2].known);
+  CHECK(m6.in.moves[2].unfit == Unfit::UnknownAfterToolChange);
+  CHECK_FALSE(m6.in.moves[3].known);  // Z from wherever the change left it
+}
+
+TEST_CASE("modal codes that move nothing the path depends on leave the position known", "[model]") {
+  for (const char* code : {"G40", "G41 D1", "G42 D1", "G61", "G61.1", "G64 P0.01", "G98", "G99", "G96 S200",
+                           "G97 S1000", "G49", "G15", "G50 S2000"}) {
+    INFO(code);
+    auto r = run(std::string("G0 X0 Y0 Z0\nG1 X1 F100\n") + code + "\nG1 X2 Y1\nG1 X3\n");
+    REQUIRE(r.in.moves.size() == 4);
+    CHECK(r.in.moves[2].known);
+    CHECK(r.in.moves[3].fittable());
+  }
+}
+
 TEST_CASE("blocks no controller runs are diagnosed with their place and never read as something else", "[model]") {
   DiagnosticSink sink("t.nc");
   Program p = lex("t.nc", "G21 G90\nG0 X0 Y0 Z0\nG2 X10 Y0 F100\nG3 X0 Y0 R2\nG1 X5 X6\nG1 X7\nG3 X0 Y0 R-5.001\n", sink);

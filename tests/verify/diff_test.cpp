@@ -720,7 +720,7 @@ TEST_CASE("after homing in the middle, the moves until the position is known aga
   // From home: "G1 X5 Y5" (X and Y), "G1 Z-1" (Z); the two after them are placed.
   CHECK(same.a.entry_moves == 2);
   CHECK(same.a.first_entry_line == 7);
-  CHECK(same.a.entry_reason == "position unknown after homing (G28/G30) at line 6");
+  CHECK(same.a.entry_reason == "position unknown after homing or bed probing (G28/G29/G30) at line 6");
   CHECK(same.a.feed_moves == 5);
   CHECK(same.compared_all());
   CHECK(same.verdict(0.01) == ProgramDiff::Verdict::Same);

@@ -106,6 +106,9 @@ class Interpreter {
     int motion = -1;            // G-code ×10 of a motion word in this block
     bool g92 = false, g92_reset = false, g53 = false, axis_consumer = false, homing = false;
     bool g10 = false, l_seen = false;
+    bool probing = false;  // G29: a printer's bed probing, which ends where it likes
+    bool skip = false;     // G31: a skip move (Fanuc), which stops where a signal comes
+    bool g50 = false;      // G50: a lathe's coordinate setting where it has axis words, else a spindle limit
     uint32_t g11_col = 0;  // column of a G11 the firmware reads as its recovery (0: none)
     // Bit per axis: written with a value, with an expression, as a flag.
     uint32_t words_seen = 0, expr_axis = 0, flag_axis = 0;
@@ -197,16 +200,25 @@ class Interpreter {
                 forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterOffset, bi);
               F().work_offset = g;
               break;
+            // Read as they are, moving nothing the path depends on.
             case 400: case 410: case 411: case 420: case 421:  // cutter compensation
-            case 430: case 431: case 432: case 490:             // tool length
             case 610: case 611: case 640:                       // path control
+            case 980: case 990:                                 // canned-cycle return
+            case 960: case 970:                                 // constant surface speed
+              break;
+            // Tool length: the program's Z now names another point of the tool, so Z is read
+            // anew; G43.1 and G43.2 take the offsets themselves as axis words (LinuxCNC).
+            case 430: case 490: forget(1u << kZ, Unfit::UnknownAfterOffset, bi); break;
+            case 431: case 432:
+              axis_consumer = true;
+              forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterOffset, bi);
+              break;
             case 150: F().polar = false; break;
             case 160: F().polar = true; break;
-            case 980: case 990:                                 // canned-cycle return
-            case 290:                                           // Marlin bed levelling
-            case 310: case 320:
-            case 500: case 960: case 970:                       // lathe spindle limits, CSS
-              break;
+            case 290: probing = true; axis_consumer = true; break;  // its words are a grid's, not a position
+            case 310: skip = true; break;
+            case 320: motion = g; break;  // threading (Fanuc G32), synchronised to the spindle, as G33
+            case 500: g50 = true; break;  // a lathe's coordinate setting, or a spindle limit
             case 110:  // G11: the firmware's recovery after its retraction, where it retracts
               if (d_.firmware_retraction) {
                 g11_col = w->col;
@@ -287,6 +299,12 @@ class Interpreter {
                     "G11 with axis words is not modelled; the block is kept and not fitted");
       forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterUnmodelled, bi);
     }
+    if (probing) {
+      forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterHoming, bi);
+      feed_set = false;  // (Marlin's G29 F is the grid's front edge)
+    }
+    // A lathe's G50 X.. Z.. names the present point, as G92 does (Fanuc's G-code system A).
+    if (g50 && words_seen != 0) g92 = true, axis_consumer = true;
     const Frame& fnow = fedit ? *fedit : s_.frame;
     if (feed_set) {
       s_.feed_mm = fnow.inverse_time ? feed : feed * fnow.unit_mm;
@@ -384,7 +402,7 @@ class Interpreter {
     }
 
     MoveKind kind = MoveKind::Other;
-    if (!g53) {
+    if (!g53 && !skip) {
       // A dialect whose G18 arcs turn the other way is read back into RS274's sense here.
       bool flip = d_.zx_reversed && s_.plane == Plane::ZX;
       if (s_.motion == 0) kind = MoveKind::Rapid;
@@ -409,7 +427,7 @@ class Interpreter {
         s_.cause_line = at_start ? s_.why[ax].line : b.line;
         break;
       }
-    if (kind == MoveKind::Other && s_.motion != 0) {  // cycles end where they like
+    if (kind == MoveKind::Other && (s_.motion != 0 || skip)) {  // cycles and skip moves end where they like
       for (int ax : {kX, kY, kZ})
         if ((known_after >> ax) & 1u) set_why(ax, Unfit::UnknownAfterCycle);
       known_after &= ~kXyzMask;

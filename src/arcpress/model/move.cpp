@@ -7,13 +7,13 @@ const char* describe(Unfit why) {
   switch (why) {
     case Unfit::None: return "a lone G1 move: no fittable move beside it to make a run with";
     case Unfit::UnknownAtStart: return "position unknown: an axis it moves was never set before it";
-    case Unfit::UnknownAfterHoming: return "position unknown after homing (G28/G30)";
+    case Unfit::UnknownAfterHoming: return "position unknown after homing or bed probing (G28/G29/G30)";
     case Unfit::UnknownAfterMachine: return "position unknown after a machine-coordinate move (G53)";
     case Unfit::UnknownAfterCycle: return "position unknown after a cycle, probe, spline or G10";
     case Unfit::UnknownAfterExpression: return "position unknown after an expression";
     case Unfit::UnknownAfterControl:
       return "position unknown after flow control, a macro or parameter line, a subprogram or a host command";
-    case Unfit::UnknownAfterOffset: return "position unknown after a work-offset change";
+    case Unfit::UnknownAfterOffset: return "position unknown after a work or tool offset change";
     case Unfit::UnknownInPolar: return "position not computed in polar coordinates (G16)";
     case Unfit::UnknownAfterToolChange: return "position unknown after a tool change (M6), which may move the tool";
     case Unfit::UnknownAfterUnmodelled: return "position unknown after a G-code arcpress does not model";

@@ -76,12 +76,12 @@ enum class Unfit : uint8_t {
   None,
   // The move could not be placed: it moves an axis whose position is not known.
   UnknownAtStart,       ///< the axis has not been set since the program began
-  UnknownAfterHoming,   ///< G28/G30 sent it to a stored position
+  UnknownAfterHoming,   ///< G28/G30 sent it to a stored position, or G29 probed the bed
   UnknownAfterMachine,  ///< G53 moved it in machine coordinates
   UnknownAfterCycle,    ///< a canned, lathe or probing cycle, a spline or G10 left it anywhere
   UnknownAfterExpression,  ///< an expression set it
   UnknownAfterControl,  ///< flow control, a subprogram, a macro or host command ran
-  UnknownAfterOffset,   ///< a work offset (G54..) changed under it
+  UnknownAfterOffset,   ///< a work offset (G54..) or the tool length offset (G43, G49) changed under it
   UnknownInPolar,          ///< polar coordinates (G16): the plane's words are a radius and an angle
   UnknownAfterToolChange,  ///< a tool change (M6): the controller may move the tool, and goes on from where it is
   UnknownAfterUnmodelled,  ///< a G-code arcpress does not model
