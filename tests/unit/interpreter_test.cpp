@@ -251,6 +251,32 @@ TEST_CASE("blocks no controller runs are diagnosed with their place and never re
   CHECK(strict.error_count() == 1);
 }
 
+TEST_CASE("an arc whose end lies off its circle is diagnosed as its controller refuses it, with the reading that "
+          "would make it whole",
+          "[model]") {
+  // I0 J0 from (0,10): the centre at the start under RS274's offsets, the origin under G90.1.
+  const std::string program = "G21 G90 G17\nG0 X0 Y10\nG3 X-10 Y0 I0 J0 F100\nG1 X-11\nG3 X0 Y11 I11 J0\n";
+  DiagnosticSink sink("t.nc");
+  Program p = lex("t.nc", program, sink);
+  Interpretation in = interpret(p, sink);
+  REQUIRE(in.moves.size() == 4);
+  CHECK_FALSE(in.moves[1].known);
+  CHECK(in.moves[1].unfit == Unfit::UnreadableArc);
+  CHECK(in.moves[2].known);
+  CHECK(in.moves[3].known);  // a true quarter circle: no word of it
+  CHECK(sink.warning_count("E-MODEL-ARC-RADIUS") == 1);
+  CHECK(sink.format_all().find("t.nc:3:1: warning: E-MODEL-ARC-RADIUS: the end lies 14.1421 mm off the circle through "
+                               "the start about the centre (allowed 0.0283 mm); read as the absolute centre (G90.1), "
+                               "the radii agree") != std::string::npos);
+  // A printer's firmware does not check: it goes on, and so does the reading.
+  Dialect printer;
+  printer.radius_abs_mm = 0;
+  DiagnosticSink quiet("t.nc");
+  Program q = lex("t.nc", program, quiet);
+  CHECK(interpret(q, quiet, printer).moves[1].known);
+  CHECK(quiet.warning_count("E-MODEL-ARC-RADIUS") == 0);
+}
+
 TEST_CASE("two readers read on alike when their positions and offsets differ by floating noise only, never by a place",
           "[model]") {
   DiagnosticSink sink;

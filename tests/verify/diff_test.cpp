@@ -631,10 +631,12 @@ TEST_CASE("compress checks its own output with the code of arcpress diff: an alt
     return o.replace(at, from.size(), to);
   };
   CHECK(verified(r.output).within_band());
-  // The arc's end moved 0.05 mm: outside the band.
-  CompressResult moved = verified(replaced("Y10.0000 ", "Y10.0500 "));
+  // The arc's end moved 0.02 mm: outside the band. Moved 0.05 mm, off its circle by more
+  // than the controller's radius check: no arc it runs, so nothing to pass.
+  CompressResult moved = verified(replaced("Y10.0000 ", "Y10.0200 "));
   CHECK_FALSE(moved.within_band());
   CHECK(moved.check.max_deviation_mm > 0.01);
+  CHECK_FALSE(verified(replaced("Y10.0000 ", "Y10.0500 ")).within_band());
   // The path untouched, but the spindle turns the other way, a comment is lost, the feed changed.
   CompressResult m4 = verified(replaced("M3", "M4"));
   CHECK(m4.check.max_deviation_mm <= 0.01);

@@ -527,13 +527,47 @@ class Interpreter {
       return c;
     }
     bool absolute = d_.centre == CentreReading::Absolute ? fr.absolute : fr.arc_absolute;
-    for (int k = 0; k < 3; ++k) {
-      if (k == a.normal) continue;
-      double off = ijk_seen[k] ? ijk[k] : 0.0;
-      if (absolute)
-        c[k] = ijk_seen[k] ? fr.to_mm(k, off) : s_.pos[k];
-      else
-        c[k] = s_.pos[k] + off * fr.unit_mm;
+    auto centre_read = [&](bool as_absolute) {
+      Vec3 at = c;
+      for (int k = 0; k < 3; ++k) {
+        if (k == a.normal) continue;
+        double off = ijk_seen[k] ? ijk[k] : 0.0;
+        if (as_absolute)
+          at[k] = ijk_seen[k] ? fr.to_mm(k, off) : s_.pos[k];
+        else
+          at[k] = s_.pos[k] + off * fr.unit_mm;
+      }
+      return at;
+    };
+    c = centre_read(absolute);
+    // The controller refuses an arc whose end lies off the circle through its start about the
+    // centre by more than its radius check; where it does not check (printers), it goes on.
+    if (d_.radius_abs_mm > 0) {
+      auto radius_gap = [&](const Vec3& at) {
+        const Vec2 cc(at[a.first], at[a.second]);
+        const double r0 = (Vec2(s_.pos[a.first], s_.pos[a.second]) - cc).norm();
+        const double r1 = (Vec2(target[a.first], target[a.second]) - cc).norm();
+        const double allowed = d_.radius_rel > 0 ? std::max(d_.radius_abs_mm, d_.radius_rel * r0) : d_.radius_abs_mm;
+        return std::pair(std::abs(r1 - r0), allowed);
+      };
+      const auto [gap, allowed] = radius_gap(c);
+      if (gap > allowed) {
+        // Read the other way (an offset as the centre, or the centre as an offset), where the
+        // program could say which: the radii may agree, and the program rely on a setting.
+        std::string other;
+        if (d_.centre == CentreReading::Incremental && d_.centre_mode_words) {
+          const auto [other_gap, other_allowed] = radius_gap(centre_read(!absolute));
+          if (other_gap <= other_allowed)
+            other = fmt::format("; read as {} (G{}), the radii agree: say so in the program, as a controller set "
+                                "the other way reads it",
+                                absolute ? "offsets from the start" : "the absolute centre", absolute ? "91.1" : "90.1");
+        }
+        sink_.problem({b.line, 1}, "E-MODEL-ARC-RADIUS",
+                      fmt::format("the end lies {:.4f} mm off the circle through the start about the centre "
+                                  "(allowed {:.4f} mm){}; the arc is kept and not measured",
+                                  gap, allowed, other));
+        known = false;
+      }
     }
     return c;
   }
