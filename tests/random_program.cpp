@@ -76,6 +76,11 @@ RandomCase random_case(std::span<const uint8_t> bytes) {
     if ((h & 0x3f) == 0x27) s += "CLEAN_NOZZLE\n";
     // From here on a rotary axis turns with the path, faster and slower (a 4th-axis wrap).
     if ((h & 0x3f) == 0x28) rotary = true;
+    // A tool change, a tool length offset, a move in polar coordinates: each leaves the
+    // position to be read anew from the next move, which sets every axis.
+    if ((h & 0x3f) == 0x29) s += "T2 M6\n";
+    if ((h & 0x3f) == 0x2a) s += "G43 H2\n";
+    if ((h & 0x3f) == 0x2b) s += fmt::format("G16\nG1 X{:.3f} Y{:.1f}\nG15\n", std::hypot(x, y), 30.0 + i % 90);
     const double px = std::stod(fmt::format("{:.{}f}", x, decimals)), py = std::stod(fmt::format("{:.{}f}", y, decimals));
     s += fmt::format("G1 X{:.{}f} Y{:.{}f} Z{:.{}f}", x, decimals, y, decimals, z, decimals);
     if (rotary) s += fmt::format(" A{:.3f}", 10 * x + 3 * std::sin(y));
