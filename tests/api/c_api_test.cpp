@@ -51,6 +51,21 @@ std::pair<std::string, arcpress_status> through_c(const std::string& program, si
   return {out, s};
 }
 
+/// Compresses `program` whole with `o` (which it frees): the text and the diagnostics.
+std::pair<std::string, std::string> compressed_whole(arcpress_options* o, const std::string& program) {
+  arcpress_compressor* c = nullptr;
+  REQUIRE(arcpress_compressor_new(o, "c", &c) == ARCPRESS_OK);
+  REQUIRE(arcpress_push(c, program.data(), program.size()) == ARCPRESS_OK);
+  REQUIRE(arcpress_finish(c) == ARCPRESS_OK);
+  const char* text = nullptr;
+  size_t n = 0;
+  REQUIRE(arcpress_take(c, &text, &n) == ARCPRESS_OK);
+  std::pair<std::string, std::string> out{std::string(text, n), arcpress_diagnostics(c)};
+  arcpress_compressor_free(c);
+  arcpress_options_free(o);
+  return out;
+}
+
 }  // namespace
 
 TEST_CASE("the C library writes what the C++ engine writes, on two threads at once", "[capi]") {
@@ -112,17 +127,7 @@ TEST_CASE("the C library sets the band, the extrusion variance and the header as
     REQUIRE(arcpress_options_set_band_side(o, side) == ARCPRESS_OK);
     REQUIRE(arcpress_options_set_extrusion_variance(o, variance) == ARCPRESS_OK);
     REQUIRE(arcpress_options_set_header(o, header) == ARCPRESS_OK);
-    arcpress_compressor* c = nullptr;
-    REQUIRE(arcpress_compressor_new(o, "c", &c) == ARCPRESS_OK);
-    REQUIRE(arcpress_push(c, program.data(), program.size()) == ARCPRESS_OK);
-    REQUIRE(arcpress_finish(c) == ARCPRESS_OK);
-    const char* text = nullptr;
-    size_t n = 0;
-    REQUIRE(arcpress_take(c, &text, &n) == ARCPRESS_OK);
-    std::string out(text, n);
-    arcpress_compressor_free(c);
-    arcpress_options_free(o);
-    return out;
+    return compressed_whole(o, program).first;
   };
   // The engine's text for the same options.
   auto engine = [&](arcpress::CompressOptions::Band band, bool header) {
@@ -175,17 +180,7 @@ TEST_CASE("the C library reads a program in the units the controller starts in, 
     if (units_first) REQUIRE(arcpress_options_set_units(o, units) == ARCPRESS_OK);
     REQUIRE(arcpress_options_set_dialect(o, "linuxcnc") == ARCPRESS_OK);
     if (!units_first) REQUIRE(arcpress_options_set_units(o, units) == ARCPRESS_OK);
-    arcpress_compressor* c = nullptr;
-    REQUIRE(arcpress_compressor_new(o, "c", &c) == ARCPRESS_OK);
-    REQUIRE(arcpress_push(c, program.data(), program.size()) == ARCPRESS_OK);
-    REQUIRE(arcpress_finish(c) == ARCPRESS_OK);
-    const char* text = nullptr;
-    size_t n = 0;
-    REQUIRE(arcpress_take(c, &text, &n) == ARCPRESS_OK);
-    const std::string out(text, n), said = arcpress_diagnostics(c);
-    arcpress_compressor_free(c);
-    arcpress_options_free(o);
-    return std::pair(out, said);
+    return compressed_whole(o, program);
   };
   auto engine = [&](arcpress::StartUnits units) {
     arcpress::CompressOptions opt;
