@@ -96,6 +96,10 @@ for machine in inch mm; do
 done
 grep -q "^G[23] " "$work/circle.mm.ngc" || no "the mm machine's circle holds no arcs"
 grep -q "^G[23] " "$work/circle.inch.ngc" && no "the inch machine's circle holds arcs: its units were read as mm"
+# An inch machine whose startup code says G21 starts in mm (a comment saying G20 says nothing).
+sed 's/^\[RS274NGC\]/[RS274NGC]\nRS274NGC_STARTUP_CODE = G17 G21 (not G20) G40 G90/' "$work/inch.ini" > "$work/startup.ini"
+axis_filter "$work/startup.ini" "$work/circle.ngc" "$work/circle.startup.ngc" > "$work/run.txt" 2> "$work/err.txt"
+grep -q "^G[23] " "$work/circle.startup.ngc" || no "the startup code's G21 was not taken: $(cat "$work/err.txt")"
 
 # A large program: arcs, the same path, and AXIS's progress bar from 0 to 100 through
 # arcpress's own progress.
