@@ -39,6 +39,7 @@ def load(path):
     lib.arcpress_options_last_error.restype = ctypes.c_char_p
     lib.arcpress_options_set_tolerance.argtypes = [p, ctypes.c_double]
     lib.arcpress_options_set_dialect.argtypes = [p, ctypes.c_char_p]
+    lib.arcpress_options_set_units.argtypes = [p, ctypes.c_char_p]
     lib.arcpress_compressor_new.argtypes = [p, ctypes.c_char_p, ctypes.POINTER(p)]
     lib.arcpress_compressor_free.argtypes = [p]
     lib.arcpress_push.argtypes = [p, ctypes.c_char_p, ctypes.c_size_t]
@@ -52,13 +53,14 @@ def load(path):
     return lib
 
 
-def compress(lib, source, target, dialect, tolerance):
+def compress(lib, source, target, dialect, tolerance, units=None):
     options = lib.arcpress_options_new()
     compressor = ctypes.c_void_p()
     partial = None
     try:
         if (lib.arcpress_options_set_tolerance(options, tolerance) != OK or
                 lib.arcpress_options_set_dialect(options, dialect.encode()) != OK or
+                (units and lib.arcpress_options_set_units(options, units.encode()) != OK) or
                 lib.arcpress_compressor_new(options, source.encode(), ctypes.byref(compressor)) != OK):
             print("arcpress_compress:", lib.arcpress_options_last_error(options).decode(), file=sys.stderr)
             return 2
@@ -118,9 +120,11 @@ def main():
     parser.add_argument("output")
     parser.add_argument("--dialect", default="rs274")
     parser.add_argument("--tolerance", type=float, default=0.01)
+    parser.add_argument("--units", choices=["mm", "inch"],
+                        help="the units the program is in until its first G20 or G21 (default: the dialect's)")
     parser.add_argument("--library")
     args = parser.parse_args()
-    return compress(load(args.library), args.input, args.output, args.dialect, args.tolerance)
+    return compress(load(args.library), args.input, args.output, args.dialect, args.tolerance, args.units)
 
 
 if __name__ == "__main__":
