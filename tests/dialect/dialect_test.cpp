@@ -228,6 +228,51 @@ TEST_CASE("golden: Mach3 states G91.1 once before the first arc, and a program t
   CHECK(o.output.find("G91.1") == o.output.rfind("G91.1"));
 }
 
+TEST_CASE("a Mach3 program whose own arcs are whole only as absolute centres runs on a machine set so as it did, "
+          "the output saying G91.1 before its arcs and G90.1 before the program's",
+          "[dialect]") {
+  // Quarter circles of short moves, each followed by a half circle of the program's own whose
+  // I/J name the absolute centre (the origin), with no G90.1: the IJ-mode setting decides.
+  std::string program = "G21 G90 G17\nG0 X10 Y0 Z1\nG1 Z-1 F300\n";
+  for (int pass = 0; pass < 40; ++pass) {
+    for (int k = 1; k <= 90; ++k)
+      program += fmt::format("G1 X{:.4f} Y{:.4f}\n", 10 * std::cos(k * M_PI / 180), 10 * std::sin(k * M_PI / 180));
+    program += "G3 X0 Y-10 I0 J0\nG3 X10 Y0 I0 J0\nG0 Z1\nG0 X10 Y0\nG1 Z-1\n";
+  }
+  program += "M30\n";
+  for (size_t chunk : {size_t(0), size_t(700)}) {
+    INFO("pushed in pieces of " << chunk << " bytes (0: whole)");
+    DiagnosticSink sink;
+    CompressOptions opt;
+    opt.dialect = shipped("mach3");
+    std::string out;
+    if (chunk == 0) {
+      out = compress("m.nc", program, opt, sink).output;
+    } else {
+      Compressor c("m.nc", opt, sink);
+      for (size_t at = 0; at < program.size(); at += chunk) c.push(std::string_view(program).substr(at, chunk));
+      c.finish();
+      c.take(out);
+      REQUIRE(c.result().within_band());
+      REQUIRE(c.pieces() > 2);
+    }
+    CHECK(sink.warning_count("W-MODEL-ARC-MODE") == 1);
+    CHECK(out.find("G91.1\nG3 X0.0000 Y10.0000") != std::string::npos);
+    CHECK(out.find("G90.1\nG3 X0 Y-10 I0 J0") != std::string::npos);
+    // Read as the machine set to absolute centres reads both, the paths are the same.
+    Dialect absolute = shipped("mach3");
+    absolute.start_centres = StartCentres::Absolute;
+    DiffOptions band;
+    band.tolerance_mm = 0.01;
+    const ProgramDiff d = test::diff_texts(program, out, band, absolute);
+    CHECK(d.same(0.01));
+  }
+  // A program whose own arcs read whole as offsets gets G91.1 once, as before.
+  const std::string incremental = "G21 G90 G17\nG0 X0 Y10\nG3 X-10 Y0 I0 J-10 F100\nM30\n";
+  DiagnosticSink sink;
+  CHECK(compress_as(shipped("mach3"), incremental).output == incremental);
+}
+
 TEST_CASE("golden: Fanuc prints 3 decimals with a point, and reads X1 as one micrometre", "[dialect]") {
   CompressResult r = compress_as(shipped("fanuc"), test::arc_snippets()[0].text);
   CHECK(r.output == "G21 G90 G17\nG0 X10. Y0. Z0.\nG3 X0. Y10. Z0. I-10.003 J-0.003 F300.\nM30\n");

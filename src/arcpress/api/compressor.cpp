@@ -266,6 +266,7 @@ struct Compressor::Impl {
     next_emit.in_motion = p.end.motion;
     next_emit.out_motion = clean ? p.end.motion : -1;
     next_emit.header_done = centre_mode_set;
+    next_emit.centres_maybe_said = !opt.passthrough && opt.fit.method != FitOptions::Method::Keep && opt.dialect.arcs;
     dispatch(std::move(cur));
   }
 

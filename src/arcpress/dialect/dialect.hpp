@@ -34,6 +34,15 @@ enum class StartUnits : uint8_t {
             ///< read in millimetres, and a program that gives lengths before G20 or G21 is warned of
 };
 
+/// How I/J/K are read before the program says G90.1 or G91.1 (RS274 dialects).
+enum class StartCentres : uint8_t {
+  Incremental,  ///< offsets from the arc's start (G91.1), as RS274 starts
+  Absolute,     ///< the absolute centre (G90.1)
+  Machine,      ///< a setting of the controller's own (Mach3's IJ mode): read as offsets until an
+                ///< arc is whole only as the absolute centre, which then holds; the output states
+                ///< the mode (G90.1/G91.1) wherever its arcs, or the program's own after them, need it
+};
+
 /// Digits for numbers arcpress computes itself (centres, relative moves). Numbers copied
 /// from the input keep the input's own text.
 struct NumberDigits {
@@ -80,6 +89,8 @@ struct Dialect {
   // --- machine ----------------------------------------------------------------------
   /// What a length means before the program's first G20 or G21 ([startup] units).
   StartUnits start_units = StartUnits::Machine;
+  /// How I/J/K are read before G90.1 or G91.1 ([startup] arc_centres).
+  StartCentres start_centres = StartCentres::Incremental;
   /// X words are diameters from the start, as on lathes that power up in diameter mode
   /// (Haas, Fanuc); G7/G8 still switch where the program writes them.
   bool diameter_x = false;

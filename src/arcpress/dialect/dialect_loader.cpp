@@ -228,6 +228,8 @@ Dialect parse_dialect(const std::string& text, const std::string& path) {
   if (const toml::table* t = top.table("startup")) {
     TableReader r(*t, path, "startup.");
     if (int c = r.choice("units", {"mm", "inch", "machine"}); c >= 0) d.start_units = StartUnits(c);
+    if (int c = r.choice("arc_centres", {"incremental", "absolute", "machine"}); c >= 0)
+      d.start_centres = StartCentres(c);
     r.finish();
   }
   if (const toml::table* t = top.table("lathe")) {

@@ -55,6 +55,15 @@ class Emitter {
     in_motion_ = opt.start.in_motion;
     out_motion_ = opt.start.out_motion;
     header_done_ = opt.start.header_done;
+    // Where the controller's own setting decides how I/J/K read, what the output has said of
+    // it: nothing at the program's start (the setting holds), else what the program said, or
+    // what an earlier piece may have said.
+    if (d().start_centres == StartCentres::Machine) {
+      out_centres_ = opt.start.centres_maybe_said ? CentresOut::Unknown : CentresOut::Setting;
+      // Once the program has said it, every mode word written since matched the reading then.
+      if (opt.start.header_done && !in_.frames.empty())
+        out_centres_ = in_.frames.front().arc_absolute ? CentresOut::Absolute : CentresOut::Incremental;
+    }
   }
 
   std::string run(const std::vector<Run>& runs, const std::vector<FitResult>& fits) {
@@ -94,13 +103,18 @@ class Emitter {
   /// differs from the input's at this point (after a run that ended in G2/G3).
   void copy_block(const Block& b) {
     std::string_view raw = p_.raw(b);
+    if (b.kind == BlockKind::Code) state_centres_for_copy(b);
     if (b.kind == BlockKind::Code) {
       int explicit_motion = -1;
       bool axes = false;
       const Word* n_word = nullptr;
       for (auto* w = p_.words_begin(b); w != p_.words_end(b); ++w) {
         if (w->letter == 'G' && !w->is_expr && is_motion_gcode(w->value)) explicit_motion = w->code10();
-        if (sets_centre_mode(*w)) header_done_ = true;  // the program sets the centre mode itself
+        if (sets_centre_mode(*w)) {
+          header_done_ = true;  // the program sets the centre mode itself
+          if (out_centres_ != CentresOut::Fixed)
+            out_centres_ = w->code10() == 901 ? CentresOut::Absolute : CentresOut::Incremental;
+        }
         if (moves_axis(w->letter)) axes = true;
         if (w->letter == 'N' && w == p_.words_begin(b)) n_word = w;
       }
@@ -230,6 +244,7 @@ class Emitter {
         if (!text) rule_joints(e);
       }
       if (text) {
+        if (arc) state_centres(fr.arc_absolute, in_.moves[run.first_move + a].block);
         if (arc && !header_done_ && !d().arc_header.empty()) {
           out_ += d().arc_header;
           out_.append(p_.eol(p_.blocks[in_.moves[run.first_move + a].block]));
@@ -580,6 +595,42 @@ class Emitter {
   std::vector<std::vector<std::optional<Composed>>> composed_;  // per run and primitive: compose_all()
   double tangent_slack_rad_ = deg_to_rad(opt_.tangent_slack_deg);
   bool header_done_ = false;  // the dialect's arc header is written, or the program set the mode
+  /// What the output has said of the I/J/K mode, where a setting of the controller's decides it
+  /// (Dialect::start_centres Machine): nothing (the setting holds), maybe something (an earlier
+  /// piece's G91.1), G90.1 or G91.1. Elsewhere the program's words alone say it.
+  enum class CentresOut : uint8_t { Fixed, Setting, Unknown, Absolute, Incremental };
+  CentresOut out_centres_ = CentresOut::Fixed;
+
+  /// Before an arc the output writes, read with `absolute` I/J/K: the mode word, unless the
+  /// output already stands so.
+  void state_centres(bool absolute, uint32_t block) {
+    if (out_centres_ == CentresOut::Fixed) return;
+    const CentresOut need = absolute ? CentresOut::Absolute : CentresOut::Incremental;
+    if (out_centres_ == need) return;
+    out_ += absolute ? "G90.1" : "G91.1";
+    out_.append(p_.eol(p_.blocks[block]));
+    out_centres_ = need;
+  }
+  /// Before the program's own I/J/K arc, copied: where the output said another mode than the
+  /// one it is read in, or may have (an earlier piece's), the mode it is read in. Where
+  /// nothing was said, the setting holds, which is how it is read.
+  void state_centres_for_copy(const Block& b) {
+    if (out_centres_ == CentresOut::Fixed || out_centres_ == CentresOut::Setting) return;
+    const uint32_t bi = uint32_t(&b - p_.blocks.data());
+    const int32_t mi = bi < in_.move_of_block.size() ? in_.move_of_block[bi] : -1;
+    if (mi < 0) return;
+    const Move& m = in_.moves[size_t(mi)];
+    if (!is_arc(m.kind) || !has_centre_words(b)) return;
+    const bool absolute = in_.frames[m.frame].arc_absolute;
+    // After an earlier piece, only a reading the setting was found to differ from can need it.
+    if (out_centres_ == CentresOut::Unknown && !absolute) return;
+    state_centres(absolute, bi);
+  }
+  bool has_centre_words(const Block& b) const {
+    for (auto* w = p_.words_begin(b); w != p_.words_end(b); ++w)
+      if ((w->letter == 'I' || w->letter == 'J' || w->letter == 'K') && !w->flag) return true;
+    return false;
+  }
   std::string out_;
   bool padded_ = false;
   bool keep_point_ = false;

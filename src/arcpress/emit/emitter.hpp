@@ -59,6 +59,10 @@ struct EmitStart {
   int in_motion = 0;   ///< modal motion (G x10) of the input there
   int out_motion = 0;  ///< ... and of the output; -1: not known (the first block that relies on it states it)
   bool header_done = false;  ///< the dialect's arc header is written, or the program set the centre mode
+  /// Where a setting of the controller's decides how I/J/K read (Dialect::start_centres
+  /// Machine): whether an earlier piece may have written G90.1 or G91.1 before arcs of its own
+  /// (else the setting holds here, as at the program's start).
+  bool centres_maybe_said = false;
   std::optional<OutputHabits> habits;  ///< the program's, found in its first piece; absent: this piece's own
 };
 

@@ -180,8 +180,8 @@ class Interpreter {
             case 80: F().diameter_mode = false; break;
             case 900: F().absolute = true; F().e_relative = false; break;
             case 910: F().absolute = false; F().e_relative = true; break;
-            case 901: F().arc_absolute = true; break;
-            case 911: F().arc_absolute = false; break;
+            case 901: F().arc_absolute = true, s_.centre_told = true; break;
+            case 911: F().arc_absolute = false, s_.centre_told = true; break;
             case 920: g92 = true; axis_consumer = true; break;
             case 921: case 922: g92_reset = true; break;
             case 923: break;
@@ -432,6 +432,32 @@ class Interpreter {
         if ((known_after >> ax) & 1u) set_why(ax, Unfit::UnknownAfterCycle);
       known_after &= ~kXyzMask;
     }
+    // Where the controller's own setting decides how I/J/K read, the program's first arc
+    // whose centre words name a point tells it: read whole as they are, the setting is so;
+    // whole only the other way, it is the other way, from here on.
+    if (is_arc(kind) && !r_seen && !s_.centre_told && d_.centre == CentreReading::Incremental) {
+      const auto a = axes_of(s_.plane);
+      const double check_mm = d_.radius_abs_mm > 0 ? d_.radius_abs_mm : kRadiusAimMm;
+      auto whole = [&](bool as_absolute) {
+        const auto [gap, allowed] = radius_gap(ijk_centre(s_.frame, ijk, ijk_seen, as_absolute), target);
+        return gap <= std::max(allowed, check_mm);
+      };
+      if ((ijk_seen[a.first] || ijk_seen[a.second]) && known) {
+        const bool now = s_.frame.arc_absolute;
+        if (whole(now)) {
+          s_.centre_told = true;
+        } else if (whole(!now)) {
+          Frame f = s_.frame;
+          f.arc_absolute = !now;
+          set_frame(f);
+          s_.centre_told = true;
+          sink_.warning({b.line, 1}, "W-MODEL-ARC-MODE",
+                        fmt::format("this arc is whole only with I/J/K read as {}, as the controller's own setting "
+                                    "must have it: read so from here on (G{} at the program's start says so)",
+                                    now ? "offsets from its start" : "the absolute centre", now ? "91.1" : "90.1"));
+        }
+      }
+    }
     Move& m = add_move(bi, kind, target, known, turns);
     m.unknown_axes = uint16_t(kAllAxes & ~(s_.known & known_after));
     m.end_known = known || (moved & ~known_after) == 0;
@@ -481,6 +507,32 @@ class Interpreter {
     s_.known &= ~mask;
   }
 
+  /// An arc's centre from its I/J/K words: offsets from the present point, or `as_absolute`
+  /// the centre in the frame's coordinates (the plane's normal axis: the present point's).
+  Vec3 ijk_centre(const Frame& fr, const double* ijk, const bool* ijk_seen, bool as_absolute) const {
+    const auto a = axes_of(s_.plane);
+    Vec3 at(s_.pos[kX], s_.pos[kY], s_.pos[kZ]);
+    for (int k = 0; k < 3; ++k) {
+      if (k == a.normal) continue;
+      const double off = ijk_seen[k] ? ijk[k] : 0.0;
+      if (as_absolute)
+        at[k] = ijk_seen[k] ? fr.to_mm(k, off) : s_.pos[k];
+      else
+        at[k] = s_.pos[k] + off * fr.unit_mm;
+    }
+    return at;
+  }
+  /// How far an arc about `centre` from the present point ends off its circle at `target`,
+  /// and how far the dialect's radius check lets it (mm).
+  std::pair<double, double> radius_gap(const Vec3& centre, const AxisValues& target) const {
+    const auto a = axes_of(s_.plane);
+    const Vec2 cc(centre[a.first], centre[a.second]);
+    const double r0 = (Vec2(s_.pos[a.first], s_.pos[a.second]) - cc).norm();
+    const double r1 = (Vec2(target[a.first], target[a.second]) - cc).norm();
+    const double allowed = d_.radius_rel > 0 ? std::max(d_.radius_abs_mm, d_.radius_rel * r0) : d_.radius_abs_mm;
+    return {std::abs(r1 - r0), allowed};
+  }
+
   Vec3 arc_center(const Block& b, const Frame& fr, const AxisValues& target, const double* ijk,
                   const bool* ijk_seen, bool r_seen, double r_value, MoveKind kind, bool& known) {
     auto a = axes_of(s_.plane);
@@ -527,36 +579,17 @@ class Interpreter {
       return c;
     }
     bool absolute = d_.centre == CentreReading::Absolute ? fr.absolute : fr.arc_absolute;
-    auto centre_read = [&](bool as_absolute) {
-      Vec3 at = c;
-      for (int k = 0; k < 3; ++k) {
-        if (k == a.normal) continue;
-        double off = ijk_seen[k] ? ijk[k] : 0.0;
-        if (as_absolute)
-          at[k] = ijk_seen[k] ? fr.to_mm(k, off) : s_.pos[k];
-        else
-          at[k] = s_.pos[k] + off * fr.unit_mm;
-      }
-      return at;
-    };
-    c = centre_read(absolute);
+    c = ijk_centre(fr, ijk, ijk_seen, absolute);
     // The controller refuses an arc whose end lies off the circle through its start about the
     // centre by more than its radius check; where it does not check (printers), it goes on.
     if (d_.radius_abs_mm > 0) {
-      auto radius_gap = [&](const Vec3& at) {
-        const Vec2 cc(at[a.first], at[a.second]);
-        const double r0 = (Vec2(s_.pos[a.first], s_.pos[a.second]) - cc).norm();
-        const double r1 = (Vec2(target[a.first], target[a.second]) - cc).norm();
-        const double allowed = d_.radius_rel > 0 ? std::max(d_.radius_abs_mm, d_.radius_rel * r0) : d_.radius_abs_mm;
-        return std::pair(std::abs(r1 - r0), allowed);
-      };
-      const auto [gap, allowed] = radius_gap(c);
+      const auto [gap, allowed] = radius_gap(c, target);
       if (gap > allowed) {
         // Read the other way (an offset as the centre, or the centre as an offset), where the
         // program could say which: the radii may agree, and the program rely on a setting.
         std::string other;
         if (d_.centre == CentreReading::Incremental && d_.centre_mode_words) {
-          const auto [other_gap, other_allowed] = radius_gap(centre_read(!absolute));
+          const auto [other_gap, other_allowed] = radius_gap(ijk_centre(fr, ijk, ijk_seen, !absolute), target);
           if (other_gap <= other_allowed)
             other = fmt::format("; read as {} (G{}), the radii agree: say so in the program, as a controller set "
                                 "the other way reads it",
@@ -616,6 +649,8 @@ ModalState initial_state(const Dialect& dialect) {
   s.frame.diameter_mode = dialect.diameter_x;
   s.frame.unit_mm = dialect.start_units == StartUnits::Inch ? 25.4 : 1.0;
   s.units_told = dialect.start_units != StartUnits::Machine;
+  s.frame.arc_absolute = dialect.start_centres == StartCentres::Absolute;
+  s.centre_told = dialect.start_centres != StartCentres::Machine;
   return s;
 }
 

@@ -39,6 +39,9 @@ struct ModalState {
   /// warning said so (once): either way, nothing more to say of the units. It changes no
   /// reading, so reads_as() does not compare it.
   bool units_told = false;
+  /// G90.1 or G91.1 has been read, or an arc showed how a controller set by a setting of its
+  /// own reads I/J/K (Dialect::start_centres): no more to learn of it. Told, not compared.
+  bool centre_told = false;
 
   /// Whether a reader in state `o` reads every following block as one in this state does:
   /// the same position, known axes, frame, plane, feed and spindle, and (where
