@@ -331,7 +331,7 @@ TEST_CASE("after a tool change (M6) the tool is where the controller left it: th
           "is, and what follows is fitted from its end",
           "[api][toolchange]") {
   // A quarter circle cut after a tool change, whose first G1 starts from wherever the tool
-  // change left the tool (LinuxCNC re-reads its position after M6; Haas sends Z home).
+  // change left the tool (LinuxCNC re-reads its position after M6).
   std::string program = "G21 G90 G17\nT1 M6\nG0 X10 Y0 Z1\nG1 Z-1 F300\nT2 M6\n";
   for (int k = 1; k <= 180; ++k)
     program += fmt::format("G1 X{:.4f} Y{:.4f}\n", 10 * std::cos(k * M_PI / 180), 10 * std::sin(k * M_PI / 180));

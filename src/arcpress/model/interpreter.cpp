@@ -241,7 +241,7 @@ class Interpreter {
           if (m == 830) F().e_relative = true;
           if (m == 980 || m == 990)  // subprogram call / return
             forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterControl, bi);
-          // A tool change may move the tool (to the tool change position, or Z to its home), and
+          // A tool change may move the tool (to a tool change position), and
           // the controller goes on from where it left it: LinuxCNC re-reads its position after M6.
           if (m == 60) forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterToolChange, bi);
           break;
