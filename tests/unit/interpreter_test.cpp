@@ -266,7 +266,7 @@ TEST_CASE("an arc whose end lies off its circle is diagnosed as its controller r
   CHECK(in.moves[3].known);  // a true quarter circle: no word of it
   CHECK(sink.warning_count("E-MODEL-ARC-RADIUS") == 1);
   CHECK(sink.format_all().find("t.nc:3:1: warning: E-MODEL-ARC-RADIUS: the end lies 14.1421 mm off the circle through "
-                               "the start about the centre (allowed 0.0283 mm); read as the absolute centre (G90.1), "
+                               "the start about the centre (read as drawn up to 0.0283 mm); read as the absolute centre (G90.1), "
                                "the radii agree") != std::string::npos);
   // A printer's firmware does not check: it goes on, and so does the reading.
   Dialect printer;

@@ -437,16 +437,11 @@ class Interpreter {
     // whole only the other way, it is the other way, from here on.
     if (is_arc(kind) && !r_seen && !s_.centre_told && d_.centre == CentreReading::Incremental) {
       const auto a = axes_of(s_.plane);
-      const double check_mm = d_.radius_abs_mm > 0 ? d_.radius_abs_mm : kRadiusAimMm;
-      auto whole = [&](bool as_absolute) {
-        const auto [gap, allowed] = radius_gap(ijk_centre(s_.frame, ijk, ijk_seen, as_absolute), target);
-        return gap <= std::max(allowed, check_mm);
-      };
       if ((ijk_seen[a.first] || ijk_seen[a.second]) && known) {
         const bool now = s_.frame.arc_absolute;
-        if (whole(now)) {
+        if (readable_arc(radius_gap(ijk_centre(s_.frame, ijk, ijk_seen, now), target))) {
           s_.centre_told = true;
-        } else if (whole(!now)) {
+        } else if (whole_arc(radius_gap(ijk_centre(s_.frame, ijk, ijk_seen, !now), target))) {
           Frame f = s_.frame;
           f.arc_absolute = !now;
           set_frame(f);
@@ -533,6 +528,20 @@ class Interpreter {
     return {std::abs(r1 - r0), allowed};
   }
 
+  /// An input arc off its circle by no more than the controller's radius check, or than
+  /// LinuxCNC's default one (CENTER_ARC_RADIUS_TOLERANCE_MM), is read as drawn: a dialect's
+  /// check may be the strictest setting (what arcpress writes must pass any), while programs
+  /// are written for the machine's own.
+  static constexpr double kReadRadiusSlackMm = 0.0283;
+  static bool readable_arc(std::pair<double, double> gap_allowed) {
+    return gap_allowed.first <= std::max(gap_allowed.second, kReadRadiusSlackMm);
+  }
+  /// An arc whose radii agree to the controller's absolute check (no share of a radius: read
+  /// the other way, a centre far off agrees by its share and would prove nothing).
+  bool whole_arc(std::pair<double, double> gap_allowed) const {
+    return gap_allowed.first <= (d_.radius_abs_mm > 0 ? d_.radius_abs_mm : kRadiusAimMm);
+  }
+
   Vec3 arc_center(const Block& b, const Frame& fr, const AxisValues& target, const double* ijk,
                   const bool* ijk_seen, bool r_seen, double r_value, MoveKind kind, bool& known) {
     auto a = axes_of(s_.plane);
@@ -584,21 +593,20 @@ class Interpreter {
     // centre by more than its radius check; where it does not check (printers), it goes on.
     if (d_.radius_abs_mm > 0) {
       const auto [gap, allowed] = radius_gap(c, target);
-      if (gap > allowed) {
+      if (!readable_arc({gap, allowed})) {
         // Read the other way (an offset as the centre, or the centre as an offset), where the
         // program could say which: the radii may agree, and the program rely on a setting.
         std::string other;
         if (d_.centre == CentreReading::Incremental && d_.centre_mode_words) {
-          const auto [other_gap, other_allowed] = radius_gap(ijk_centre(fr, ijk, ijk_seen, !absolute), target);
-          if (other_gap <= other_allowed)
+          if (whole_arc(radius_gap(ijk_centre(fr, ijk, ijk_seen, !absolute), target)))
             other = fmt::format("; read as {} (G{}), the radii agree: say so in the program, as a controller set "
                                 "the other way reads it",
                                 absolute ? "offsets from the start" : "the absolute centre", absolute ? "91.1" : "90.1");
         }
         sink_.problem({b.line, 1}, "E-MODEL-ARC-RADIUS",
                       fmt::format("the end lies {:.4f} mm off the circle through the start about the centre "
-                                  "(allowed {:.4f} mm){}; the arc is kept and not measured",
-                                  gap, allowed, other));
+                                  "(read as drawn up to {:.4f} mm){}; the arc is kept and not measured",
+                                  gap, std::max(allowed, kReadRadiusSlackMm), other));
         known = false;
       }
     }
