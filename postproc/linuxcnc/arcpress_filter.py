@@ -16,7 +16,7 @@ and shows standard error in a dialog:
 
 Every option but those below goes to arcpress (`--dialect linuxcnc` unless one is given).
 The units a program is in before its first G20 or G21 are the machine's: the last G20 or G21
-of [RS274NGC] RS274NGC_STARTUP_CODE, else [TRAJ] LINEAR_UNITS, read from the INI file
+of RS274NGC_STARTUP_CODE ([EMC], else [RS274NGC]), else [TRAJ] LINEAR_UNITS, read from the INI file
 LinuxCNC names in $INI_FILE_NAME (`--units` overrides them).
 
     --arcpress PATH   the arcpress program (default: `arcpress` beside this file, else on PATH)
@@ -60,7 +60,11 @@ def ini_values(path, section, key):
 def machine_units(ini_path):
     """'mm' or 'inch': what the machine's interpreter reads lengths in before a program's
     first G20 or G21, or None where the INI file does not say."""
-    for code in ini_values(ini_path, "RS274NGC", "RS274NGC_STARTUP_CODE")[:1]:
+    # Where the interpreter finds its startup code: [EMC] first, then [RS274NGC] (as AXIS and
+    # milltask of LinuxCNC 2.9 look for it).
+    startup = ini_values(ini_path, "EMC", "RS274NGC_STARTUP_CODE") or ini_values(ini_path, "RS274NGC",
+                                                                                 "RS274NGC_STARTUP_CODE")
+    for code in startup[:1]:
         # Comments in the startup code say nothing.
         words = UNITS_WORD.findall(re.sub(r"\([^)]*\)|;.*", "", code))
         if words:
