@@ -103,8 +103,8 @@ class Emitter {
   /// differs from the input's at this point (after a run that ended in G2/G3).
   void copy_block(const Block& b) {
     std::string_view raw = p_.raw(b);
-    if (b.kind == BlockKind::Code) state_centres_for_copy(b);
     if (b.kind == BlockKind::Code) {
+      state_centres_for_copy(b);
       int explicit_motion = -1;
       bool axes = false;
       const Word* n_word = nullptr;
