@@ -208,6 +208,132 @@ TEST_CASE("golden: Heidenhain ISO writes the absolute centre in I/J", "[dialect]
   CHECK(r.within_band());
 }
 
+namespace {
+
+/// A Heidenhain ISO program, in `units` (G70 or G71): the blank, a tool call, then a circle of
+/// radius `r` about (50, 50) in `moves` G01 blocks, each ended with '*' and numbered by 10s.
+std::string heidenhain_circle(const char* units, double r, int moves) {
+  std::string t = fmt::format("%CIRC {} *\nN10 G30 G17 X+0 Y+0 Z-20 *\nN20 G31 G90 X+100 Y+100 Z+0 *\n"
+                              "N30 T1 G17 S3000 *\nN40 G00 G90 X{:+.4f} Y+50 Z+2 M3 *\nN50 G01 Z-5 F200 *\n",
+                              units, 50 + r);
+  int n = 60;
+  for (int k = 1; k <= moves; ++k, n += 10)
+    t += fmt::format("N{} G01 X{:+.4f} Y{:+.4f} F800 *\n", n, 50 + r * std::cos(2 * M_PI * k / moves),
+                     50 + r * std::sin(2 * M_PI * k / moves));
+  return t + fmt::format("N{} G00 Z+100 M2 *\nN99999999 %CIRC {} *\n", n, units);
+}
+
+}  // namespace
+
+TEST_CASE("a Heidenhain ISO program is fitted, its new blocks numbered, signed and ended with a star as its own are, "
+          "in the units its first block states",
+          "[dialect][heidenhain]") {
+  const Dialect tnc = shipped("heidenhain-iso");
+  const std::string program = heidenhain_circle("G71", 10, 360);
+  DiagnosticSink sink;
+  CompressOptions opt;
+  opt.dialect = tnc;
+  opt.fit.tolerance_mm = 0.01;
+  const CompressResult r = compress("circ.i", program, opt, sink);
+  // (A star without a number read as a checksum had kept every move as it was.)
+  CHECK(sink.warning_count("W-FIT-NONE") == 0);
+  CHECK(sink.warning_count("W-MODEL-UNITS") == 0);  // G71 in the first block
+  const std::vector<std::string> out = lines_of(r.output);
+  REQUIRE(out.size() < 20);
+  CHECK(out.front() == "%CIRC G71 *");
+  CHECK(out.back() == "N99999999 %CIRC G71 *");
+  size_t arcs = 0;
+  long last_n = 0;
+  for (const std::string& l : out) {
+    INFO(l);
+    CHECK(l.substr(l.size() - 2) == " *");
+    std::smatch n;
+    if (std::regex_search(l, n, std::regex("^N(\\d+) ")) && l.find('%') == std::string::npos) {
+      CHECK(std::stol(n[1]) > last_n);  // numbers still ascend
+      last_n = std::stol(n[1]);
+    }
+    if (!is_arc_line(l) && l.find(" I+") == std::string::npos) continue;
+    ++arcs;
+    // The absolute centre, every number signed as the program signs its own.
+    CHECK(std::regex_match(l, std::regex("N\\d+ G0[23] X\\+[\\d.]+ Y\\+[\\d.]+ I\\+[\\d.]+ J\\+[\\d.]+ F800 \\*")));
+  }
+  CHECK(arcs >= 2);
+  DiffOptions band;
+  band.tolerance_mm = 0.01;
+  CHECK(test::diff_texts(program, r.output, band, tnc).same(0.01));
+
+  // In inches (G70), a circle of 1 inch radius in 48 moves has chords 0.054 mm inside it: no
+  // arc of it lies within 0.01 mm. The same numbers in millimetres fit as two arcs.
+  const CompressResult inch = compress("inch.i", heidenhain_circle("G70", 1, 48), opt, sink);
+  const CompressResult mm = compress("mm.i", heidenhain_circle("G71", 1, 48), opt, sink);
+  CHECK(inch.output == heidenhain_circle("G70", 1, 48));
+  const std::vector<std::string> mm_lines = lines_of(mm.output);
+  CHECK(std::count_if(mm_lines.begin(), mm_lines.end(), [](const std::string& l) { return l.find(" I+") != std::string::npos; }) >= 1);
+  CHECK(mm_lines.size() < 12);
+}
+
+TEST_CASE("Heidenhain ISO's own codes: the blank form and a tool definition move nothing, a datum shift's words are "
+          "the shift, a tool call and a machine-datum block leave the position to be given again",
+          "[dialect][heidenhain]") {
+  const std::string text =
+      "%P G71 *\n"
+      "N10 G30 G17 X+0 Y+0 Z-20 *\n"   // the blank's corners: no reference return, no skip move
+      "N20 G31 G90 X+100 Y+100 Z+0 *\n"
+      "N30 G00 X+5 Y+5 Z+2 *\n"         // move 0
+      "N40 G01 Z-1 F100 *\n"
+      "N50 G01 X+6 *\n"                 // move 2: from (5, 5, -1)
+      "N60 G54 X+20 Y+30 Z+0 *\n"       // a datum shift, not a move
+      "N70 G01 X+7 Y+7 Z-1 *\n"         // move 3: it starts where the shift left the tool: not known
+      "N80 G01 X+8 *\n"                 // move 4: known again
+      "N90 G99 T3 L+0 R+2 *\n"          // a tool's definition: no tool call
+      "N100 G01 X+9 *\n"                // move 5: known
+      "N110 T3 G17 S1000 *\n"           // the tool call
+      "N120 G01 X+9 Y+9 Z-1 *\n"        // move 6: not known
+      "N130 G01 X+10 *\n"               // move 7
+      "N140 G00 Z+50 M91 *\n"           // move 8: Z in machine coordinates
+      "N150 G01 X+10 Y+10 Z-1 *\n"      // move 9: not known
+      "N160 G01 X+11 *\n"               // move 10
+      "N99999999 %P G71 *\n";
+  DiagnosticSink sink("p.i");
+  const Program p = lex("p.i", text, sink);
+  const Interpretation in = interpret(p, sink, shipped("heidenhain-iso"));
+  REQUIRE(in.moves.size() == 11);
+  CHECK(in.moves[1].known);
+  CHECK(in.moves[2].known);
+  CHECK(in.moves[2].to[kX] == 6);
+  CHECK(in.moves[2].to[kZ] == -1);
+  CHECK_FALSE(in.moves[3].known);
+  CHECK(in.moves[3].unfit == Unfit::UnknownAfterOffset);
+  CHECK(in.moves[4].known);
+  CHECK(in.moves[5].known);
+  CHECK_FALSE(in.moves[6].known);
+  CHECK(in.moves[6].unfit == Unfit::UnknownAfterToolChange);
+  CHECK(in.moves[7].known);
+  CHECK_FALSE(in.moves[9].known);
+  CHECK(in.moves[9].unfit == Unfit::UnknownAfterMachine);
+  CHECK(in.moves[10].known);
+  CHECK(sink.all().empty());
+  // Read as RS274 reads the same codes, the blank's corners and the shift are moves.
+  DiagnosticSink rs("p.i");
+  CHECK(interpret(p, rs, shipped("rs274")).moves.size() == 14);
+}
+
+TEST_CASE("a dialect's [codes] keys and meanings are checked where the file gives them", "[dialect]") {
+  CHECK(error_of("name = \"x\"\n[codes]\nX70 = \"inch\"\n").find("user.toml:3:1: codes.X70: expected a G- or M-code") !=
+        std::string::npos);
+  CHECK(error_of("name = \"x\"\n[codes]\nG70 = \"inches\"\n").find("codes.G70: expected one of") != std::string::npos);
+  CHECK(error_of("name = \"x\"\n[codes]\nG70.5x = \"inch\"\n") != "");
+  // (A code with a point is quoted: a bare G54.1 is a dotted key, which TOML reads as a table.)
+  CHECK(error_of("name = \"x\"\n[codes]\nG54.1 = \"frame\"\n").find("codes.G54: a code with a point is quoted") !=
+        std::string::npos);
+  const Dialect d = parse_dialect("name = \"x\"\n[codes]\n\"G54.1\" = \"frame\"\nM91 = \"machine\"\nT = \"moves\"\n", "x.toml");
+  REQUIRE(d.meaning_of('G', 541));
+  CHECK(*d.meaning_of('G', 541) == CodeMeaning::Frame);
+  CHECK(*d.meaning_of('M', 910) == CodeMeaning::Machine);
+  CHECK(*d.meaning_of('T', 0) == CodeMeaning::Moves);
+  CHECK(d.meaning_of('G', 540) == nullptr);
+}
+
 TEST_CASE("golden: Klipper's G18 arcs turn the other way, so the same arc is G2 there", "[dialect]") {
   const test::Snippet g18 = test::arc_snippets()[4];
   // (On the programmed path: Klipper's own 1 mm chords of this arc lie 0.014 mm inside it,

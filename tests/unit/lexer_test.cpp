@@ -132,6 +132,35 @@ TEST_CASE("block delete, line numbers, checksums, percent and O program numbers"
   CHECK(sink.all().empty());
 }
 
+TEST_CASE("Heidenhain ISO blocks end with a star that is no checksum, and a program name line has its words read",
+          "[lex]") {
+  DiagnosticSink sink;
+  auto p = lex_text("%CIRC G71 *\nN10 G01 X+1.5 Y-2*  ; cut\nN20 G1 X2*57\nN99999999 %CIRC G71 *\n%\n% (tape)\n", sink);
+  REQUIRE(p.blocks.size() == 6);
+  CHECK(p.blocks[0].kind == BlockKind::Code);
+  CHECK(letters(p, p.blocks[0]) == "G");
+  CHECK(p.words_begin(p.blocks[0])->value == 71);
+  CHECK(p.blocks[0].block_end);
+  CHECK_FALSE(p.blocks[0].has_checksum);
+  CHECK(letters(p, p.blocks[1]) == "NGXY");
+  CHECK(p.blocks[1].block_end);
+  CHECK(p.blocks[1].has_comment);
+  CHECK_FALSE(p.blocks[1].has_checksum);
+  // A '+' is remembered, so that new blocks can write numbers as the program does.
+  CHECK(p.words_begin(p.blocks[1])[2].plus);
+  CHECK_FALSE(p.words_begin(p.blocks[1])[3].plus);
+  CHECK(p.words_begin(p.blocks[1])[3].value == -2);
+  // A star with a number is still a host's checksum.
+  CHECK(p.blocks[2].has_checksum);
+  CHECK_FALSE(p.blocks[2].block_end);
+  CHECK(letters(p, p.blocks[3]) == "NG");
+  CHECK(p.blocks[3].block_end);
+  // A '%' alone, or with a comment after a blank, is a tape mark.
+  CHECK(p.blocks[4].kind == BlockKind::Percent);
+  CHECK(p.blocks[5].kind == BlockKind::Percent);
+  CHECK(sink.all().empty());
+}
+
 TEST_CASE("LinuxCNC parameters, expressions and flow control are recognised, not fitted", "[lex]") {
   DiagnosticSink sink;
   auto p = lex_text("#1=0.1 (SafeHeight)\nG00 X [2019*#3+#5] Y#<y>\nO100 sub\no<loop> while [#1 LT 3]\nO100 endsub\n", sink);

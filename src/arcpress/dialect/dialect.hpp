@@ -43,6 +43,30 @@ enum class StartCentres : uint8_t {
                 ///< the mode (G90.1/G91.1) wherever its arcs, or the program's own after them, need it
 };
 
+/// What a code means on a controller that reads it otherwise than RS274 does ([codes]):
+/// Heidenhain ISO's G70/G71 are inches and millimetres (RS274's lathe cycles), its G30/G31
+/// the blank's corners (a reference return and a skip move), its G54 a datum shift whose
+/// axis words are the shift, its T word a tool call that may move the tool.
+enum class CodeMeaning : uint8_t {
+  Inch,        ///< lengths in inches from here (RS274's G20)
+  Mm,          ///< lengths in millimetres from here (RS274's G21)
+  Settings,    ///< sets something the path does not depend on; its axis words are values, not a
+               ///< place, and a T word in its block names a tool without calling it
+  Frame,       ///< changes the coordinates (a datum shift, mirroring, rotation, scaling): its axis
+               ///< words are the change's, and the position is known again only once every axis is given
+  Machine,     ///< the block's axis words are machine coordinates (RS274's G53)
+  Moves,       ///< may move the tool where the program does not say (a tool call, a retraction):
+               ///< the position is known again only once every axis is given
+  Unmodelled,  ///< not read: the block is kept, not fitted, and the position is known again as after Frame
+};
+
+/// One code the dialect reads its own way: a G- or M-code, or every T word.
+struct CodeReading {
+  char letter = 'G';  ///< 'G', 'M' or 'T'
+  int code10 = 0;     ///< the code times ten (G70: 700, G54.1: 541); for 'T' unused
+  CodeMeaning meaning = CodeMeaning::Unmodelled;
+};
+
 /// Digits for numbers arcpress computes itself (centres, relative moves). Numbers copied
 /// from the input keep the input's own text.
 struct NumberDigits {
@@ -103,6 +127,15 @@ struct Dialect {
   /// nothing ([printer] position_keeping_commands): the position stays known across them.
   /// Any other such command, a user's macro among them, may move anything.
   std::vector<std::string> position_keeping_commands;
+  /// Codes read otherwise than RS274 reads them ([codes]); the rest as RS274.
+  std::vector<CodeReading> codes;
+  /// The meaning the dialect gives the code `letter` `code10` (times ten; any for 'T'), or
+  /// null where it reads it as RS274.
+  const CodeMeaning* meaning_of(char letter, int code10) const {
+    for (const CodeReading& c : codes)
+      if (c.letter == letter && (letter == 'T' || c.code10 == code10)) return &c.meaning;
+    return nullptr;
+  }
 
   // --- numbers ----------------------------------------------------------------------
   NumberDigits mm{4, 4, 6, 1, 5};

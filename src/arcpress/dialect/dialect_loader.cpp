@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
+#include <cmath>
 #include <cstdlib>
 #include <cerrno>
 #include <cstring>
@@ -250,6 +252,27 @@ Dialect parse_dialect(const std::string& text, const std::string& path) {
     if (r.strings("position_keeping_commands", d.position_keeping_commands, {}, command_name))
       for (std::string& c : d.position_keeping_commands)
         for (char& ch : c) ch = char(std::toupper(static_cast<unsigned char>(ch)));
+    r.finish();
+  }
+  if (const toml::table* t = top.table("codes")) {
+    // CODE = "meaning": each key a G- or M-code as programs write it ("G70", "G54.1", "M91"),
+    // or "T" for every T word.
+    TableReader r(*t, path, "codes.");
+    for (auto&& [key, value] : *t) {
+      const std::string k(key.str());
+      if (value.is_table())
+        r.fail(key.source(), k, "a code with a point is quoted (\"G54.1\" = ...): bare, TOML reads it as a table");
+      const char letter = char(std::toupper(static_cast<unsigned char>(k.empty() ? ' ' : k[0])));
+      double v = 0;
+      const char* end = k.data() + k.size();
+      const bool code = (letter == 'G' || letter == 'M') && k.size() >= 2 &&
+                        std::isdigit(static_cast<unsigned char>(k[1])) && std::from_chars(k.data() + 1, end, v).ptr == end &&
+                        v < 10000;
+      if (!code && !(letter == 'T' && k.size() == 1))
+        r.fail(key.source(), k, "expected a G- or M-code as the key (\"G70\", \"G54.1\", \"M91\"), or \"T\"");
+      const int meaning = r.choice(k, {"inch", "mm", "settings", "frame", "machine", "moves", "unmodelled"});
+      d.codes.push_back({letter, int(std::lround(v * 10)), CodeMeaning(meaning)});
+    }
     r.finish();
   }
   if (const toml::table* t = top.table("numbers")) {

@@ -39,6 +39,7 @@ struct BlockStyle {
   bool spaced = true;
   bool padded = false;  ///< G01 rather than G1
   bool keep_point = false;
+  bool plus = false;  ///< positive numbers with a '+'
 
   std::string letter(char c) const { return std::string(1, lower ? char(c + 32) : c); }
   std::string motion(int g) const { return fmt::format("{}{}{}", letter('G'), padded ? "0" : "", g); }
@@ -52,6 +53,8 @@ class Emitter {
     const OutputHabits h = opt.start.habits ? *opt.start.habits : output_habits(p);
     padded_ = h.padded;
     keep_point_ = h.keep_point;
+    plus_sign_ = h.plus_sign;
+    block_end_ = h.block_end;
     in_motion_ = opt.start.in_motion;
     out_motion_ = opt.start.out_motion;
     header_done_ = opt.start.header_done;
@@ -153,6 +156,7 @@ class Emitter {
     }
     s.spaced = b.word_count < 2 || p_.words_begin(b)[1].col - 1 > p_.words_begin(b)[0].col - 1 + p_.words_begin(b)[0].length;
     s.keep_point = keep_point_;
+    s.plus = plus_sign_;
     for (auto* w = p_.words_begin(b); w != p_.words_end(b); ++w) {
       if (w->letter == 'G' && !w->is_expr && is_motion_gcode(w->value)) {
         auto t = p_.raw(b, *w);
@@ -247,6 +251,7 @@ class Emitter {
         if (arc) state_centres(fr.arc_absolute, in_.moves[run.first_move + a].block);
         if (arc && !header_done_ && !d().arc_header.empty()) {
           out_ += d().arc_header;
+          end_block(out_);
           out_.append(p_.eol(p_.blocks[in_.moves[run.first_move + a].block]));
           header_done_ = true;
         }
@@ -278,6 +283,7 @@ class Emitter {
     const Block& b = p_.blocks[in_.moves[run.first_move + k].block];
     out_ += style_of(b).letter('G');
     out_ += std::to_string(plane_gcode(plane));
+    end_block(out_);
     out_.append(p_.eol(b));
     if (stats_) ++stats_->plane_words_added;
   }
@@ -366,7 +372,7 @@ class Emitter {
         // Deltas of the input's own digits sum exactly at those digits: no drift.
         int dec = std::max(decimals[L - 'A'], 0);
         double delta = rounded((to[ax] - from[ax]) / scale, dec);
-        put_to(dst, L, format_number(delta, NumberStyle{dec, true, st.keep_point}));
+        put_to(dst, L, format_number(delta, NumberStyle{dec, true, st.keep_point, st.plus}));
         end[ax] = from[ax] + delta * scale;
       } else if (w) {
         dst += sep;
@@ -380,7 +386,7 @@ class Emitter {
         while (dec < kMaxDecimals && std::abs(rounded(v, dec) - v) > kSameValue * std::max(1.0, std::abs(v))) ++dec;
         dec = std::max(dec, dig.max);
         v = rounded(v, dec);
-        put_to(dst, L, format_number(v, NumberStyle{dec, true, st.keep_point}));
+        put_to(dst, L, format_number(v, NumberStyle{dec, true, st.keep_point, st.plus}));
         end[ax] = fr.to_mm(ax, v);
       }
     }
@@ -404,6 +410,7 @@ class Emitter {
         s += sep;
         s += p_.raw(*last_block[L - 'A'], *w);
       }
+    end_block(s);
     return out;
   }
 
@@ -467,7 +474,7 @@ class Emitter {
             double side = (pr.ccw ? 1.0 : -1.0) * (big ? -1.0 : 1.0);
             Vec2 c = (s2 + e2) / 2 + side * h * n;
             if (h2 < 0 || !acceptable(s3, e3, c, pr.ccw, tangent, scratch)) continue;
-            std::string t = format_number(big ? -Rp : Rp, NumberStyle{dec, true, st.keep_point});
+            std::string t = format_number(big ? -Rp : Rp, NumberStyle{dec, true, st.keep_point, st.plus});
             if (!digits_fit(t)) continue;
             out.words = st.letter('R') + t;
             out.ok = true;
@@ -497,8 +504,8 @@ class Emitter {
         for (int q = 0; q < n; ++q) {
           Vec2 c = ref + cands[q].w * unit;
           if (!acceptable(s3, e3, c, pr.ccw, tangent, scratch)) continue;
-          std::string t1 = format_number(cands[q].w.x(), NumberStyle{dec, true, st.keep_point});
-          std::string t2 = format_number(cands[q].w.y(), NumberStyle{dec, true, st.keep_point});
+          std::string t1 = format_number(cands[q].w.x(), NumberStyle{dec, true, st.keep_point, st.plus});
+          std::string t2 = format_number(cands[q].w.y(), NumberStyle{dec, true, st.keep_point, st.plus});
           if (!digits_fit(t1) || !digits_fit(t2)) continue;
           out.words = st.letter(char('I' + axes.first)) + t1 + sep + st.letter(char('I' + axes.second)) + t2;
           if (axes.first > axes.second)  // I before J before K, as controllers print them
@@ -608,6 +615,7 @@ class Emitter {
     const CentresOut need = absolute ? CentresOut::Absolute : CentresOut::Incremental;
     if (out_centres_ == need) return;
     out_ += absolute ? "G90.1" : "G91.1";
+    end_block(out_);
     out_.append(p_.eol(p_.blocks[block]));
     out_centres_ = need;
   }
@@ -634,6 +642,12 @@ class Emitter {
   std::string out_;
   bool padded_ = false;
   bool keep_point_ = false;
+  bool plus_sign_ = false;
+  bool block_end_ = false;  ///< new blocks end with " *"
+  /// The end of a block arcpress writes: " *" where the program's blocks end so.
+  void end_block(std::string& s) const {
+    if (block_end_) s += " *";
+  }
   int in_motion_ = 0;   // modal motion (G ×10) as the input program has it here
   int out_motion_ = 0;  // ... and as the output program has it
 };
@@ -657,6 +671,16 @@ OutputHabits output_habits(const Program& p) {
     if (padded + plain > 200) break;
   }
   h.padded = padded > plain;
+  // Signs and block ends as most of the program writes them (Heidenhain ISO: "X+10 *").
+  size_t plus = 0, unsigned_positive = 0, ended = 0, open = 0;
+  for (const auto& b : p.blocks) {
+    if (b.kind != BlockKind::Code) continue;
+    (b.block_end ? ended : open)++;
+    for (auto* w = p.words_begin(b); w != p.words_end(b); ++w)
+      if (moves_axis(w->letter) && !w->is_expr && !w->flag && w->value >= 0) (w->plus ? plus : unsigned_positive)++;
+  }
+  h.plus_sign = plus > unsigned_positive;
+  h.block_end = ended > open;
   return h;
 }
 

@@ -39,12 +39,16 @@ struct EmitStats {
   std::vector<CopiedLine> copied;
 };
 
-/// Program-wide habits of the input that new blocks copy: G01 or G1, whole numbers as "1." or "1".
+/// Program-wide habits of the input that new blocks copy: G01 or G1, whole numbers as "1." or
+/// "1", positive numbers as "+1" or "1", and blocks ended with " *" (Heidenhain ISO) or not.
 struct OutputHabits {
   bool padded = false;
   bool keep_point = false;
+  bool plus_sign = false;
+  bool block_end = false;
 };
-/// The habits of `program` (the first 200 motion words decide G01 or G1).
+/// The habits of `program` (the first 200 motion words decide G01 or G1; the axis words and
+/// code blocks, the signs and the block end).
 OutputHabits output_habits(const Program& program);
 
 /// Whether `w` sets the arc centre mode (G90.1 or G91.1): the dialect's arc header is then

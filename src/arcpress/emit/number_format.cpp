@@ -48,6 +48,7 @@ std::string format_number(double value, const NumberStyle& style) {
     s += '.';
   }
   if (s == "-0" || s == "-0.") s.erase(0, 1);
+  if (style.plus_sign && s.front() != '-') s.insert(s.begin(), '+');
   return s;
 }
 

@@ -9,6 +9,7 @@ struct NumberStyle {
   int decimals = 4;           ///< digits after the point before trimming
   bool trim_zeros = true;     ///< drop trailing zeros after the point
   bool keep_point = false;    ///< "1." rather than "1" for whole numbers (Fanuc, Haas)
+  bool plus_sign = false;     ///< "+1.5" rather than "1.5" (and "+0"), as Heidenhain programs write them
 };
 
 /// Formats `value` for a G-code word. Round-half-away-from-zero at `decimals` digits.

@@ -21,6 +21,7 @@ struct Word {
   uint8_t decimals = 0;  ///< digits written after the decimal point
   bool has_point = false;
   bool flag = false;     ///< a letter without a number (firmware flags: `M84 X Y E`); value 0
+  bool plus = false;     ///< written with a '+' sign (`X+10.5`, Heidenhain's habit)
 
   /// The value as a code number times ten, rounded half away from zero: G90.1 is 901, G1 is
   /// 10, M83 is 830 (inline: std::lround is a library call, and every block asks).
@@ -55,6 +56,7 @@ struct Block {
   bool block_delete = false;  ///< starts with `/`
   bool has_comment = false;   ///< `( )` or `;` comment anywhere on the line
   bool has_checksum = false;  ///< `*NN`
+  bool block_end = false;     ///< ends with a `*` and no number: the end-of-block mark (Heidenhain ISO)
   bool has_expr = false;      ///< a word value is an expression or parameter
 };
 

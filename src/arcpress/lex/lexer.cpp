@@ -32,8 +32,11 @@ class LineLexer {
     if (b_.line == 1 && n_ >= 3 && s_[0] == '\xEF' && s_[1] == '\xBB' && s_[2] == '\xBF') i = 3;  // UTF-8 BOM
     i = skip_space(i);
     if (i < n_ && s_[i] == '%') {
-      b_.kind = BlockKind::Percent;
-      return;
+      if (!program_name(i)) {
+        b_.kind = BlockKind::Percent;
+        return;
+      }
+      i = after_;
     }
     if (i < n_ && s_[i] == '/') {
       b_.block_delete = true;
@@ -61,9 +64,18 @@ class LineLexer {
         break;
       }
       if (c == '*') {
-        b_.has_checksum = true;
+        // `*NN` is a host's checksum (Marlin, RepRapFirmware); a `*` with no number is
+        // Heidenhain ISO's end of block.
         ++i;
+        if (i < n_ && is_digit(s_[i]))
+          b_.has_checksum = true;
+        else
+          b_.block_end = true;
         while (i < n_ && is_digit(s_[i])) ++i;
+        continue;
+      }
+      if (c == '%' && program_name(i)) {
+        i = after_;
         continue;
       }
       if (c == '#') {
@@ -118,6 +130,17 @@ class LineLexer {
 
   void set_kind(BlockKind k) { b_.kind = k; }
 
+  /// Whether the `%` at `i` names a program (`%NAME G71 *` and `N99999999 %NAME G71 *`,
+  /// Heidenhain ISO's first and last blocks): a name follows it at once. The name is stepped
+  /// over (after_ is set past it) and the words after it are read; a `%` alone is a tape mark.
+  bool program_name(size_t i) {
+    size_t e = i + 1;
+    while (e < n_ && (is_alpha(s_[e]) || is_digit(s_[e]) || s_[e] == '_' || s_[e] == '-' || s_[e] == '.')) ++e;
+    if (e == i + 1) return false;
+    after_ = e;
+    return true;
+  }
+
   void opaque(size_t i, std::string_view code, std::string msg) {
     b_.kind = BlockKind::Opaque;
     sink_.problem({b_.line, uint32_t(i + 1)}, code, std::move(msg));
@@ -145,6 +168,7 @@ class LineLexer {
     const char letter = upper(s_[i]);
     size_t k = j;
     bool negative = false;
+    const bool plus = k < n_ && s_[k] == '+';
     if (k < n_ && (s_[k] == '-' || s_[k] == '+')) {
       negative = s_[k] == '-';
       k = skip_space(k + 1);
@@ -199,7 +223,9 @@ class LineLexer {
         if (s_[q] != ' ' && s_[q] != '\t') buf += s_[q];
       value = std::strtod(buf.c_str(), nullptr);
     }
-    return push(i, k, letter, negative ? -value : value, false, n.decimals, n.point, false);
+    if (!push(i, k, letter, negative ? -value : value, false, n.decimals, n.point, false)) return false;
+    p_.words.back().plus = plus;
+    return true;
   }
 
   /// The digits of a number: its first 18 as an integer, how many follow the point.
@@ -346,6 +372,7 @@ bool take_copy(Program& p, size_t begin, size_t end, uint32_t line, const Progra
   b.block_delete = from.block_delete;
   b.has_comment = from.has_comment;
   b.has_checksum = from.has_checksum;
+  b.block_end = from.block_end;
   b.has_expr = from.has_expr;
   p.words.insert(p.words.end(), source.words_begin(from), source.words_end(from));
   p.blocks.push_back(b);

@@ -62,6 +62,14 @@ class Interpreter {
   void reset(const ModalState& s) { s_ = s; }
 
  private:
+  /// The G-code that sets units as `meaning` says in the dialect: its own ([codes]), else
+  /// RS274's (`rs274`, times ten).
+  std::string unit_code(CodeMeaning meaning, int rs274) const {
+    for (const CodeReading& c : d_.codes)
+      if (c.meaning == meaning) return c.code10 % 10 ? fmt::format("G{}.{}", c.code10 / 10, c.code10 % 10) : fmt::format("G{}", c.code10 / 10);
+    return fmt::format("G{}", rs274 / 10);
+  }
+
   /// Whether the extended command on `line` is one the dialect says moves nothing.
   bool keeps_position(std::string_view line) const {
     const auto& names = d_.position_keeping_commands;
@@ -110,6 +118,8 @@ class Interpreter {
     bool skip = false;     // G31: a skip move (Fanuc), which stops where a signal comes
     bool g50 = false;      // G50: a lathe's coordinate setting where it has axis words, else a spindle limit
     uint32_t g11_col = 0;  // column of a G11 the firmware reads as its recovery (0: none)
+    bool tool_call = false;  // a T word the dialect reads as a tool call (Heidenhain ISO)
+
     // Bit per axis: written with a value, with an expression, as a flag.
     uint32_t words_seen = 0, expr_axis = 0, flag_axis = 0;
     uint32_t length_col = 0;  // column of the block's first length (a linear axis's word)
@@ -127,6 +137,31 @@ class Interpreter {
     };
     double feed = 0;
     bool feed_set = false;
+    bool settings_code = false;  // a code the dialect reads as settings (a T word there calls no tool)
+    // What a code the dialect reads its own way does in this block ([codes]): returns the
+    // RS274 code it stands for (G20 or G21, times ten), or -1 where it has done what it means.
+    auto own_meaning = [&](CodeMeaning meaning, const Word& w) -> int {
+      const uint32_t block = bi;
+      switch (meaning) {
+        case CodeMeaning::Inch: return 200;
+        case CodeMeaning::Mm: return 210;
+        case CodeMeaning::Settings: axis_consumer = true, settings_code = true; return -1;
+        case CodeMeaning::Frame:
+          axis_consumer = true;
+          forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterOffset, block);
+          return -1;
+        case CodeMeaning::Machine: g53 = true; return -1;
+        case CodeMeaning::Moves: forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterCodeMove, block); return -1;
+        case CodeMeaning::Unmodelled: break;
+      }
+      sink_.problem({b.line, w.col}, "E-MODEL-GCODE",
+                    fmt::format("{} is not modelled under {}; the block is kept and not fitted", p_->raw(b, w), d_.name));
+      forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterUnmodelled, block);
+      return -1;
+    };
+    auto units_code = [&](int g) {
+      if (g == 200 || g == 210) F().unit_mm = g == 200 ? 25.4 : 1.0, s_.units_told = true;
+    };
 
     bool repeated = false;  // a word the controller refuses to see twice
     uint32_t letters_seen = 0;
@@ -162,6 +197,11 @@ class Interpreter {
         case 'G': {
           int g = w->code10();
           if (g != 10) other_words = true;
+          // A code the dialect reads its own way is read as RS274's code of that meaning.
+          if (const CodeMeaning* m = d_.codes.empty() ? nullptr : d_.meaning_of('G', g)) {
+            g = own_meaning(*m, *w);
+            if (g < 0) break;
+          }
           switch (g) {
             case 0: case 10: case 20: case 30: motion = g; break;
             case 50: case 51: case 52: case 53: motion = g; break;  // G5, G5.1, G5.2, G5.3
@@ -174,8 +214,7 @@ class Interpreter {
             case 170: s_.plane = Plane::XY; break;
             case 180: s_.plane = Plane::ZX; break;
             case 190: s_.plane = Plane::YZ; break;
-            case 200: F().unit_mm = 25.4, s_.units_told = true; break;
-            case 210: F().unit_mm = 1.0, s_.units_told = true; break;
+            case 200: case 210: units_code(g); break;
             case 70: F().diameter_mode = true; break;
             case 80: F().diameter_mode = false; break;
             case 900: F().absolute = true; F().e_relative = false; break;
@@ -237,6 +276,10 @@ class Interpreter {
         case 'M': {
           other_words = true;
           const int m = w->code10();
+          if (const CodeMeaning* own = d_.codes.empty() ? nullptr : d_.meaning_of('M', m)) {
+            if (const int g = own_meaning(*own, *w); g >= 0) units_code(g);
+            break;
+          }
           if (m == 820) F().e_relative = false;
           if (m == 830) F().e_relative = true;
           if (m == 980 || m == 990)  // subprogram call / return
@@ -271,6 +314,10 @@ class Interpreter {
           break;
         case 'N':
           break;
+        case 'T':
+          other_words = true;
+          if (const CodeMeaning* own = d_.codes.empty() ? nullptr : d_.meaning_of('T', 0)) tool_call = *own == CodeMeaning::Moves;
+          break;
         case 'L':
           l_seen = true;
           other_words = true;
@@ -283,9 +330,10 @@ class Interpreter {
     if (length_col > 0 && !s_.units_told) {
       // Read as the frame says (millimetres, unless the dialect starts in inches); said once.
       sink_.warning({b.line, length_col}, "W-MODEL-UNITS",
-                    "a length before any G20 or G21: read in millimetres until the program states its units; a controller "
-                    "set to start in inches reads it 25.4 times larger (--units inch; --units mm, or a printer's "
-                    "--dialect, says it starts in millimetres)");
+                    fmt::format("a length before any {} or {}: read in millimetres until the program states its units; a "
+                                "controller set to start in inches reads it 25.4 times larger (--units inch; --units mm, "
+                                "or a printer's --dialect, says it starts in millimetres)",
+                                unit_code(CodeMeaning::Inch, 200), unit_code(CodeMeaning::Mm, 210)));
       s_.units_told = true;
     }
     // Where the firmware retracts (d_.firmware_retraction), G10 without L and without axis
@@ -299,6 +347,9 @@ class Interpreter {
                     "G11 with axis words is not modelled; the block is kept and not fitted");
       forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterUnmodelled, bi);
     }
+    // A tool call (the dialect's T word) may move the tool, as M6 may; a T word in a tool's
+    // definition or preselection (a code read as settings) calls none.
+    if (tool_call && !settings_code) forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterToolChange, bi);
     if (probing) {
       forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterHoming, bi);
       feed_set = false;  // (Marlin's G29 F is the grid's front edge)

@@ -15,7 +15,8 @@ const char* describe(Unfit why) {
       return "position unknown after flow control, a macro or parameter line, a subprogram or a host command";
     case Unfit::UnknownAfterOffset: return "position unknown after a work or tool offset change";
     case Unfit::UnknownInPolar: return "position not computed in polar coordinates (G16)";
-    case Unfit::UnknownAfterToolChange: return "position unknown after a tool change (M6), which may move the tool";
+    case Unfit::UnknownAfterToolChange: return "position unknown after a tool change (M6, or the dialect's tool call), which may move the tool";
+    case Unfit::UnknownAfterCodeMove: return "position unknown after a code the dialect says may move the tool";
     case Unfit::UnknownAfterUnmodelled: return "position unknown after a G-code arcpress does not model";
     case Unfit::UnreadableArc: return "an arc the controller cannot run: no centre, or R too short for its chord";
     case Unfit::RepeatedWord: return "a word repeated in the block";

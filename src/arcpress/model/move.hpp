@@ -83,7 +83,8 @@ enum class Unfit : uint8_t {
   UnknownAfterControl,  ///< flow control, a subprogram, a macro or host command ran
   UnknownAfterOffset,   ///< a work offset (G54..) or the tool length offset (G43, G49) changed under it
   UnknownInPolar,          ///< polar coordinates (G16): the plane's words are a radius and an angle
-  UnknownAfterToolChange,  ///< a tool change (M6): the controller may move the tool, and goes on from where it is
+  UnknownAfterToolChange,  ///< a tool change (M6, a tool call): the controller may move the tool, and goes on from where it is
+  UnknownAfterCodeMove,    ///< a code the dialect says may move the tool where the program does not say (Heidenhain's M140)
   UnknownAfterUnmodelled,  ///< a G-code arcpress does not model
   // The block cannot be read as a path: no controller runs it as written.
   UnreadableArc,    ///< G2/G3 without a centre (no I/J/K in its plane, no R), or R shorter than half its chord
