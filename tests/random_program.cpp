@@ -46,6 +46,11 @@ RandomCase random_case(std::span<const uint8_t> bytes) {
   const bool wander = flat && (target & 0x40);
   std::string& s = c.text;
   s = fmt::format("G21 G90 {}{}\nG0 X0 Y0 Z0\nG1 F1000\n", planes[(form >> 3) & 3], extrudes ? " M83" : "");
+  // For Heidenhain ISO, as its programs are written: the units in a program name block, every
+  // block numbered and ended with '*', numbers signed (X+1.5).
+  const bool tnc = c.opt.dialect.name == "heidenhain-iso";
+  if (tnc)
+    s = fmt::format("%RANDOM G71 *\nN1 G90 {} *\nN2 G00 X+0 Y+0 Z+0 *\nN3 G01 F1000 *\n", planes[(form >> 3) & 3]);
   double x = 0, y = 0, z = 0, hx = 1, hy = 0;
   double e_per_mm = 0.05;  // relative extrusion (M83), its rate changing now and then
   double last_x = 0, last_y = 0;  // the last printed point, for the extrusion of a move
@@ -82,17 +87,20 @@ RandomCase random_case(std::span<const uint8_t> bytes) {
     if ((h & 0x3f) == 0x2a) s += "G43 H2\n";
     if ((h & 0x3f) == 0x2b) s += fmt::format("G16\nG1 X{:.3f} Y{:.1f}\nG15\n", std::hypot(x, y), 30.0 + i % 90);
     const double px = std::stod(fmt::format("{:.{}f}", x, decimals)), py = std::stod(fmt::format("{:.{}f}", y, decimals));
-    s += fmt::format("G1 X{:.{}f} Y{:.{}f} Z{:.{}f}", x, decimals, y, decimals, z, decimals);
+    if (tnc)
+      s += fmt::format("N{} G01 X{:+.{}f} Y{:+.{}f} Z{:+.{}f}", i + 1, x, decimals, y, decimals, z, decimals);
+    else
+      s += fmt::format("G1 X{:.{}f} Y{:.{}f} Z{:.{}f}", x, decimals, y, decimals, z, decimals);
     if (rotary) s += fmt::format(" A{:.3f}", 10 * x + 3 * std::sin(y));
-    if (extrudes) {
+    if (extrudes && !tnc) {
       if ((h & 0x3f) == 0x23) e_per_mm *= 1.5;
       s += fmt::format(" E{:.5f}", e_per_mm * std::hypot(px - last_x, py - last_y));
     }
-    s += "\n";
+    s += tnc ? " *\n" : "\n";
     last_x = px;
     last_y = py;
   }
-  s += "M2\n";
+  s += tnc ? fmt::format("N{} M2 *\nN99999999 %RANDOM G71 *\n", bytes.size() + 3) : "M2\n";
   return c;
 }
 
