@@ -60,7 +60,7 @@ Dialect dialect_for(const std::string& name, bool name_given, const std::string&
     std::optional<ProgramFlavor> flavor = program_flavor(program);
     const bool at_end = !flavor && (flavor = program_flavor(tail_lines));
     if (flavor) {
-      slicer_program = true;
+      slicer_program = flavor->slicer;
       const std::string where = at_end ? fmt::format("the program's '{}' near its end", flavor->evidence)
                                        : fmt::format("the program's '{}' at line {}", flavor->evidence, flavor->line);
       if (flavor->dialect.empty()) {

@@ -413,6 +413,20 @@ TEST_CASE("without --dialect a slicer's program is written for the firmware it n
   CHECK(run_arcpress("diff" + files).exit_code == 1);  // as A names itself: Klipper
 }
 
+TEST_CASE("without --dialect a Heidenhain ISO program is written for the TNC its first block names", "[cli][dialect][flavor]") {
+  std::string t = "%ARC G71 *\nN10 G00 G90 X+10 Y+0 Z+0 *\nN20 G01 F300 *\n";
+  for (int k = 1; k <= 90; ++k)
+    t += fmt::format("N{} G01 X{:+.4f} Y{:+.4f} *\n", 20 + 10 * k, 10 * std::cos(k * M_PI / 180),
+                     10 * std::sin(k * M_PI / 180));
+  t += "N99999999 %ARC G71 *\n";
+  auto c = run_arcpress("--stats --tolerance 0.01", t);
+  CHECK(c.exit_code == 0);
+  CHECK(c.err.find("dialect        heidenhain-iso") != std::string::npos);
+  CHECK(c.err.find("by the program's '%ARC G71 *' at line 1") != std::string::npos);
+  // The centre itself (by the origin), as the TNC reads I/J: as offsets, RS274's, they would be I-9.99.. J+0.00..
+  CHECK(c.out.find("N920 G03 X+0.0000 Y+10.0000 I+0.0028 J+0.0028 *\n") != std::string::npos);
+}
+
 TEST_CASE("a file that is not G-code is refused with exit 2, why, and nothing written", "[cli][foreign]") {
   auto d = arcpress::test::temp_dir("foreign");
   std::mt19937 rng(46);

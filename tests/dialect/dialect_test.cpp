@@ -618,6 +618,17 @@ TEST_CASE("a program names its own dialect by its slicer's flavor, where the fla
                            "; gcode_flavor = reprapfirmware\n", "; gcode_flavor = smoothie\n"})
     CHECK(shipped(flavor(text)->dialect).name == flavor(text)->dialect);
   for (const std::string& name : flavor_dialects()) CHECK(shipped(name).name == name);
+  // A Heidenhain ISO program begins with its own block; that names the TNC, and no slicer.
+  const auto tnc = flavor("%PART-7 G71 *\nN10 G01 X+1 *\n");
+  REQUIRE(tnc);
+  CHECK(tnc->dialect == "heidenhain-iso");
+  CHECK(tnc->evidence == "%PART-7 G71 *");
+  CHECK_FALSE(tnc->slicer);
+  CHECK(shipped(tnc->dialect).name == "heidenhain-iso");
+  CHECK(flavor("\xEF\xBB\xBF\n  %P G70 * ; inch\n")->line == 2);
+  CHECK_FALSE(flavor("%\nO1000\n"));                 // a tape mark
+  CHECK_FALSE(flavor("G21\n%PART G71 *\n"));          // not where a program begins
+  CHECK_FALSE(flavor("%PART G21 *\n"));
 }
 
 TEST_CASE("ARCPRESS_DIALECT_PATH is a list of folders split as the system splits path lists, searched in order",

@@ -35,16 +35,37 @@ std::string dialect_of_flavor(const std::string& flavor) {
   return {};
 }
 
+/// Whether `text` is a Heidenhain ISO program's begin block: `%`, the program's name, its
+/// units (G70 or G71) and the block end, `%PART G71 *`.
+bool tnc_begin_block(std::string_view text) {
+  if (text.size() < 2 || text.front() != '%') return false;
+  size_t i = 1;
+  auto name_char = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'; };
+  while (i < text.size() && name_char(text[i])) ++i;
+  if (i == 1) return false;
+  std::string_view rest = trimmed(text.substr(i));
+  if (rest.size() < 4 || (rest[0] != 'G' && rest[0] != 'g') || rest[1] != '7' || (rest[2] != '0' && rest[2] != '1'))
+    return false;
+  rest = trimmed(rest.substr(3));
+  return !rest.empty() && rest.front() == '*';
+}
+
 }  // namespace
 
 std::optional<ProgramFlavor> program_flavor(std::string_view program) {
   uint32_t line = 0;
   size_t at = 0;
+  bool first = true;  // (no line with text read yet)
   while (at < program.size()) {
     const size_t end = std::min(program.find('\n', at), program.size());
-    const std::string_view text = trimmed(program.substr(at, end - at));
+    std::string_view text = trimmed(program.substr(at, end - at));
     ++line;
     at = end + 1;
+    if (first && line == 1 && text.substr(0, 3) == "\xEF\xBB\xBF") text = trimmed(text.substr(3));  // UTF-8 BOM
+    if (first && !text.empty()) {
+      first = false;
+      if (tnc_begin_block(text)) return ProgramFlavor{"heidenhain-iso", std::string(text), line, false};
+    }
     if (text.empty() || text.front() != ';') continue;
     const std::string l = lower(text);
     std::string flavor;

@@ -2,8 +2,10 @@
 #pragma once
 // The controller a program names for itself: slicers write the firmware flavor they sliced
 // for into the program (PrusaSlicer, SuperSlicer, OrcaSlicer and Slic3r `; gcode_flavor =
-// marlin2` in their config block, Cura `;FLAVOR:Marlin` in its header). Used when the user
-// names no dialect, so a slicer's post-processing step needs no options.
+// marlin2` in their config block, Cura `;FLAVOR:Marlin` in its header), and a Heidenhain ISO
+// program begins with its own block (`%NAME G71 *`). Used when the user names no dialect, so
+// a slicer's post-processing step needs no options, and a TNC program is not read as RS274
+// (whose I/J are offsets where the TNC's are the centre itself).
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -18,11 +20,13 @@ struct ProgramFlavor {
   std::string dialect;
   std::string evidence;  ///< the program's own words, e.g. "; gcode_flavor = marlin2"
   uint32_t line = 0;     ///< 1-based line of the evidence
+  bool slicer = true;    ///< a slicer's flavor line: a printer's program, which starts in millimetres
 };
 
 /// The first flavor line of `program`: the shipped dialect it maps to without doubt, or an
 /// empty dialect where the flavor is one that several firmwares answer to (RepRap/Sprinter);
-/// nothing where the program has no flavor line.
+/// heidenhain-iso where the program's first line is a TNC program's begin block (`%NAME G71 *`
+/// or `G70`); nothing where the program has neither.
 std::optional<ProgramFlavor> program_flavor(std::string_view program);
 
 /// The dialects a flavor line maps to, for a message that says what to pass instead.
