@@ -318,6 +318,88 @@ TEST_CASE("Heidenhain ISO's own codes: the blank form and a tool definition move
   CHECK(interpret(p, rs, shipped("rs274")).moves.size() == 14);
 }
 
+TEST_CASE("Heidenhain ISO's pole: I/J alone set it and move nothing, an arc without I/J turns about it, and after "
+          "arcs arcpress wrote the program's own arc states it again",
+          "[dialect][heidenhain]") {
+  const Dialect tnc = shipped("heidenhain-iso");
+  // The pole at (50, 50), set once: half a circle about it; then, `passes` times, a whole
+  // circle of short moves about (35, 50), which arcpress writes as arcs about their own
+  // centre, and the other half about the pole, whose block names no centre.
+  auto program = [](int passes) {
+    std::string t = "%POLE G71 *\nN10 G00 G90 X+60 Y+50 Z+2 *\nN20 G01 Z-5 F200 *\nN30 I+50 J+50 *\n"
+                    "N40 G03 X+40 Y+50 F800 *\n";
+    int n = 50;
+    for (int pass = 0; pass < passes; ++pass) {
+      for (int k = 1; k <= 360; ++k, n += 10)
+        t += fmt::format("N{} G01 X{:+.3f} Y{:+.3f} *\n", n, 35 + 5 * std::cos(2 * M_PI * k / 360),
+                         50 + 5 * std::sin(2 * M_PI * k / 360));
+      t += fmt::format("N{} G00 Z+2 *\nN{} X+60 Y+50 *\nN{} G01 Z-5 *\nN{} G03 X+40 Y+50 *\n", n, n + 10, n + 20, n + 30);
+      n += 40;
+    }
+    return t + fmt::format("N{} G00 Z+100 M2 *\nN99999999 %POLE G71 *\n", n);
+  };
+  const std::string text = program(1);
+  {
+    DiagnosticSink sink("p.i");
+    const Program p = lex("p.i", text, sink);
+    const Interpretation in = interpret(p, sink, tnc);
+    CHECK(sink.all().empty());
+    REQUIRE(in.moves.size() == 2 + 1 + 360 + 4 + 1);
+    // The block of I/J alone moved nothing; the arcs turn about the pole.
+    CHECK(in.moves[2].kind == MoveKind::ArcCCW);
+    CHECK(in.moves[2].known);
+    const Move& last_arc = in.moves[2 + 1 + 360 + 3];
+    CHECK(last_arc.kind == MoveKind::ArcCCW);
+    CHECK(last_arc.known);
+    CHECK(last_arc.center.x() == 50);
+    CHECK(last_arc.center.y() == 50);
+    REQUIRE(in.pole_reads.size() == 2);  // both arcs name no centre
+    CHECK(in.pole_reads[1].arc);
+    CHECK(in.pole_reads[1].known);
+    CHECK(in.pole_reads[1].words[0] == 50);
+  }
+  DiffOptions band;
+  band.tolerance_mm = 0.01;
+  for (int passes : {1, 12}) {
+    const std::string t = program(passes);
+    INFO(passes << " passes, " << t.size() << " bytes");
+    DiagnosticSink sink;
+    CompressOptions opt;
+    opt.dialect = tnc;
+    opt.fit.tolerance_mm = 0.01;
+    Compressor c("p.i", opt, sink);
+    for (size_t at = 0; at < t.size(); at += 700) c.push(std::string_view(t).substr(at, 700));
+    c.finish();
+    std::string out;
+    c.take(out);
+    REQUIRE(c.result().within_band());
+    if (passes > 1) REQUIRE(c.pieces() > 2);
+    CHECK(lines_of(out).size() < size_t(20 * passes));
+    // Each of the program's arcs after arcpress's own states the pole again, and nothing else.
+    size_t restated = 0;
+    for (size_t at = 0; (at = out.find(" G03 X+40 Y+50 I+50 J+50 *\n", at)) != std::string::npos; ++at) ++restated;
+    CHECK(restated == size_t(passes));
+    CHECK(test::diff_texts(t, out, band, tnc).same(0.01));
+    // Without the pole stated again, the arcs would turn about arcpress's own last centre.
+    std::string moved = out;
+    for (size_t at; (at = moved.find(" I+50 J+50 *\n")) != std::string::npos;) moved.replace(at, 10, "");
+    CHECK_FALSE(test::diff_texts(t, moved, band, tnc).same(0.01));
+  }
+  // A polar move about the pole (its PR/PA words make it a line arcpress does not read) gets
+  // the pole stated again in a block of its own before it.
+  std::string polar = program(1);
+  const std::string arc = "N3680 G03 X+40 Y+50 *";
+  REQUIRE(polar.find(arc) != std::string::npos);
+  polar.replace(polar.find(arc), arc.size(), "N3680 G11 PR+10 PA+0 *");
+  DiagnosticSink sink;
+  CompressOptions opt;
+  opt.dialect = tnc;
+  opt.fit.tolerance_mm = 0.01;
+  const std::string out = compress("q.i", polar, opt, sink).output;
+  CHECK(out.find("\nI+50 J+50 *\nN3680 G11 PR+10 PA+0 *\n") != std::string::npos);
+  CHECK(sink.format_all().find("E-LEX-KEYWORD: unknown keyword 'PR'") != std::string::npos);
+}
+
 TEST_CASE("a dialect's [codes] keys and meanings are checked where the file gives them", "[dialect]") {
   CHECK(error_of("name = \"x\"\n[codes]\nX70 = \"inch\"\n").find("user.toml:3:1: codes.X70: expected a G- or M-code") !=
         std::string::npos);

@@ -267,6 +267,7 @@ struct Compressor::Impl {
     next_emit.out_motion = clean ? p.end.motion : -1;
     next_emit.header_done = centre_mode_set;
     next_emit.centres_maybe_said = !opt.passthrough && opt.fit.method != FitOptions::Method::Keep && opt.dialect.arcs;
+    next_emit.pole_maybe_moved = next_emit.centres_maybe_said && opt.dialect.centre_modal;
     dispatch(std::move(cur));
   }
 

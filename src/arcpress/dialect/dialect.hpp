@@ -57,6 +57,9 @@ enum class CodeMeaning : uint8_t {
   Machine,     ///< the block's axis words are machine coordinates (RS274's G53)
   Moves,       ///< may move the tool where the program does not say (a tool call, a retraction):
                ///< the position is known again only once every axis is given
+  Pole,        ///< the present position becomes the centre arcs turn about (centre_modal; Heidenhain's G29)
+  Polar,       ///< a move about that centre arcpress does not read (Heidenhain's polar moves): as
+               ///< Unmodelled, and the centre is stated again before it where arcpress's own arcs moved it
   Unmodelled,  ///< not read: the block is kept, not fitted, and the position is known again as after Frame
 };
 
@@ -86,6 +89,9 @@ struct Dialect {
   bool arcs = true;                             ///< false: never write G2/G3 (lines only)
   CentreReading centre = CentreReading::Incremental;
   bool centre_mode_words = true;                ///< G90.1/G91.1 are understood
+  /// I/J/K set a centre that holds until the next (Heidenhain's pole): a block with centre
+  /// words and no axis words sets it and moves nothing, and an arc without them turns about it.
+  bool centre_modal = false;
   bool radius_word = true;                      ///< R form accepted
   ArcFormat format = ArcFormat::Centre;         ///< what arcpress writes unless told otherwise
   std::string arc_header;                       ///< a block written before the first arc (of each piece of a stream), e.g. "G91.1"

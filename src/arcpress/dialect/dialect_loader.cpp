@@ -184,6 +184,7 @@ Dialect parse_dialect(const std::string& text, const std::string& path) {
     r.boolean("enabled", d.arcs);
     if (int c = r.choice("centre", {"incremental", "absolute"}); c >= 0) d.centre = CentreReading(c);
     r.boolean("centre_mode_words", d.centre_mode_words);
+    r.boolean("centre_modal", d.centre_modal);
     r.boolean("radius_word", d.radius_word);
     if (int c = r.choice("format", {"centre", "radius"}); c >= 0) d.format = ArcFormat(c);
     r.text("header", d.arc_header);
@@ -270,7 +271,7 @@ Dialect parse_dialect(const std::string& text, const std::string& path) {
                         v < 10000;
       if (!code && !(letter == 'T' && k.size() == 1))
         r.fail(key.source(), k, "expected a G- or M-code as the key (\"G70\", \"G54.1\", \"M91\"), or \"T\"");
-      const int meaning = r.choice(k, {"inch", "mm", "settings", "frame", "machine", "moves", "unmodelled"});
+      const int meaning = r.choice(k, {"inch", "mm", "settings", "frame", "machine", "moves", "pole", "polar", "unmodelled"});
       d.codes.push_back({letter, int(std::lround(v * 10)), CodeMeaning(meaning)});
     }
     r.finish();

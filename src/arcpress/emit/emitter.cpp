@@ -54,6 +54,7 @@ class Emitter {
     padded_ = h.padded;
     keep_point_ = h.keep_point;
     plus_sign_ = h.plus_sign;
+    pole_moved_ = opt.start.pole_maybe_moved ? 0b111u : 0u;
     block_end_ = h.block_end;
     in_motion_ = opt.start.in_motion;
     out_motion_ = opt.start.out_motion;
@@ -103,9 +104,12 @@ class Emitter {
 
  private:
   /// Copies a block as it is, restating the motion word when the output's modal motion
-  /// differs from the input's at this point (after a run that ended in G2/G3).
+  /// differs from the input's at this point (after a run that ended in G2/G3), and, where
+  /// I/J/K set a centre that holds, the program's centre in an arc that turns about it after
+  /// arcpress's own arcs moved it (restate_pole_for_copy()).
   void copy_block(const Block& b) {
     std::string_view raw = p_.raw(b);
+    const std::string centre = d().centre_modal ? restate_pole_for_copy(b) : std::string();
     if (b.kind == BlockKind::Code) {
       state_centres_for_copy(b);
       int explicit_motion = -1;
@@ -121,20 +125,30 @@ class Emitter {
         if (moves_axis(w->letter)) axes = true;
         if (w->letter == 'N' && w == p_.words_begin(b)) n_word = w;
       }
-      if (explicit_motion >= 0) {
-        in_motion_ = out_motion_ = explicit_motion;
-      } else if (axes && in_motion_ != out_motion_ && in_motion_ >= 0) {
-        size_t at = n_word ? n_word->col - 1 + n_word->length : p_.words_begin(b)->col - 1;
-        BlockStyle st = style_of(b);
-        std::string word = st.motion(in_motion_ / 10);
-        out_.append(raw.substr(0, at));
-        if (n_word) out_ += st.spaced ? " " : "";
-        out_ += word;
-        if (!n_word && st.spaced) out_ += ' ';
-        out_.append(raw.substr(at));
+      if (explicit_motion >= 0) in_motion_ = out_motion_ = explicit_motion;
+      const bool motion_word = explicit_motion < 0 && axes && in_motion_ != out_motion_ && in_motion_ >= 0;
+      if (motion_word || !centre.empty()) {
+        const BlockStyle st = style_of(b);
+        const Word& last = *(p_.words_end(b) - 1);
+        const size_t tail = last.col - 1 + last.length;  // just after the block's last word
+        size_t from = 0;
+        if (motion_word) {
+          const size_t at = n_word ? n_word->col - 1 + n_word->length : p_.words_begin(b)->col - 1;
+          out_.append(raw.substr(0, at));
+          if (n_word) out_ += st.spaced ? " " : "";
+          out_ += st.motion(in_motion_ / 10);
+          if (!n_word && st.spaced) out_ += ' ';
+          from = at;
+          out_motion_ = in_motion_;
+          if (stats_) ++stats_->motion_words_added;
+        }
+        out_.append(raw.substr(from, tail - from));
+        if (!centre.empty()) {
+          if (st.spaced) out_ += ' ';
+          out_ += centre;
+        }
+        out_.append(raw.substr(tail));
         out_.append(p_.eol(b));
-        out_motion_ = in_motion_;
-        if (stats_) ++stats_->motion_words_added;
         return;
       }
     }
@@ -176,6 +190,7 @@ class Emitter {
     int g = 1;                                  ///< 1, 2 or 3
     bool motion_written = false;
     bool loose = false;  ///< an arc whose printed centre could not keep its end tangents (PrintedArc::loose)
+    bool centre_words = false;  ///< an arc printed with I/J/K (not R)
     bool with_motion(int out_motion) const { return motion_written || out_motion != g * 10; }
     /// The length of the block's text after output whose modal motion is `out_motion` (G ×10).
     size_t size(int out_motion) const { return text.size() - (with_motion(out_motion) ? 0 : motion_length); }
@@ -262,6 +277,9 @@ class Emitter {
         const Block& last = p_.blocks[in_.moves[run.first_move + e - 1].block];
         text->append_to(out_, out_motion_);
         out_.append(p_.eol(last));
+        // Where I/J/K set a centre that holds (Heidenhain's pole), this arc's is now in force.
+        if (arc && text->centre_words && d().centre_modal)
+          pole_moved_ |= (1u << axes_of(run.plane).first) | (1u << axes_of(run.plane).second);
         out_motion_ = arc ? (pr.ccw != flip(run.plane) ? 30 : 20) : 10;
         if (stats_) ++(arc ? stats_->arcs_out : stats_->lines_out);
         if (arc && text->loose) rule_joints(e);
@@ -399,6 +417,7 @@ class Emitter {
       PrintedArc c = print_centre(run, fr, a, pr, end, st, sep, scratch);
       if (!c.ok) return std::nullopt;
       out.loose = c.loose;
+      out.centre_words = !c.words.empty() && c.words[0] != 'R' && c.words[0] != 'r';
       s += sep;
       s += c.words;
     }
@@ -634,6 +653,56 @@ class Emitter {
     if (out_centres_ == CentresOut::Unknown && !absolute) return;
     state_centres(absolute, bi);
   }
+  /// Where I/J/K set a centre that holds (Dialect::centre_modal) and arcs arcpress wrote have
+  /// moved it: before a copied block that turns about it, the program's centre stated again.
+  /// An arc without centre words takes them itself (returned, for copy_block() to put after
+  /// its last word: the block then says what it did, and no block is added); before a polar
+  /// move, or a line not read (which may be one), they go in a block of their own. After a copied block that sets the centre, it is
+  /// the program's again.
+  std::string restate_pole_for_copy(const Block& b) {
+    const uint32_t bi = uint32_t(&b - p_.blocks.data());
+    const auto& reads = in_.pole_reads;
+    std::string words;
+    while (pole_next_ < reads.size() && reads[pole_next_].block < bi) ++pole_next_;
+    if (pole_next_ < reads.size() && reads[pole_next_].block == bi && reads[pole_next_].known) {
+      const PoleRead& r = reads[pole_next_];
+      const auto a = axes_of(r.plane);
+      const uint32_t bits = (1u << a.first) | (1u << a.second);
+      if (pole_moved_ & bits) {
+        const BlockStyle st = style_of(b);
+        const NumberDigits& dig = d().digits(in_.frames[frame_at(bi)].unit_mm != 1.0);
+        for (int k : {a.first, a.second}) {
+          int dec = 0;  // as many decimals as the value has, up to the most the controller reads
+          while (dec < dig.max &&
+                 std::abs(rounded(r.words[k], dec) - r.words[k]) > 1e-9 * std::max(1.0, std::abs(r.words[k])))
+            ++dec;
+          if (!words.empty() && st.spaced) words += ' ';
+          words += st.letter(char('I' + k));
+          words += format_number(r.words[k], NumberStyle{dec, true, st.keep_point, st.plus});
+        }
+        pole_moved_ &= ~bits;
+        if (stats_) ++stats_->poles_restated;
+        if (!r.arc) {
+          out_ += words;
+          end_block(out_);
+          out_.append(p_.eol(b));
+          words.clear();
+        }
+      }
+    }
+    for (auto* w = p_.words_begin(b); w != p_.words_end(b); ++w) {
+      if ((w->letter == 'I' || w->letter == 'J' || w->letter == 'K') && !w->flag) pole_moved_ &= ~(1u << (w->letter - 'I'));
+      if (w->letter == 'G' && !w->is_expr)
+        if (const CodeMeaning* m = d().meaning_of('G', w->code10()); m && *m == CodeMeaning::Pole) pole_moved_ = 0;
+    }
+    return words;
+  }
+  /// The frame in force at block `bi`: its move's, else the nearest move's before it.
+  uint32_t frame_at(uint32_t bi) const {
+    for (uint32_t k = bi + 1; k-- > 0;)
+      if (k < in_.move_of_block.size() && in_.move_of_block[k] >= 0) return in_.moves[size_t(in_.move_of_block[k])].frame;
+    return 0;
+  }
   bool has_centre_words(const Block& b) const {
     for (auto* w = p_.words_begin(b); w != p_.words_end(b); ++w)
       if ((w->letter == 'I' || w->letter == 'J' || w->letter == 'K') && !w->flag) return true;
@@ -643,6 +712,8 @@ class Emitter {
   bool padded_ = false;
   bool keep_point_ = false;
   bool plus_sign_ = false;
+  uint32_t pole_moved_ = 0;  ///< axes (X/Y/Z bits) of the centre in force that arcpress's own arcs moved (centre_modal)
+  size_t pole_next_ = 0;     ///< the next of in_.pole_reads to reach
   bool block_end_ = false;  ///< new blocks end with " *"
   /// The end of a block arcpress writes: " *" where the program's blocks end so.
   void end_block(std::string& s) const {

@@ -23,6 +23,9 @@ struct EmitStats {
   size_t motion_words_added = 0;  ///< copied blocks that needed their motion word restated
   /// G17/G18/G19 blocks written around runs fitted in another plane than the program's.
   size_t plane_words_added = 0;
+  /// Blocks that state the program's centre again (Dialect::centre_modal) after arcs arcpress
+  /// wrote moved it, before a block of the program's that turns about it.
+  size_t poles_restated = 0;
   /// Fitted arcs written as their input lines instead: after rounding to the printed digits
   /// they broke the band, the controller's radius rule, its sweep limits or its line length.
   size_t arcs_unprintable = 0;
@@ -67,6 +70,9 @@ struct EmitStart {
   /// Machine): whether an earlier piece may have written G90.1 or G91.1 before arcs of its own
   /// (else the setting holds here, as at the program's start).
   bool centres_maybe_said = false;
+  /// Where I/J/K set a centre that holds (Dialect::centre_modal): whether an earlier piece may
+  /// have written arcs that moved it (the program's is then stated again before it is read).
+  bool pole_maybe_moved = false;
   std::optional<OutputHabits> habits;  ///< the program's, found in its first piece; absent: this piece's own
 };
 

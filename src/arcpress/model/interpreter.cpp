@@ -106,7 +106,9 @@ class Interpreter {
         forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterControl, bi);
         return;
       default:
-        // Flow control, macros and unread lines may move anything.
+        // Flow control, macros and unread lines may move anything, and may turn about the
+        // centre I/J/K left in force (Heidenhain's polar moves, PR/PA words, are unread lines).
+        if (d_.centre_modal) note_pole_read(bi);
         forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterControl, bi);
         return;
     }
@@ -138,6 +140,7 @@ class Interpreter {
     double feed = 0;
     bool feed_set = false;
     bool settings_code = false;  // a code the dialect reads as settings (a T word there calls no tool)
+    bool pole_here = false;      // a code that makes the present position the pole (centre_modal)
     // What a code the dialect reads its own way does in this block ([codes]): returns the
     // RS274 code it stands for (G20 or G21, times ten), or -1 where it has done what it means.
     auto own_meaning = [&](CodeMeaning meaning, const Word& w) -> int {
@@ -152,6 +155,8 @@ class Interpreter {
           return -1;
         case CodeMeaning::Machine: g53 = true; return -1;
         case CodeMeaning::Moves: forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterCodeMove, block); return -1;
+        case CodeMeaning::Pole: pole_here = true; return -1;
+        case CodeMeaning::Polar: note_pole_read(block); break;
         case CodeMeaning::Unmodelled: break;
       }
       sink_.problem({b.line, w.col}, "E-MODEL-GCODE",
@@ -378,6 +383,19 @@ class Interpreter {
     }
     if (fedit) set_frame(*fedit);
     if (motion >= 0) s_.motion = motion;
+    // Where I/J/K set a centre that holds (Heidenhain's pole): from this block's words, the
+    // centre itself, or under G91 an offset from the present point; G29 takes the present point.
+    const bool centre_words = ijk_seen[0] || ijk_seen[1] || ijk_seen[2];
+    if (d_.centre_modal && (centre_words || pole_here)) {
+      for (int k = 0; k < 3; ++k) {
+        const bool from_words = ijk_seen[k] && !pole_here;
+        if (!from_words && !(pole_here && k != axes_of(s_.plane).normal)) continue;
+        const bool absolute = from_words && s_.frame.absolute;
+        s_.pole[k] = !from_words ? s_.pos[k] : absolute ? s_.frame.to_mm(k, ijk[k]) : s_.pos[k] + ijk[k] * s_.frame.unit_mm;
+        const bool known = absolute || ((s_.known >> k) & 1u);
+        s_.pole_known = known ? s_.pole_known | 1u << k : s_.pole_known & ~(1u << k);
+      }
+    }
 
     const bool any_axis = words_seen != 0;
     if (homing) {
@@ -396,8 +414,9 @@ class Interpreter {
       return;
     }
     if (!any_axis || axis_consumer) {
-      // Arc words without axes (a full circle in I/J form) still move along a path.
-      if (!(s_.motion == 20 || s_.motion == 30) || !(ijk_seen[0] || ijk_seen[1] || ijk_seen[2]) || axis_consumer)
+      // Arc words without axes (a full circle in I/J form) still move along a path; where they
+      // set a centre that holds (centre_modal), they only set it.
+      if (!(s_.motion == 20 || s_.motion == 30) || !centre_words || axis_consumer || d_.centre_modal)
         return;
     }
 
@@ -631,7 +650,21 @@ class Interpreter {
     }
     // RS274 reads I/J/K as offsets from the start unless G90.1; a dialect that reads them
     // as the absolute centre does so unless the program is in incremental mode (G91).
-    if (!ijk_seen[a.first] && !ijk_seen[a.second]) {
+    if (!ijk_seen[a.first] && !ijk_seen[a.second] && d_.centre_modal) {
+      const uint32_t plane_bits = (1u << a.first) | (1u << a.second);
+      note_pole_read(uint32_t(&b - p_->blocks.data()), true);
+      if ((s_.pole_known & plane_bits) == plane_bits) {
+        c[a.first] = s_.pole[a.first];
+        c[a.second] = s_.pole[a.second];
+      } else {
+        sink_.problem({b.line, 1}, "E-MODEL-ARC-CENTRE",
+                      fmt::format("G{} has no centre: neither {} nor {} nor R is given, and the program has set no "
+                                  "centre before it; it is kept and not measured",
+                                  kind == MoveKind::ArcCW ? 2 : 3, char('I' + a.first), char('I' + a.second)));
+        known = false;
+        return c;
+      }
+    } else if (!ijk_seen[a.first] && !ijk_seen[a.second]) {
       sink_.problem({b.line, 1}, "E-MODEL-ARC-CENTRE",
                     fmt::format("G{} has no centre: neither {} nor {} nor R is given; it is kept and not measured",
                                 kind == MoveKind::ArcCW ? 2 : 3, char('I' + a.first), char('I' + a.second)));
@@ -639,7 +672,7 @@ class Interpreter {
       return c;
     }
     bool absolute = d_.centre == CentreReading::Absolute ? fr.absolute : fr.arc_absolute;
-    c = ijk_centre(fr, ijk, ijk_seen, absolute);
+    if (ijk_seen[a.first] || ijk_seen[a.second]) c = ijk_centre(fr, ijk, ijk_seen, absolute);
     // The controller refuses an arc whose end lies off the circle through its start about the
     // centre by more than its radius check; where it does not check (printers), it goes on.
     if (d_.radius_abs_mm > 0) {
@@ -662,6 +695,21 @@ class Interpreter {
       }
     }
     return c;
+  }
+
+  /// Block `bi` reads the centre the dialect's I/J/K left in force: noted, with the words that
+  /// state it again there (Interpretation::pole_reads).
+  void note_pole_read(uint32_t bi, bool arc = false) {
+    PoleRead r;
+    r.block = bi;
+    r.arc = arc;
+    r.plane = s_.plane;
+    const auto a = axes_of(s_.plane);
+    const uint32_t plane_bits = (1u << a.first) | (1u << a.second);
+    r.known = (s_.pole_known & plane_bits) == plane_bits && (s_.frame.absolute || (s_.known & plane_bits) == plane_bits);
+    for (int k = 0; k < 3; ++k)
+      r.words[k] = s_.frame.absolute ? s_.frame.to_program(k, s_.pole[k]) : (s_.pole[k] - s_.pos[k]) / s_.frame.unit_mm;
+    if (o_->pole_reads.empty() || o_->pole_reads.back().block != bi) o_->pole_reads.push_back(r);
   }
 
   Move& add_move(uint32_t bi, MoveKind kind, const AxisValues& to, bool known, int turns) {

@@ -42,6 +42,12 @@ struct ModalState {
   /// G90.1 or G91.1 has been read, or an arc showed how a controller set by a setting of its
   /// own reads I/J/K (Dialect::start_centres): no more to learn of it. Told, not compared.
   bool centre_told = false;
+  /// Where the dialect's I/J/K set a centre that holds (Dialect::centre_modal): that centre,
+  /// mm, absolute, by axis X/Y/Z, and the axes of it known (bit per axis). Arcs arcpress
+  /// writes move it, and the emitter states the program's again before a block that reads it,
+  /// so it is told, not compared.
+  Vec3 pole{0, 0, 0};
+  uint32_t pole_known = 0;
 
   /// Whether a reader in state `o` reads every following block as one in this state does:
   /// the same position, known axes, frame, plane, feed and spindle, and (where

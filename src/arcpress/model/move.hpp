@@ -163,6 +163,17 @@ inline bool enters_from_unknown(const Move& m) {
   return is_feed(m.kind) && !m.known && m.end_known && is_position_unknown(m.unfit);
 }
 
+/// A block that turns about the centre the dialect's I/J/K left in force (Dialect::centre_modal;
+/// Heidenhain's pole): an arc without centre words, a polar move. Its words are the ones that
+/// state that centre again, as the program would write them there.
+struct PoleRead {
+  uint32_t block = 0;
+  Plane plane = Plane::XY;
+  bool known = false;                ///< the program set the centre's axes in this plane
+  bool arc = false;                  ///< an arc without centre words (else a polar move)
+  std::array<double, 3> words{};     ///< I, J, K: the centre in program units, absolute, or from the present point under G91
+};
+
 /// Everything the interpreter learned about a program.
 struct Interpretation {
   std::vector<Frame> frames;
@@ -175,6 +186,8 @@ struct Interpretation {
   /// Every feed move that could not be placed, in order (move.unfit says why): those whose
   /// end is known (Move::end_known) and those whose end is not either.
   std::vector<UnplacedMove> unplaced;
+  /// The blocks that read the centre I/J/K left in force, in order (Dialect::centre_modal).
+  std::vector<PoleRead> pole_reads;
 
   /// A copy of everything but the moves (for a path made anew from this one's). Names
   /// every field: one added above belongs here too.
@@ -185,6 +198,7 @@ struct Interpretation {
     o.start = start;
     o.start_known = start_known;
     o.unplaced = unplaced;
+    o.pole_reads = pole_reads;
     return o;
   }
 
