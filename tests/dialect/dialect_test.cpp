@@ -118,6 +118,8 @@ TEST_CASE("rs274.toml spells out exactly the built-in default dialect", "[dialec
   CHECK(file.max_line_length == builtin.max_line_length);
   CHECK(file.refused == builtin.refused);
   CHECK(file.start_units == builtin.start_units);
+  CHECK(file.centre_modal == builtin.centre_modal);
+  CHECK(file.codes.empty());
 }
 
 TEST_CASE("a mistake in a dialect file is reported with the file, line, column and key", "[dialect]") {
