@@ -675,6 +675,38 @@ TEST_CASE("the extended commands a dialect names as moving nothing leave the pos
   CHECK(error_of("name = \"x\"\n[printer]\nposition_keeping_commands = [\"M486\"]\n") != "");
 }
 
+TEST_CASE("Marlin's G61 returns to a saved position the program does not say, and its G60 moves nothing",
+          "[dialect][printer]") {
+  // Marlin/src/gcode/feature/pause/G61.cpp: the axes named (or all) go back to the slot's
+  // position, the words' values added to it; RS274 reads G61 as exact-path mode.
+  const std::string text =
+      "G21 G90 M83\nG0 X0 Y0 Z0.2\nG1 X1 E1 F600\nG60 S0\n"
+      "G1 X2 E1\n"        // move 2: known (G60 only saved the position)
+      "G1 X30 Y30 E1\n"
+      "G61 X Y S0\n"      // back to X1 Y0
+      "G1 X31 Y30 Z0.2 E1\n"  // move 4: it starts where G61 left the tool
+      "G1 X32 E1\n";          // move 5: starts at a known point again
+  for (const char* name : {"marlin", "prusa"}) {
+    INFO(name);
+    DiagnosticSink sink("t.gcode");
+    const Program p = lex("t.gcode", text, sink);
+    const Interpretation in = interpret(p, sink, shipped(name));
+    REQUIRE(in.moves.size() == 6);
+    CHECK(in.moves[2].known);
+    CHECK_FALSE(in.moves[4].known);
+    CHECK(in.moves[4].unfit == Unfit::UnknownAfterCodeMove);
+    CHECK(in.moves[5].known);
+    CHECK(sink.all().empty());
+  }
+  // Read as RS274 (where G60 is not read, so left out), G61 moves nothing and the move after
+  // it is placed from X30 Y30.
+  std::string no_save = text;
+  no_save.erase(no_save.find("G60 S0\n"), 7);
+  DiagnosticSink rs("t.gcode");
+  const Program p = lex("t.gcode", no_save, rs);
+  CHECK(interpret(p, rs, shipped("rs274")).moves[4].known);
+}
+
 TEST_CASE("a program names its own dialect by its slicer's flavor, where the flavor says which firmware",
           "[dialect][flavor]") {
   auto flavor = [](const std::string& text) { return program_flavor(text); };

@@ -290,11 +290,11 @@ class LineLexer {
     return n;
   }
 
-  /// Letters without numbers are flags after an M-code or G28/G29 (firmware syntax).
+  /// Letters without numbers are flags after an M-code or G28/G29/G61 (firmware syntax).
   bool allows_flags() const {
     for (uint32_t k = 0; k < b_.word_count; ++k) {
       const Word& w = p_.words[b_.first_word + k];
-      if (w.letter == 'M' || (w.letter == 'G' && (w.value == 28 || w.value == 29))) return true;
+      if (w.letter == 'M' || (w.letter == 'G' && (w.value == 28 || w.value == 29 || w.value == 61))) return true;
     }
     return false;
   }
