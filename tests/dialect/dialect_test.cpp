@@ -402,6 +402,35 @@ TEST_CASE("Heidenhain ISO's pole: I/J alone set it and move nothing, an arc with
   CHECK(sink.format_all().find("E-LEX-KEYWORD: unknown keyword 'PR'") != std::string::npos);
 }
 
+TEST_CASE("after Heidenhain's modal cycle call (M89) every move calls the cycle, so none is merged, until M99 or G79",
+          "[dialect][heidenhain]") {
+  // Holes in a row at X10 .. X50: each positioning block calls the drilling cycle G200
+  // defined before (TNC 306/406 technical manual: "M89 is canceled by M99 or a CYCL
+  // CALL-block"). Merged into one line, the holes between would not be drilled.
+  const std::string text =
+      "%DRILL G71 *\nN10 G00 G90 X+0 Y+0 Z+50 *\nN20 G01 Z+2 F1000 *\nN30 G200 Q200=+2 Q201=-10 Q206=+150 *\n"
+      "N40 G01 X+10 Y+10 F3000 M89 *\nN50 X+20 *\nN60 X+30 *\nN70 X+40 *\nN80 X+50 M99 *\n"
+      "N90 G00 Z+50 *\nN100 G01 X+60 Y+10 Z+2 *\nN110 X+70 *\nN120 X+80 *\nN130 X+90 *\nN140 G00 Z+100 M2 *\n"
+      "N99999999 %DRILL G71 *\n";
+  auto compressed = [&](const char* dialect) {
+    DiagnosticSink sink;
+    CompressOptions opt;
+    opt.dialect = shipped(dialect);
+    const CompressResult r = compress("d.i", text, opt, sink);
+    CHECK(r.within_band());
+    return r.output;
+  };
+  const std::string tnc = compressed("heidenhain-iso");
+  for (const char* kept : {"\nN50 X+20 *\n", "\nN60 X+30 *\n", "\nN70 X+40 *\n"}) {
+    INFO(kept);
+    CHECK(tnc.find(kept) != std::string::npos);
+  }
+  // After M99 the moves are merged again.
+  CHECK(tnc.find("\nN100 G01 X+60 Y+10 Z+2 *\nN130 X+90 *\n") != std::string::npos);
+  // Read as RS274 reads M89 (a code of no meaning), the holes between were lost.
+  CHECK(compressed("rs274").find("\nN60 X+30 *\n") == std::string::npos);
+}
+
 TEST_CASE("a dialect's [codes] keys and meanings are checked where the file gives them", "[dialect]") {
   CHECK(error_of("name = \"x\"\n[codes]\nX70 = \"inch\"\n").find("user.toml:3:1: codes.X70: expected a G- or M-code") !=
         std::string::npos);

@@ -60,6 +60,8 @@ enum class CodeMeaning : uint8_t {
   Pole,        ///< the present position becomes the centre arcs turn about (centre_modal; Heidenhain's G29)
   Polar,       ///< a move about that centre arcpress does not read (Heidenhain's polar moves): as
                ///< Unmodelled, and the centre is stated again before it where arcpress's own arcs moved it
+  CycleCalls,  ///< from this block on, every move calls the cycle last defined at its end (Heidenhain's M89)
+  CycleCall,   ///< calls that cycle at the end of this block's move, or where the tool is, and ends CycleCalls
   Unmodelled,  ///< not read: the block is kept, not fitted, and the position is known again as after Frame
 };
 

@@ -271,7 +271,8 @@ Dialect parse_dialect(const std::string& text, const std::string& path) {
                         v < 10000;
       if (!code && !(letter == 'T' && k.size() == 1))
         r.fail(key.source(), k, "expected a G- or M-code as the key (\"G70\", \"G54.1\", \"M91\"), or \"T\"");
-      const int meaning = r.choice(k, {"inch", "mm", "settings", "frame", "machine", "moves", "pole", "polar", "unmodelled"});
+      const int meaning = r.choice(k, {"inch", "mm", "settings", "frame", "machine", "moves", "pole", "polar", "cycle-calls", "cycle-call",
+                                      "unmodelled"});
       d.codes.push_back({letter, int(std::lround(v * 10)), CodeMeaning(meaning)});
     }
     r.finish();

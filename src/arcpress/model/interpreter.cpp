@@ -141,6 +141,8 @@ class Interpreter {
     bool feed_set = false;
     bool settings_code = false;  // a code the dialect reads as settings (a T word there calls no tool)
     bool pole_here = false;      // a code that makes the present position the pole (centre_modal)
+    bool cycle_calls_on = false;  // a code from which every move calls the cycle (Heidenhain's M89)
+    bool cycle_call = false;      // a code that calls it at this block and ends that (M99, G79)
     // What a code the dialect reads its own way does in this block ([codes]): returns the
     // RS274 code it stands for (G20 or G21, times ten), or -1 where it has done what it means.
     auto own_meaning = [&](CodeMeaning meaning, const Word& w) -> int {
@@ -157,6 +159,8 @@ class Interpreter {
         case CodeMeaning::Moves: forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterCodeMove, block); return -1;
         case CodeMeaning::Pole: pole_here = true; return -1;
         case CodeMeaning::Polar: note_pole_read(block); break;
+        case CodeMeaning::CycleCalls: cycle_calls_on = true; return -1;
+        case CodeMeaning::CycleCall: cycle_call = true; return -1;
         case CodeMeaning::Unmodelled: break;
       }
       sink_.problem({b.line, w.col}, "E-MODEL-GCODE",
@@ -355,6 +359,12 @@ class Interpreter {
     // A tool call (the dialect's T word) may move the tool, as M6 may; a T word in a tool's
     // definition or preselection (a code read as settings) calls none.
     if (tool_call && !settings_code) forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterToolChange, bi);
+    // A cycle called at this block (M89 in force, or a code that calls it) runs at the end of
+    // its move, or where the tool is: the cycle's own moves end where the program does not say.
+    const bool cycle_here = s_.cycle_calls || cycle_calls_on || cycle_call;
+    if (cycle_calls_on) s_.cycle_calls = true;
+    if (cycle_call) s_.cycle_calls = false;
+    if (cycle_call && words_seen == 0) forget(kXyzMask, Unfit::UnknownAfterCycle, bi);
     if (probing) {
       forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterHoming, bi);
       feed_set = false;  // (Marlin's G29 F is the grid's front edge)
@@ -555,6 +565,7 @@ class Interpreter {
               : !s_.feed_known                  ? Unfit::FeedUnknown
               : !(moved_xyz || target == s_.pos) ? Unfit::NoPathAxis
                                               : Unfit::None;
+    if (cycle_here && m.unfit == Unfit::None) m.unfit = Unfit::CycleCall;
     if (!m.known && is_feed(kind)) o_->unplaced.push_back({uint32_t(o_->moves.size() - 1), s_.cause_line});
     s_.pos = target;
     const bool known_changed = known_after != s_.known;
@@ -563,6 +574,7 @@ class Interpreter {
       if ((s_.known >> ax) & 1u) s_.why[ax] = {Unfit::None, 0};
       else if (why_after(ax) != s_.why[ax].reason) s_.why[ax] = {why_after(ax), b.line};
     }
+    if (cycle_here && words_seen != 0) forget(kXyzMask, Unfit::UnknownAfterCycle, bi);
   }
 
   /// Axes in `mask` become unknown, `why`, from block `bi` on (the latest reason is kept).

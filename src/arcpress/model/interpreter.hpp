@@ -48,6 +48,9 @@ struct ModalState {
   /// so it is told, not compared.
   Vec3 pole{0, 0, 0};
   uint32_t pole_known = 0;
+  /// Every move calls the cycle last defined at its end (a dialect's "cycle-calls" code,
+  /// Heidenhain's M89), until a "cycle-call" code (M99, G79).
+  bool cycle_calls = false;
 
   /// Whether a reader in state `o` reads every following block as one in this state does:
   /// the same position, known axes, frame, plane, feed and spindle, and (where
@@ -60,7 +63,7 @@ struct ModalState {
       if (!same_place(pos[ax], o.pos[ax]) || !same_place(frame.offset[ax], o.frame.offset[ax])) return false;
       f.offset[ax] = o.frame.offset[ax];
     }
-    return f.same_as(o.frame) && plane == o.plane && known == o.known && spindle == o.spindle &&
+    return f.same_as(o.frame) && plane == o.plane && known == o.known && spindle == o.spindle && cycle_calls == o.cycle_calls &&
            feed_known == o.feed_known && (!feed_known || feed_mm == o.feed_mm) && (!with_motion || motion == o.motion);
   }
 };

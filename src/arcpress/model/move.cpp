@@ -31,6 +31,7 @@ const char* describe(Unfit why) {
     case Unfit::FeedUnknown: return "no feed rate in force";
     case Unfit::NoPathAxis: return "moves only E or extra axes";
     case Unfit::FarFromOrigin: return "too far from the origin for the check to measure a fit of it within the band";
+    case Unfit::CycleCall: return "it calls a cycle at its end (a modal cycle call: M89)";
   }
   return "?";
 }

@@ -101,6 +101,7 @@ enum class Unfit : uint8_t {
   FeedUnknown,      ///< no F in force yet
   NoPathAxis,       ///< it moves only E or the extra axes (a retraction, a rotary index)
   FarFromOrigin,    ///< so far from the origin that the check could not measure a fit of it (farthest_measurable_mm())
+  CycleCall,        ///< it calls a cycle at its end (the dialect's modal cycle call, Heidenhain's M89)
 };
 
 /// A few words on `why`, for reports: "comment in the block", ...
