@@ -275,7 +275,9 @@ void RunFitter::tighten(uint32_t a, std::vector<Chosen>& chain, const std::optio
       const auto cand = through_candidate(from, T, to);
       if (!cand) return false;
       auto c = make(from, T, *cand);
-      if (c && meets(*c)) repl = {*c};
+      // (A line leaves along its chord, which may lie off T by a line's allowance: it must
+      // still leave within the joint's turn of the arriving tangent.)
+      if (c && meets(*c) && (!in || joint_cone_.holds(*in, start_tangent(*c, from)))) repl = {*c};
       return !repl.empty();
     };
     for (size_t k = 0; k < starts.size(); ++k) {
