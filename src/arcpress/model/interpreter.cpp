@@ -43,7 +43,12 @@ constexpr double kSpindleUnknown = -1;
 
 class Interpreter {
  public:
-  Interpreter(const Dialect& d, DiagnosticSink& sink, const ModalState& start) : d_(d), sink_(sink), s_(start) {}
+  Interpreter(const Dialect& d, DiagnosticSink& sink, const ModalState& start) : d_(d), sink_(sink), s_(start) {
+    for (const CodeReading& c : d.codes) {
+      if (c.letter == 'G') own_g_bits_ |= uint64_t(1) << (uint32_t(c.code10) & 63);
+      if (c.letter == 'M') own_m_bits_ |= uint64_t(1) << (uint32_t(c.code10) & 63);
+    }
+  }
 
   void begin(const Program& p, Interpretation& out) {
     p_ = &p;
@@ -62,6 +67,37 @@ class Interpreter {
   void reset(const ModalState& s) { s_ = s; }
 
  private:
+  /// What a code the dialect reads its own way ([codes]) did in a block, bit by bit.
+  static constexpr uint32_t kOwnSettings = 1, kOwnFrame = 2, kOwnMachine = 4, kOwnPole = 8, kOwnCycleCalls = 16,
+                            kOwnCycleCall = 32, kOwnToolCall = 64;
+  /// Reads code `w` of block `bi` as the dialect's `meaning`: what it does that the block's
+  /// reading must know goes into `own`; returns the RS274 code it stands for (G20 or G21,
+  /// times ten), or -1. (A function of its own, and the block's state passed as bits: the
+  /// block reader's locals stay out of memory, which a lambda taking them by reference costs
+  /// on every block.)
+  int own_code(CodeMeaning meaning, const Block& b, uint32_t bi, const Word& w, uint32_t& own) {
+    switch (meaning) {
+      case CodeMeaning::Inch: return 200;
+      case CodeMeaning::Mm: return 210;
+      case CodeMeaning::Settings: own |= kOwnSettings; return -1;
+      case CodeMeaning::Frame:
+        own |= kOwnFrame;
+        forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterOffset, bi);
+        return -1;
+      case CodeMeaning::Machine: own |= kOwnMachine; return -1;
+      case CodeMeaning::Moves: forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterCodeMove, bi); return -1;
+      case CodeMeaning::Pole: own |= kOwnPole; return -1;
+      case CodeMeaning::Polar: note_pole_read(bi); break;
+      case CodeMeaning::CycleCalls: own |= kOwnCycleCalls; return -1;
+      case CodeMeaning::CycleCall: own |= kOwnCycleCall; return -1;
+      case CodeMeaning::Unmodelled: break;
+    }
+    sink_.problem({b.line, w.col}, "E-MODEL-GCODE",
+                  fmt::format("{} is not modelled under {}; the block is kept and not fitted", p_->raw(b, w), d_.name));
+    forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterUnmodelled, bi);
+    return -1;
+  }
+
   /// The G-code that sets units as `meaning` says in the dialect: its own ([codes]), else
   /// RS274's (`rs274`, times ten).
   std::string unit_code(CodeMeaning meaning, int rs274) const {
@@ -120,8 +156,6 @@ class Interpreter {
     bool skip = false;     // G31: a skip move (Fanuc), which stops where a signal comes
     bool g50 = false;      // G50: a lathe's coordinate setting where it has axis words, else a spindle limit
     uint32_t g11_col = 0;  // column of a G11 the firmware reads as its recovery (0: none)
-    bool tool_call = false;  // a T word the dialect reads as a tool call (Heidenhain ISO)
-
     // Bit per axis: written with a value, with an expression, as a flag.
     uint32_t words_seen = 0, expr_axis = 0, flag_axis = 0;
     uint32_t length_col = 0;  // column of the block's first length (a linear axis's word)
@@ -139,38 +173,9 @@ class Interpreter {
     };
     double feed = 0;
     bool feed_set = false;
-    bool settings_code = false;  // a code the dialect reads as settings (a T word there calls no tool)
-    bool pole_here = false;      // a code that makes the present position the pole (centre_modal)
-    bool cycle_calls_on = false;  // a code from which every move calls the cycle (Heidenhain's M89)
-    bool cycle_call = false;      // a code that calls it at this block and ends that (M99, G79)
-    // What a code the dialect reads its own way does in this block ([codes]): returns the
-    // RS274 code it stands for (G20 or G21, times ten), or -1 where it has done what it means.
-    auto own_meaning = [&](CodeMeaning meaning, const Word& w) -> int {
-      const uint32_t block = bi;
-      switch (meaning) {
-        case CodeMeaning::Inch: return 200;
-        case CodeMeaning::Mm: return 210;
-        case CodeMeaning::Settings: axis_consumer = true, settings_code = true; return -1;
-        case CodeMeaning::Frame:
-          axis_consumer = true;
-          forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterOffset, block);
-          return -1;
-        case CodeMeaning::Machine: g53 = true; return -1;
-        case CodeMeaning::Moves: forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterCodeMove, block); return -1;
-        case CodeMeaning::Pole: pole_here = true; return -1;
-        case CodeMeaning::Polar: note_pole_read(block); break;
-        case CodeMeaning::CycleCalls: cycle_calls_on = true; return -1;
-        case CodeMeaning::CycleCall: cycle_call = true; return -1;
-        case CodeMeaning::Unmodelled: break;
-      }
-      sink_.problem({b.line, w.col}, "E-MODEL-GCODE",
-                    fmt::format("{} is not modelled under {}; the block is kept and not fitted", p_->raw(b, w), d_.name));
-      forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterUnmodelled, block);
-      return -1;
-    };
-    auto units_code = [&](int g) {
-      if (g == 200 || g == 210) F().unit_mm = g == 200 ? 25.4 : 1.0, s_.units_told = true;
-    };
+    // What the codes the dialect reads its own way ([codes]) did in this block (own_code()).
+    uint32_t own = 0;
+
 
     bool repeated = false;  // a word the controller refuses to see twice
     uint32_t letters_seen = 0;
@@ -207,8 +212,8 @@ class Interpreter {
           int g = w->code10();
           if (g != 10) other_words = true;
           // A code the dialect reads its own way is read as RS274's code of that meaning.
-          if (const CodeMeaning* m = d_.codes.empty() ? nullptr : d_.meaning_of('G', g)) {
-            g = own_meaning(*m, *w);
+          if (const CodeMeaning* m = (own_g_bits_ >> (uint32_t(g) & 63) & 1) ? d_.meaning_of('G', g) : nullptr) {
+            g = own_code(*m, b, bi, *w, own);
             if (g < 0) break;
           }
           switch (g) {
@@ -223,7 +228,8 @@ class Interpreter {
             case 170: s_.plane = Plane::XY; break;
             case 180: s_.plane = Plane::ZX; break;
             case 190: s_.plane = Plane::YZ; break;
-            case 200: case 210: units_code(g); break;
+            case 200: F().unit_mm = 25.4, s_.units_told = true; break;
+            case 210: F().unit_mm = 1.0, s_.units_told = true; break;
             case 70: F().diameter_mode = true; break;
             case 80: F().diameter_mode = false; break;
             case 900: F().absolute = true; F().e_relative = false; break;
@@ -285,8 +291,8 @@ class Interpreter {
         case 'M': {
           other_words = true;
           const int m = w->code10();
-          if (const CodeMeaning* own = d_.codes.empty() ? nullptr : d_.meaning_of('M', m)) {
-            if (const int g = own_meaning(*own, *w); g >= 0) units_code(g);
+          if (const CodeMeaning* own_m = (own_m_bits_ >> (uint32_t(m) & 63) & 1) ? d_.meaning_of('M', m) : nullptr) {
+            if (const int g = own_code(*own_m, b, bi, *w, own); g >= 0) F().unit_mm = g == 200 ? 25.4 : 1.0, s_.units_told = true;
             break;
           }
           if (m == 820) F().e_relative = false;
@@ -325,7 +331,8 @@ class Interpreter {
           break;
         case 'T':
           other_words = true;
-          if (const CodeMeaning* own = d_.codes.empty() ? nullptr : d_.meaning_of('T', 0)) tool_call = *own == CodeMeaning::Moves;
+          if (const CodeMeaning* t = d_.codes.empty() ? nullptr : d_.meaning_of('T', 0); t && *t == CodeMeaning::Moves)
+            own |= kOwnToolCall;
           break;
         case 'L':
           l_seen = true;
@@ -358,13 +365,19 @@ class Interpreter {
     }
     // A tool call (the dialect's T word) may move the tool, as M6 may; a T word in a tool's
     // definition or preselection (a code read as settings) calls none.
-    if (tool_call && !settings_code) forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterToolChange, bi);
-    // A cycle called at this block (M89 in force, or a code that calls it) runs at the end of
-    // its move, or where the tool is: the cycle's own moves end where the program does not say.
-    const bool cycle_here = s_.cycle_calls || cycle_calls_on || cycle_call;
-    if (cycle_calls_on) s_.cycle_calls = true;
-    if (cycle_call) s_.cycle_calls = false;
-    if (cycle_call && words_seen == 0) forget(kXyzMask, Unfit::UnknownAfterCycle, bi);
+    bool cycle_here = false;  // a cycle is called at the end of this block's move
+    if (own != 0 || s_.cycle_calls) {
+      if (own & (kOwnSettings | kOwnFrame)) axis_consumer = true;
+      if (own & kOwnMachine) g53 = true;
+      if ((own & kOwnToolCall) && !(own & kOwnSettings)) forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterToolChange, bi);
+      // A cycle called at this block (M89 in force, or a code that calls it) runs at the end
+      // of its move, or where the tool is: the cycle's own moves end where the program does
+      // not say.
+      cycle_here = s_.cycle_calls || (own & (kOwnCycleCalls | kOwnCycleCall));
+      if (own & kOwnCycleCalls) s_.cycle_calls = true;
+      if (own & kOwnCycleCall) s_.cycle_calls = false;
+      if ((own & kOwnCycleCall) && words_seen == 0) forget(kXyzMask, Unfit::UnknownAfterCycle, bi);
+    }
     if (probing) {
       forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterHoming, bi);
       feed_set = false;  // (Marlin's G29 F is the grid's front edge)
@@ -395,8 +408,8 @@ class Interpreter {
     if (motion >= 0) s_.motion = motion;
     // Where I/J/K set a centre that holds (Heidenhain's pole): from this block's words, the
     // centre itself, or under G91 an offset from the present point; G29 takes the present point.
-    const bool centre_words = ijk_seen[0] || ijk_seen[1] || ijk_seen[2];
-    if (d_.centre_modal && (centre_words || pole_here)) {
+    const bool pole_here = own & kOwnPole;
+    if (d_.centre_modal && (ijk_seen[0] || ijk_seen[1] || ijk_seen[2] || pole_here)) {
       for (int k = 0; k < 3; ++k) {
         const bool from_words = ijk_seen[k] && !pole_here;
         if (!from_words && !(pole_here && k != axes_of(s_.plane).normal)) continue;
@@ -426,7 +439,8 @@ class Interpreter {
     if (!any_axis || axis_consumer) {
       // Arc words without axes (a full circle in I/J form) still move along a path; where they
       // set a centre that holds (centre_modal), they only set it.
-      if (!(s_.motion == 20 || s_.motion == 30) || !centre_words || axis_consumer || d_.centre_modal)
+      if (!(s_.motion == 20 || s_.motion == 30) || !(ijk_seen[0] || ijk_seen[1] || ijk_seen[2]) || axis_consumer ||
+          d_.centre_modal)
         return;
     }
 
@@ -755,6 +769,9 @@ class Interpreter {
   }
 
   const Dialect& d_;
+  /// The G- and M-codes the dialect reads its own way, each a bit at its code (times ten)
+  /// modulo 64: most words are ruled out by one test, not a search of d_.codes.
+  uint64_t own_g_bits_ = 0, own_m_bits_ = 0;
   DiagnosticSink& sink_;
   ModalState s_;
   const Program* p_ = nullptr;
