@@ -159,6 +159,9 @@ TEST_CASE("Heidenhain ISO blocks end with a star that is no checksum, and a prog
   CHECK(p.blocks[4].kind == BlockKind::Percent);
   CHECK(p.blocks[5].kind == BlockKind::Percent);
   CHECK(sink.all().empty());
+  // A name after other words than a block number is no program's.
+  DiagnosticSink other;
+  CHECK(lex_text("G1 X1 %CIRC\n", other).blocks[0].kind == BlockKind::Opaque);
 }
 
 TEST_CASE("LinuxCNC parameters, expressions and flow control are recognised, not fitted", "[lex]") {

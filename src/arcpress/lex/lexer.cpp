@@ -74,7 +74,8 @@ class LineLexer {
         while (i < n_ && is_digit(s_[i])) ++i;
         continue;
       }
-      if (c == '%' && program_name(i)) {
+      // (After a block number only: the last block's `N99999999 %NAME G71 *`.)
+      if (c == '%' && b_.word_count == 1 && p_.words.back().letter == 'N' && program_name(i)) {
         i = after_;
         continue;
       }
