@@ -9,6 +9,8 @@
 #include <cmath>
 #include <optional>
 
+#include "arcpress/model/arc_centre.hpp"
+
 namespace arcpress {
 namespace {
 
@@ -533,9 +535,12 @@ class Interpreter {
       const auto a = axes_of(s_.plane);
       if ((ijk_seen[a.first] || ijk_seen[a.second]) && known) {
         const bool now = s_.frame.arc_absolute;
-        if (readable_arc(radius_gap(ijk_centre(s_.frame, ijk, ijk_seen, now), target))) {
+        auto gap_when = [&](bool absolute) {
+          return radius_gap(d_, s_.plane, s_.pos, ijk_centre(s_.frame, s_.plane, s_.pos, ijk, ijk_seen, absolute), target);
+        };
+        if (readable_arc(gap_when(now))) {
           s_.centre_told = true;
-        } else if (whole_arc(radius_gap(ijk_centre(s_.frame, ijk, ijk_seen, !now), target))) {
+        } else if (whole_arc(gap_when(!now), d_)) {
           Frame f = s_.frame;
           f.arc_absolute = !now;
           set_frame(f);
@@ -598,80 +603,31 @@ class Interpreter {
     s_.known &= ~mask;
   }
 
-  /// An arc's centre from its I/J/K words: offsets from the present point, or `as_absolute`
-  /// the centre in the frame's coordinates (the plane's normal axis: the present point's).
-  Vec3 ijk_centre(const Frame& fr, const double* ijk, const bool* ijk_seen, bool as_absolute) const {
-    const auto a = axes_of(s_.plane);
-    Vec3 at(s_.pos[kX], s_.pos[kY], s_.pos[kZ]);
-    for (int k = 0; k < 3; ++k) {
-      if (k == a.normal) continue;
-      const double off = ijk_seen[k] ? ijk[k] : 0.0;
-      if (as_absolute)
-        at[k] = ijk_seen[k] ? fr.to_mm(k, off) : s_.pos[k];
-      else
-        at[k] = s_.pos[k] + off * fr.unit_mm;
-    }
-    return at;
-  }
-  /// How far an arc about `centre` from the present point ends off its circle at `target`,
-  /// and how far the dialect's radius check lets it (mm).
-  std::pair<double, double> radius_gap(const Vec3& centre, const AxisValues& target) const {
-    const auto a = axes_of(s_.plane);
-    const Vec2 cc(centre[a.first], centre[a.second]);
-    const double r0 = (Vec2(s_.pos[a.first], s_.pos[a.second]) - cc).norm();
-    const double r1 = (Vec2(target[a.first], target[a.second]) - cc).norm();
-    const double allowed = d_.radius_rel > 0 ? std::max(d_.radius_abs_mm, d_.radius_rel * r0) : d_.radius_abs_mm;
-    return {std::abs(r1 - r0), allowed};
-  }
-
-  /// An input arc off its circle by no more than the controller's radius check, or than
-  /// LinuxCNC's default one (CENTER_ARC_RADIUS_TOLERANCE_MM), is read as drawn: a dialect's
-  /// check may be the strictest setting (what arcpress writes must pass any), while programs
-  /// are written for the machine's own.
-  static constexpr double kReadRadiusSlackMm = 0.0283;
-  static bool readable_arc(std::pair<double, double> gap_allowed) {
-    return gap_allowed.first <= std::max(gap_allowed.second, kReadRadiusSlackMm);
-  }
-  /// An arc whose radii agree to the controller's absolute check (no share of a radius: read
-  /// the other way, a centre far off agrees by its share and would prove nothing).
-  bool whole_arc(std::pair<double, double> gap_allowed) const {
-    return gap_allowed.first <= (d_.radius_abs_mm > 0 ? d_.radius_abs_mm : kRadiusAimMm);
-  }
-
   Vec3 arc_center(const Block& b, const Frame& fr, const AxisValues& target, const double* ijk,
                   const bool* ijk_seen, bool r_seen, double r_value, MoveKind kind, bool& known) {
     auto a = axes_of(s_.plane);
     // I/J/K belong to X/Y/Z respectively.
     Vec3 c(s_.pos[kX], s_.pos[kY], s_.pos[kZ]);
     if (r_seen) {
-      Vec2 s(s_.pos[a.first], s_.pos[a.second]), e(target[a.first], target[a.second]);
-      double r = r_value * fr.unit_mm;
-      Vec2 chord = e - s;
-      double d = chord.norm();
-      if (d < kLengthEpsMm) {
-        sink_.warning({b.line, 1}, "W-MODEL-ARC-R", "R-form arc with coincident end points has no defined centre");
-        known = false;
-        return c;
-      }
       // A radius shorter than half the chord reaches no circle through both ends; controllers
       // take one within their radius check as the half circle and refuse the rest.
       const double allowance_mm = d_.radius_abs_mm > 0 ? d_.radius_abs_mm : kRadiusAimMm;
-      if (std::abs(r) < d / 2 - allowance_mm) {
+      const double r = r_value * fr.unit_mm;
+      const RadiusCentre rc = radius_centre(Vec2(s_.pos[a.first], s_.pos[a.second]), Vec2(target[a.first], target[a.second]),
+                                            r, kind == MoveKind::ArcCCW, allowance_mm);
+      if (rc.coincident) {
+        sink_.warning({b.line, 1}, "W-MODEL-ARC-R", "R-form arc with coincident end points has no defined centre");
+        known = false;
+      } else if (!rc.centre) {
         sink_.problem({b.line, 1}, "E-MODEL-ARC-RADIUS",
                       fmt::format("R {:.4f} mm is shorter than half the chord, {:.4f} mm (allowed {:.4f} mm less); "
                                   "no circle joins the end points",
-                                  std::abs(r), d / 2, allowance_mm));
+                                  std::abs(r), rc.half_chord_mm, allowance_mm));
         known = false;
-        return c;
+      } else {
+        c[a.first] = rc.centre->x();
+        c[a.second] = rc.centre->y();
       }
-      double h2 = r * r - d * d / 4;
-      double h = h2 > 0 ? std::sqrt(h2) : 0.0;
-      Vec2 n = left_normal(chord / d);
-      // G3 with R > 0 (short way round): centre on the left of the chord; G2: on the right.
-      double side = (kind == MoveKind::ArcCCW ? 1.0 : -1.0) * (r >= 0 ? 1.0 : -1.0);
-      Vec2 cc = (s + e) / 2 + side * h * n;
-      c[a.first] = cc.x();
-      c[a.second] = cc.y();
       return c;
     }
     // RS274 reads I/J/K as offsets from the start unless G90.1; a dialect that reads them
@@ -698,17 +654,17 @@ class Interpreter {
       return c;
     }
     bool absolute = d_.centre == CentreReading::Absolute ? fr.absolute : fr.arc_absolute;
-    if (ijk_seen[a.first] || ijk_seen[a.second]) c = ijk_centre(fr, ijk, ijk_seen, absolute);
+    if (ijk_seen[a.first] || ijk_seen[a.second]) c = ijk_centre(fr, s_.plane, s_.pos, ijk, ijk_seen, absolute);
     // The controller refuses an arc whose end lies off the circle through its start about the
     // centre by more than its radius check; where it does not check (printers), it goes on.
     if (d_.radius_abs_mm > 0) {
-      const auto [gap, allowed] = radius_gap(c, target);
-      if (!readable_arc({gap, allowed})) {
+      const RadiusGap g = radius_gap(d_, s_.plane, s_.pos, c, target);
+      if (!readable_arc(g)) {
         // Read the other way (an offset as the centre, or the centre as an offset), where the
         // program could say which: the radii may agree, and the program rely on a setting.
         std::string other;
         if (d_.centre == CentreReading::Incremental && d_.centre_mode_words) {
-          if (whole_arc(radius_gap(ijk_centre(fr, ijk, ijk_seen, !absolute), target)))
+          if (whole_arc(radius_gap(d_, s_.plane, s_.pos, ijk_centre(fr, s_.plane, s_.pos, ijk, ijk_seen, !absolute), target), d_))
             other = fmt::format("; read as {} (G{}), the radii agree: say so in the program, as a controller set "
                                 "the other way reads it",
                                 absolute ? "offsets from the start" : "the absolute centre", absolute ? "91.1" : "90.1");
@@ -716,7 +672,7 @@ class Interpreter {
         sink_.problem({b.line, 1}, "E-MODEL-ARC-RADIUS",
                       fmt::format("the end lies {:.4f} mm off the circle through the start about the centre "
                                   "(read as drawn up to {:.4f} mm){}; the arc is kept and not measured",
-                                  gap, std::max(allowed, kReadRadiusSlackMm), other));
+                                  g.gap_mm, std::max(g.allowed_mm, kReadRadiusSlackMm), other));
         known = false;
       }
     }

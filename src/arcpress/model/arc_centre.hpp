@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// How a controller finds an arc's centre from its words (I/J/K or R), and whether it runs
+// the arc as drawn: the end must lie on the circle through the start about that centre, up
+// to the controller's radius check. The modal interpreter reads input arcs with these.
+#include <algorithm>
+#include <optional>
+
+#include "arcpress/core/geometry.hpp"
+#include "arcpress/dialect/dialect.hpp"
+#include "arcpress/model/move.hpp"
+
+namespace arcpress {
+
+/// An input arc off its circle by no more than the controller's radius check, or than
+/// LinuxCNC's default one (CENTER_ARC_RADIUS_TOLERANCE_MM, mm), is read as drawn: a
+/// dialect's check may be the strictest setting (what arcpress writes must pass any), while
+/// programs are written for the machine's own.
+inline constexpr double kReadRadiusSlackMm = 0.0283;
+
+/// The centre from I/J/K words (`ijk`, where `ijk_seen`) of an arc in `plane` from `from`:
+/// offsets from it, or `as_absolute` the centre in `frame`'s coordinates. The plane's normal
+/// axis, and an unseen word's axis under `as_absolute`, are `from`'s.
+Vec3 ijk_centre(const Frame& frame, Plane plane, const AxisValues& from, const double* ijk, const bool* ijk_seen,
+                bool as_absolute);
+
+/// How far (mm) an arc in `plane` about `centre` from `from` ends off its circle at `to`,
+/// and how far `dialect`'s radius check lets it.
+struct RadiusGap {
+  double gap_mm = 0, allowed_mm = 0;
+};
+RadiusGap radius_gap(const Dialect& dialect, Plane plane, const AxisValues& from, const Vec3& centre,
+                     const AxisValues& to);
+
+/// Whether the controller runs an arc with this gap as drawn (its check, or kReadRadiusSlackMm).
+inline bool readable_arc(const RadiusGap& g) { return g.gap_mm <= std::max(g.allowed_mm, kReadRadiusSlackMm); }
+/// Whether its radii agree to the dialect's absolute check (no share of a radius: read the
+/// other way, a centre far off agrees by its share and would prove nothing).
+inline bool whole_arc(const RadiusGap& g, const Dialect& dialect) {
+  return g.gap_mm <= (dialect.radius_abs_mm > 0 ? dialect.radius_abs_mm : kRadiusAimMm);
+}
+
+/// The in-plane centre of an R-form arc from `s` to `e` (mm, in the plane) of radius `r_mm`
+/// (negative: the long way round), `ccw` for G3 as RS274 turns. Nothing where the end
+/// points coincide (`coincident`) or the radius falls short of half the chord by more than
+/// `allowance_mm` (no circle joins them; controllers take one within their check as the
+/// half circle).
+struct RadiusCentre {
+  std::optional<Vec2> centre;
+  bool coincident = false;
+  double half_chord_mm = 0;
+};
+RadiusCentre radius_centre(const Vec2& s, const Vec2& e, double r_mm, bool ccw, double allowance_mm);
+
+}  // namespace arcpress
