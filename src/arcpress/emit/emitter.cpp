@@ -23,6 +23,13 @@ constexpr int kMaxDecimals = 9;
 /// (absorbs the unit conversion's rounding, far below any printed digit).
 constexpr double kSameValue = 1e-9;
 
+/// The fewest decimals, up to `most`, that print `v` as it is (within kSameValue of it).
+int own_decimals(double v, int most) {
+  int dec = 0;
+  while (dec < most && std::abs(rounded(v, dec) - v) > kSameValue * std::max(1.0, std::abs(v))) ++dec;
+  return dec;
+}
+
 bool is_motion_gcode(double v) {
   int g = Word::code10_of(v);
   return g == 0 || g == 10 || g == 20 || g == 30 || (g >= 50 && g <= 53) || g == 330 || g == 331 ||
@@ -400,9 +407,7 @@ class Emitter {
         // digits), printed with as many decimals as it has, so the end point stays where the
         // input puts it even where that is finer than the dialect's usual digits.
         double v = fr.to_program(ax, to[ax]);
-        int dec = 0;
-        while (dec < kMaxDecimals && std::abs(rounded(v, dec) - v) > kSameValue * std::max(1.0, std::abs(v))) ++dec;
-        dec = std::max(dec, dig.max);
+        const int dec = std::max(own_decimals(v, kMaxDecimals), dig.max);
         v = rounded(v, dec);
         put_to(dst, L, format_number(v, NumberStyle{dec, true, st.keep_point, st.plus}));
         end[ax] = fr.to_mm(ax, v);
@@ -672,10 +677,7 @@ class Emitter {
         const BlockStyle st = style_of(b);
         const NumberDigits& dig = d().digits(in_.frames[frame_at(bi)].unit_mm != 1.0);
         for (int k : {a.first, a.second}) {
-          int dec = 0;  // as many decimals as the value has, up to the most the controller reads
-          while (dec < dig.max &&
-                 std::abs(rounded(r.words[k], dec) - r.words[k]) > 1e-9 * std::max(1.0, std::abs(r.words[k])))
-            ++dec;
+          const int dec = own_decimals(r.words[k], dig.max);  // up to the most the controller reads
           if (!words.empty() && st.spaced) words += ' ';
           words += st.letter(char('I' + k));
           words += format_number(r.words[k], NumberStyle{dec, true, st.keep_point, st.plus});
