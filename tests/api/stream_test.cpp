@@ -183,6 +183,31 @@ TEST_CASE("a path that goes on for longer than a piece may hold is cut at a vert
   CHECK(stream_lines(text, opt).output == s.output);
 }
 
+TEST_CASE("a forced cut comes before a move, so a code arcpress does not model right after the cut still keeps the "
+          "move before it as written",
+          "[stream]") {
+  // The first piece of one long path is cut at the first line past kMaxPieceBytes. A G25
+  // (no RS274 code: not modelled) right after that line may go on from it (Heidenhain's
+  // rounding does), so that move must stay as written; cut after it, the move would already
+  // be fitted in the piece before.
+  std::string text = spiral(60000);
+  const size_t end = text.find('\n', kMaxPieceBytes - 1) + 1;  // just after the line that crosses the cap
+  const size_t begin = text.rfind('\n', end - 2) + 1;
+  const std::string line = text.substr(begin, end - begin);
+  REQUIRE(line.rfind("G1 X", 0) == 0);
+  text.insert(end, "G25 R5\n");
+  CompressOptions opt;
+  for (unsigned threads : {1u, 2u}) {
+    opt.threads = threads;
+    const Streamed s = stream(text, opt, [] { return size_t(4096); });
+    INFO(line << threads << " threads");
+    CHECK(s.forced_cuts >= 1);
+    CHECK(s.result.within_band());
+    CHECK(s.output.find("\n" + line + "G25 R5\n") != std::string::npos);
+    CHECK(s.result.stats.arcs_out > 0);
+  }
+}
+
 TEST_CASE("in strict mode, an error stops the stream: nothing after it is given out and the result is not ok",
           "[stream]") {
   std::string text = spiral(20000);

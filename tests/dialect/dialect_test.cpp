@@ -18,6 +18,7 @@
 #include "arcpress/model/interpreter.hpp"
 #include "arcpress/platform/platform.hpp"
 #include "dialect/snippets.hpp"
+#include "random_program.hpp"
 #include "support.hpp"
 
 using namespace arcpress;
@@ -429,6 +430,111 @@ TEST_CASE("after Heidenhain's modal cycle call (M89) every move calls the cycle,
   CHECK(tnc.find("\nN100 G01 X+60 Y+10 Z+2 *\nN130 X+90 *\n") != std::string::npos);
   // Read as RS274 reads M89 (a code of no meaning), the holes between were lost.
   CHECK(compressed("rs274").find("\nN60 X+30 *\n") == std::string::npos);
+}
+
+namespace {
+/// A Heidenhain ISO program: a plunge, then 40 moves along an arc of radius 40 mm from
+/// (0, 0) to (20, 0), then `after` (blocks, numbered from N450 on), then the end.
+std::string tnc_arc_then(const std::string& after) {
+  std::string t = "%ARC G71 *\nN10 G17 G90 *\nN20 G00 X+0 Y+0 Z+2 *\nN30 G01 Z-1 F300 *\n";
+  const double cx = 10, cy = -std::sqrt(1500.0), a0 = std::atan2(-cy, -cx), a1 = std::atan2(-cy, 20 - cx);
+  for (int i = 1; i <= 40; ++i) {
+    const double a = a0 + (a1 - a0) * i / 40;
+    t += fmt::format("N{} G01 X{:+.4f} Y{:+.4f} *\n", 30 + 10 * i, cx + 40 * std::cos(a), cy + 40 * std::sin(a));
+  }
+  return t + after + "N900 G00 Z+50 *\nN99999999 %ARC G71 *\n";
+}
+}  // namespace
+
+TEST_CASE("the last move before a code arcpress does not model stays as the program wrote it, joined tangentially",
+          "[dialect][heidenhain]") {
+  // Heidenhain's chamfer (G24, only between two lines) and rounding (G25) take the block
+  // before them and the one after; its tangential arc (G06) and departure (G27) go on along
+  // the block before. An arc of arcpress's ending there, or a line along another chord,
+  // changes what they make (a chamfer after an arc is refused). The last of the 40 moves is
+  // N430 G01 X+20.0000 Y+0.0000 *.
+  const std::string last = "N430 G01 X+20.0000 Y+0.0000 *\n";
+  for (const char* code : {"N450 G24 R+2 *\nN460 G01 X+20 Y+20 *\n", "N450 G25 R+5 *\nN460 G01 X+20 Y+20 *\n",
+                           "N450 G06 X+30 Y+20 *\n", "N450 G27 R+5 *\n"}) {
+    INFO(code);
+    const CompressResult r = compress_as(shipped("heidenhain-iso"), tnc_arc_then(code), 0.01);
+    CHECK(test::broken_promise(r) == "");
+    CHECK(r.output.find("\n" + last + code) != std::string::npos);
+    CHECK(r.stats.arcs_out == 1);  // the other 39 moves: one arc, tangent to the line
+  }
+  // Without such a code after it, the move is part of the arc.
+  const CompressResult plain = compress_as(shipped("heidenhain-iso"), tnc_arc_then("N450 G01 X+20 Y+20 *\n"), 0.01);
+  CHECK(plain.output.find(last) == std::string::npos);
+  CHECK(plain.stats.arcs_out == 1);
+}
+
+TEST_CASE("Heidenhain ISO's G05 turns as the last arc programmed did, and after arcs of arcpress's is written with "
+          "that arc's own code",
+          "[dialect][heidenhain]") {
+  const Dialect tnc = shipped("heidenhain-iso");
+  // A clockwise G02, then 40 moves that turn counter-clockwise (which arcpress writes as a
+  // G03), then a G05 arc of radius 20 mm, clockwise as the G02 was.
+  std::string t = "%TURN G71 *\nN10 G17 G90 *\nN20 G00 X+0 Y+0 Z+2 *\nN30 G01 Z-1 F300 *\nN40 G02 X+10 Y+0 I+5 J+0 *\n";
+  for (int i = 1; i <= 40; ++i) {
+    const double a = (-90 + 60.0 * i / 40) * M_PI / 180;
+    t += fmt::format("N{} G01 X{:+.4f} Y{:+.4f} *\n", 40 + 10 * i, 10 + 20 * std::cos(a), 20 + 20 * std::sin(a));
+  }
+  const std::string turn = "G05 X+0 Y+30 R+20 *\n";
+  t += "N450 " + turn + "N460 G00 Z+50 *\nN99999999 %TURN G71 *\n";
+  {
+    DiagnosticSink sink("t.i");
+    const Program p = lex("t.i", t, sink);
+    const Interpretation in = interpret(p, sink, tnc);
+    CHECK(sink.all().empty());
+    REQUIRE(in.turn_reads.size() == 1);
+    CHECK(in.turn_reads[0].turn == 2);
+    CHECK(in.moves.back().kind == MoveKind::Rapid);
+    CHECK(in.moves[in.moves.size() - 2].kind == MoveKind::ArcCW);  // the G05, read as the G02 before it
+  }
+  const CompressResult r = compress_as(tnc, t, 0.01);
+  CHECK(test::broken_promise(r) == "");
+  CHECK(r.stats.arcs_out == 1);
+  CHECK(r.stats.turns_spelled == 1);
+  CHECK(r.output.find("G03 X+27.3205 Y+10.0000") != std::string::npos);
+  CHECK(r.output.find("\nN450 G02 X+0 Y+30 R+20 *\n") != std::string::npos);
+  DiffOptions band;
+  band.tolerance_mm = 0.01;
+  CHECK(test::diff_texts(t, r.output, band, tnc).same(0.01));
+  // Left as G05, it would turn as arcpress's G03 did.
+  std::string left = r.output;
+  left.replace(left.find("N450 G02"), 8, "N450 G05");
+  CHECK_FALSE(test::diff_texts(t, left, band, tnc).same(0.01));
+  // With no arc of arcpress's between, the program's G05 stays; where the program set no way
+  // before it, it is not modelled, and said so.
+  {
+    DiagnosticSink sink;
+    CompressOptions keep;
+    keep.dialect = tnc;
+    keep.fit.method = FitOptions::Method::Keep;
+    CHECK(compress("t.i", t, keep, sink).output.find("\nN450 " + turn) != std::string::npos);
+  }
+  std::string unset = t;
+  unset.replace(unset.find("N40 G02"), 7, "N40 G01");
+  DiagnosticSink sink("u.i");
+  const Program p = lex("u.i", unset, sink);
+  const Interpretation in = interpret(p, sink, tnc);
+  CHECK(sink.warning_count("W-MODEL-ARC-TURN") == 1);
+  CHECK_FALSE(in.moves[in.moves.size() - 2].known);
+}
+
+TEST_CASE("a dialect's [arcs.last_turn] names G-codes, each with the clockwise and counter-clockwise codes it stands for",
+          "[dialect]") {
+  const Dialect d = parse_dialect("name = \"x\"\n[arcs.last_turn]\nG05 = [\"G02\", \"G03\"]\nG15 = [\"G12\", \"G13\"]\n", "x.toml");
+  REQUIRE(d.turn_reading(150));
+  CHECK(d.turn_reading(150)->ccw10 == 130);
+  CHECK(d.turn_set_by(120) == 2);
+  CHECK(d.turn_set_by(30) == 3);
+  CHECK(d.turn_set_by(50) == 0);
+  CHECK(error_of("name = \"x\"\n[arcs.last_turn]\nM05 = [\"G02\", \"G03\"]\n").find("arcs.last_turn.M05: expected a G-code") !=
+        std::string::npos);
+  CHECK(error_of("name = \"x\"\n[arcs.last_turn]\nG05 = [\"G02\"]\n").find("expected two G-codes") != std::string::npos);
+  CHECK(error_of("name = \"x\"\n[arcs.last_turn]\nG05 = [\"G02\", \"X3\"]\n").find("\"X3\": expected a G-code") !=
+        std::string::npos);
 }
 
 TEST_CASE("a dialect's [codes] keys and meanings are checked where the file gives them", "[dialect]") {

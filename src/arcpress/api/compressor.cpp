@@ -36,7 +36,7 @@ namespace {
 
 /// Whether no chain of runs goes on across the end of move `m`: it is no move a fit may
 /// rewrite and no input arc a chain keeps tangent to (chain_runs() closes its chain there).
-bool ends_chains(const Move& m) { return !m.fittable() && !(is_arc(m.kind) && m.known); }
+bool ends_chains(const Move& m) { return !m.in_chain(); }
 
 /// The header comment (CompressOptions::header) without its end of line, in the form of the
 /// comment `like` (';' or '('): "; arcpress 0.1.0 commit 1b62caa0e2f3 --tolerance 0.01
@@ -190,12 +190,11 @@ struct Compressor::Impl {
     }
     if (!ending) return;
     const int32_t m = in.move_of_block[bi];
-    if (m >= 0 && ends_chains(in.moves[size_t(m)])) {
-      close_piece(true);
-    } else if (p.text.size() >= kCornerPieceBytes && m >= 1 && sink.reported() == mark.reported &&
-               starts_at_corner(size_t(m))) {
-      // Taken out and read again as the next piece's first line (it said nothing the first
-      // time, so reading it again repeats no diagnostic).
+    // A line taken out again, to be read again as the next piece's first line (it said
+    // nothing the first time, so reading it again repeats no diagnostic): the piece ends
+    // before it.
+    const bool silent = sink.reported() == mark.reported;
+    auto end_before_line = [&] {
       p.text.resize(mark.text);
       p.blocks.resize(mark.blocks);
       p.words.resize(mark.words);
@@ -207,9 +206,26 @@ struct Compressor::Impl {
       --line;
       close_piece(false);
       add_line(text);
+    };
+    if (m >= 0 && ends_chains(in.moves[size_t(m)])) {
+      close_piece(true);
+    } else if (p.text.size() >= kCornerPieceBytes && m >= 1 && silent && starts_at_corner(size_t(m))) {
+      end_before_line();
     } else if (p.text.size() >= kMaxPieceBytes) {
-      ++forced;
-      close_piece(false);
+      // A forced cut ends the piece before a move a fit may rewrite, or after a line that is
+      // no such move where the last move is not one either: never between such a move and
+      // the lines after it, where a code arcpress does not model keeps it as written (it
+      // may go on from it, a rounding say), which it could no longer do from the next
+      // piece. Only a path followed by kMaxPieceBytes of lines with no move is cut there.
+      const bool fittable_line = m >= 0 && in.moves[size_t(m)].fittable();
+      const bool last_fittable = !in.moves.empty() && in.moves.back().fittable();
+      if (fittable_line && silent && m >= 1) {
+        ++forced;
+        end_before_line();
+      } else if (!last_fittable || m >= 0 || p.text.size() >= 2 * kMaxPieceBytes) {
+        ++forced;
+        close_piece(false);
+      }
     }
   }
 
@@ -268,6 +284,7 @@ struct Compressor::Impl {
     next_emit.header_done = centre_mode_set;
     next_emit.centres_maybe_said = !opt.passthrough && opt.fit.method != FitOptions::Method::Keep && opt.dialect.arcs;
     next_emit.pole_maybe_moved = next_emit.centres_maybe_said && opt.dialect.centre_modal;
+    next_emit.turn_maybe_moved = next_emit.centres_maybe_said && !opt.dialect.last_turn.empty();
     dispatch(std::move(cur));
   }
 

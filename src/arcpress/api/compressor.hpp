@@ -40,7 +40,9 @@ inline constexpr size_t piece_bytes(size_t index) {
 }
 /// Input bytes after which a piece may also end before a move that starts at a corner.
 inline constexpr size_t kCornerPieceBytes = size_t(3) << 16;
-/// Input bytes after which a piece ends at the next vertex whatever it is (a forced cut).
+/// Input bytes after which a piece ends at the next vertex whatever it is (a forced cut):
+/// before the next move a fit may rewrite, or after the next line where the last move is
+/// not one (after twice as many bytes, after any line).
 inline constexpr size_t kMaxPieceBytes = size_t(1) << 18;
 /// Pieces per worker thread that may be read, queued, worked on or waiting for their turn.
 inline constexpr size_t kPiecesInFlight = 2;

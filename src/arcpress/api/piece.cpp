@@ -539,6 +539,8 @@ void add_stats(EmitStats& into, const EmitStats& s) {
   into.arcs_out += s.arcs_out;
   into.motion_words_added += s.motion_words_added;
   into.plane_words_added += s.plane_words_added;
+  into.poles_restated += s.poles_restated;
+  into.turns_spelled += s.turns_spelled;
   into.arcs_unprintable += s.arcs_unprintable;
   into.long_lines_kept += s.long_lines_kept;
 }

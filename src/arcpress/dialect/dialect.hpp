@@ -72,6 +72,14 @@ struct CodeReading {
   CodeMeaning meaning = CodeMeaning::Unmodelled;
 };
 
+/// A G-code that turns the way the last arc programmed before it turned (Heidenhain's G05 and
+/// G15, which take the direction of the last G02/G03 or G12/G13), and the codes that turn each
+/// way in its stead ([arcs.last_turn]). Those codes set the way; so do G02 and G03.
+struct TurnReading {
+  int code10 = 0;             ///< the code times ten (G05: 50)
+  int cw10 = 20, ccw10 = 30;  ///< the codes for clockwise and counter-clockwise, times ten
+};
+
 /// Digits for numbers arcpress computes itself (centres, relative moves). Numbers copied
 /// from the input keep the input's own text.
 struct NumberDigits {
@@ -94,6 +102,9 @@ struct Dialect {
   /// I/J/K set a centre that holds until the next (Heidenhain's pole): a block with centre
   /// words and no axis words sets it and moves nothing, and an arc without them turns about it.
   bool centre_modal = false;
+  /// Codes that turn the way the last programmed arc turned ([arcs.last_turn]): where arcs
+  /// arcpress wrote came between, such a block gets the program's way as its own code.
+  std::vector<TurnReading> last_turn;
   bool radius_word = true;                      ///< R form accepted
   ArcFormat format = ArcFormat::Centre;         ///< what arcpress writes unless told otherwise
   std::string arc_header;                       ///< a block written before the first arc (of each piece of a stream), e.g. "G91.1"
@@ -139,6 +150,20 @@ struct Dialect {
   std::vector<CodeReading> codes;
   /// The meaning the dialect gives the code `letter` `code10` (times ten; any for 'T'), or
   /// null where it reads it as RS274.
+  /// The entry of last_turn for G-code `code10`, or null.
+  const TurnReading* turn_reading(int code10) const {
+    for (const TurnReading& t : last_turn)
+      if (t.code10 == code10) return &t;
+    return nullptr;
+  }
+  /// The way G-code `code10` sets for the codes of last_turn: 2 clockwise, 3 counter-clockwise
+  /// (G02 and G03, and the codes last_turn names), 0 none.
+  int turn_set_by(int code10) const {
+    if (code10 == 20 || code10 == 30) return code10 / 10;
+    for (const TurnReading& t : last_turn)
+      if (t.cw10 == code10 || t.ccw10 == code10) return t.cw10 == code10 ? 2 : 3;
+    return 0;
+  }
   const CodeMeaning* meaning_of(char letter, int code10) const {
     for (const CodeReading& c : codes)
       if (c.letter == letter && (letter == 'T' || c.code10 == code10)) return &c.meaning;

@@ -13,8 +13,10 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
+#include <utility>
 #include <toml++/toml.h>
 
 #include "arcpress/core/error.hpp"
@@ -147,6 +149,18 @@ class TableReader {
   std::set<std::string> seen_;
 };
 
+/// A G- or M-code as programs write it ("G70", "G54.1", "M91"): its letter, upper case, and
+/// the code times ten; none where `k` is no such code.
+std::optional<std::pair<char, int>> code_named(std::string_view k) {
+  const char letter = char(std::toupper(static_cast<unsigned char>(k.empty() ? ' ' : k[0])));
+  double v = 0;
+  const char* end = k.data() + k.size();
+  if ((letter == 'G' || letter == 'M') && k.size() >= 2 && std::isdigit(static_cast<unsigned char>(k[1])) &&
+      std::from_chars(k.data() + 1, end, v).ptr == end && v < 10000)
+    return std::pair{letter, int(std::lround(v * 10))};
+  return std::nullopt;
+}
+
 void read_digits(TableReader& parent, const toml::table* t, const std::string& path, const std::string& prefix,
                  NumberDigits& d) {
   if (!t) return;
@@ -224,6 +238,28 @@ Dialect parse_dialect(const std::string& text, const std::string& path) {
       if (d.executed.rule == ArcSegmentation::Rule::Klipper && d.executed.max_segment_mm <= 0)
         x.fail(e->source(), "max_segment_mm", "klipper's resolution must be above 0");
     }
+    if (const toml::table* l = r.table("last_turn")) {
+      // CODE = ["CW", "CCW"]: a G-code that turns as the last programmed arc did, and the
+      // G-codes that turn each way in its stead.
+      TableReader x(*l, path, "arcs.last_turn.");
+      for (auto&& [key, value] : *l) {
+        const std::string k(key.str());
+        auto g_code = [](std::string_view v) -> std::optional<int> {
+          const auto c = code_named(v);
+          return c && c->first == 'G' ? std::optional<int>(c->second) : std::nullopt;
+        };
+        const auto code = g_code(k);
+        if (!code) x.fail(key.source(), k, "expected a G-code as the key (\"G05\"; quoted where it has a point)");
+        std::vector<std::string> ways;
+        x.strings(k, ways, {}, [](std::string_view v) -> const char* {
+          const auto c = code_named(v);
+          return c && c->first == 'G' ? nullptr : "expected a G-code";
+        });
+        if (ways.size() != 2) x.fail(value.source(), k, "expected two G-codes: the clockwise one, then the counter-clockwise one");
+        d.last_turn.push_back({*code, *g_code(ways[0]), *g_code(ways[1])});
+      }
+      x.finish();
+    }
     r.finish();
     if (d.format == ArcFormat::Radius && !d.radius_word)
       top.fail(t->source(), "arcs.format", "\"radius\" needs radius_word = true");
@@ -263,17 +299,12 @@ Dialect parse_dialect(const std::string& text, const std::string& path) {
       const std::string k(key.str());
       if (value.is_table())
         r.fail(key.source(), k, "a code with a point is quoted (\"G54.1\" = ...): bare, TOML reads it as a table");
-      const char letter = char(std::toupper(static_cast<unsigned char>(k.empty() ? ' ' : k[0])));
-      double v = 0;
-      const char* end = k.data() + k.size();
-      const bool code = (letter == 'G' || letter == 'M') && k.size() >= 2 &&
-                        std::isdigit(static_cast<unsigned char>(k[1])) && std::from_chars(k.data() + 1, end, v).ptr == end &&
-                        v < 10000;
-      if (!code && !(letter == 'T' && k.size() == 1))
+      const auto code = code_named(k);
+      if (!code && !(k == "T" || k == "t"))
         r.fail(key.source(), k, "expected a G- or M-code as the key (\"G70\", \"G54.1\", \"M91\"), or \"T\"");
       const int meaning = r.choice(k, {"inch", "mm", "settings", "frame", "machine", "moves", "pole", "polar", "cycle-calls", "cycle-call",
                                       "unmodelled"});
-      d.codes.push_back({letter, int(std::lround(v * 10)), CodeMeaning(meaning)});
+      d.codes.push_back({code ? code->first : 'T', code ? code->second : 0, CodeMeaning(meaning)});
     }
     r.finish();
   }

@@ -62,6 +62,7 @@ class Emitter {
     keep_point_ = h.keep_point;
     plus_sign_ = h.plus_sign;
     pole_moved_ = opt.start.pole_maybe_moved ? 0b111u : 0u;
+    turn_moved_ = opt.start.turn_maybe_moved;
     block_end_ = h.block_end;
     in_motion_ = opt.start.in_motion;
     out_motion_ = opt.start.out_motion;
@@ -113,10 +114,19 @@ class Emitter {
   /// Copies a block as it is, restating the motion word when the output's modal motion
   /// differs from the input's at this point (after a run that ended in G2/G3), and, where
   /// I/J/K set a centre that holds, the program's centre in an arc that turns about it after
-  /// arcpress's own arcs moved it (restate_pole_for_copy()).
+  /// arcpress's own arcs moved it (restate_pole_for_copy()), and, where a code turns as the
+  /// last programmed arc did, the program's way in its stead after arcpress's own arcs
+  /// (spell_turn_for_copy()).
   void copy_block(const Block& b) {
     std::string_view raw = p_.raw(b);
     const std::string centre = d().centre_modal ? restate_pole_for_copy(b) : std::string();
+    std::string spelled;
+    int shift_at = 0, shift = 0;  // columns past shift_at move by shift in `spelled`
+    if (!d().last_turn.empty() && spell_turn_for_copy(b, spelled, shift_at)) {
+      shift = int(spelled.size()) - int(raw.size());
+      raw = spelled;
+    }
+    auto col_of = [&](const Word& w) { return size_t(int(w.col) + (int(w.col) > shift_at ? shift : 0)); };
     if (b.kind == BlockKind::Code) {
       state_centres_for_copy(b);
       int explicit_motion = -1;
@@ -134,13 +144,13 @@ class Emitter {
       }
       if (explicit_motion >= 0) in_motion_ = out_motion_ = explicit_motion;
       const bool motion_word = explicit_motion < 0 && axes && in_motion_ != out_motion_ && in_motion_ >= 0;
-      if (motion_word || !centre.empty()) {
+      if (motion_word || !centre.empty() || !spelled.empty()) {
         const BlockStyle st = style_of(b);
         const Word& last = *(p_.words_end(b) - 1);
-        const size_t tail = last.col - 1 + last.length;  // just after the block's last word
+        const size_t tail = col_of(last) - 1 + last.length;  // just after the block's last word
         size_t from = 0;
         if (motion_word) {
-          const size_t at = n_word ? n_word->col - 1 + n_word->length : p_.words_begin(b)->col - 1;
+          const size_t at = n_word ? col_of(*n_word) - 1 + n_word->length : col_of(*p_.words_begin(b)) - 1;
           out_.append(raw.substr(0, at));
           if (n_word) out_ += st.spaced ? " " : "";
           out_ += st.motion(in_motion_ / 10);
@@ -287,6 +297,7 @@ class Emitter {
         // Where I/J/K set a centre that holds (Heidenhain's pole), this arc's is now in force.
         if (arc && text->centre_words && d().centre_modal)
           pole_moved_ |= (1u << axes_of(run.plane).first) | (1u << axes_of(run.plane).second);
+        if (arc) turn_moved_ = true;
         out_motion_ = arc ? (pr.ccw != flip(run.plane) ? 30 : 20) : 10;
         if (stats_) ++(arc ? stats_->arcs_out : stats_->lines_out);
         if (arc && text->loose) rule_joints(e);
@@ -699,6 +710,43 @@ class Emitter {
     }
     return words;
   }
+  /// Where a code turns as the last programmed arc did (Dialect::last_turn) and arcpress's
+  /// own arcs came between since the program last set the way: block `b`'s text with that
+  /// code spelled as the program's way (G05 -> G02 after the program's G02), in `text`, the
+  /// code's column in `at`; false where it stays as it is. A block that sets the way makes it
+  /// the program's again.
+  bool spell_turn_for_copy(const Block& b, std::string& text, int& at) {
+    const uint32_t bi = uint32_t(&b - p_.blocks.data());
+    const auto& reads = in_.turn_reads;
+    while (turn_next_ < reads.size() && reads[turn_next_].block < bi) ++turn_next_;
+    bool spelled = false;
+    if (turn_moved_ && turn_next_ < reads.size() && reads[turn_next_].block == bi && reads[turn_next_].turn != 0) {
+      const std::string_view raw = p_.raw(b);
+      for (auto* w = p_.words_begin(b); w != p_.words_end(b); ++w) {
+        if (w->letter != 'G' || w->is_expr) continue;
+        const TurnReading* t = d().turn_reading(w->code10());
+        if (!t) continue;
+        // The code as the program writes its own: its letter's case, and as many digits.
+        const std::string_view word = raw.substr(w->col - 1, w->length);
+        const int code10 = reads[turn_next_].turn == 2 ? t->cw10 : t->ccw10;
+        const int digits = int(std::count_if(word.begin(), word.end(), [](char c) { return c >= '0' && c <= '9'; }));
+        const std::string code = code10 % 10 ? fmt::format("{}.{}", code10 / 10, code10 % 10)
+                                             : fmt::format("{:0{}}", code10 / 10, std::max(1, digits));
+        text.assign(raw.substr(0, w->col - 1));
+        text += word[0];
+        text += code;
+        text.append(raw.substr(w->col - 1 + w->length));
+        at = int(w->col);
+        spelled = true;
+        if (stats_) ++stats_->turns_spelled;
+        break;
+      }
+    }
+    for (auto* w = p_.words_begin(b); w != p_.words_end(b); ++w)
+      if (w->letter == 'G' && !w->is_expr && d().turn_set_by(w->code10())) turn_moved_ = false;
+    if (spelled) turn_moved_ = false;
+    return spelled;
+  }
   /// The frame in force at block `bi`: its move's, else the nearest move's before it.
   uint32_t frame_at(uint32_t bi) const {
     for (uint32_t k = bi + 1; k-- > 0;)
@@ -716,6 +764,10 @@ class Emitter {
   bool plus_sign_ = false;
   uint32_t pole_moved_ = 0;  ///< axes (X/Y/Z bits) of the centre in force that arcpress's own arcs moved (centre_modal)
   size_t pole_next_ = 0;     ///< the next of in_.pole_reads to reach
+  /// arcpress's own arcs may have turned the other way since the program last set the way
+  /// that codes of Dialect::last_turn read.
+  bool turn_moved_ = false;
+  size_t turn_next_ = 0;     ///< the next of in_.turn_reads to reach
   bool block_end_ = false;  ///< new blocks end with " *"
   /// The end of a block arcpress writes: " *" where the program's blocks end so.
   void end_block(std::string& s) const {

@@ -26,6 +26,7 @@ struct EmitStats {
   /// Blocks that state the program's centre again (Dialect::centre_modal) after arcs arcpress
   /// wrote moved it, before a block of the program's that turns about it.
   size_t poles_restated = 0;
+  size_t turns_spelled = 0;  ///< codes that turn as the last arc did, written as the program's way (Dialect::last_turn)
   /// Fitted arcs written as their input lines instead: after rounding to the printed digits
   /// they broke the band, the controller's radius rule, its sweep limits or its line length.
   size_t arcs_unprintable = 0;
@@ -73,6 +74,10 @@ struct EmitStart {
   /// Where I/J/K set a centre that holds (Dialect::centre_modal): whether an earlier piece may
   /// have written arcs that moved it (the program's is then stated again before it is read).
   bool pole_maybe_moved = false;
+  /// Where codes turn as the last programmed arc did (Dialect::last_turn): whether an earlier
+  /// piece may have written arcs since the program last set the way (its way is then
+  /// spelled out where it is read).
+  bool turn_maybe_moved = false;
   std::optional<OutputHabits> habits;  ///< the program's, found in its first piece; absent: this piece's own
 };
 

@@ -236,7 +236,7 @@ std::vector<RunChain> chain_runs(const Interpretation& in, const std::vector<Run
   };
   for (size_t k = 0; k < mv.size(); ++k) {
     const int32_t r = run_of[k];
-    if (!mv[k].fittable() && !(is_arc(mv[k].kind) && mv[k].known)) {
+    if (!mv[k].in_chain()) {
       close();
       continue;
     }

@@ -96,8 +96,36 @@ class Interpreter {
     }
     sink_.problem({b.line, w.col}, "E-MODEL-GCODE",
                   fmt::format("{} is not modelled under {}; the block is kept and not fitted", p_->raw(b, w), d_.name));
-    forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterUnmodelled, bi);
+    not_modelled(bi);
     return -1;
+  }
+
+  /// Where the dialect has codes that turn as the last programmed arc did (Dialect::last_turn):
+  /// G-code `g` of block `bi` sets that way, or reads it (a TurnRead for the emitter) and is
+  /// read as the code that turns that way (G05 after a G02 as G02). Returns the code to read.
+  int read_turn(int g, const Block& b, uint32_t bi, const Word& w) {
+    if (const TurnReading* t = d_.turn_reading(g)) {
+      if (s_.turn == 0)
+        sink_.warning({b.line, w.col}, "W-MODEL-ARC-TURN",
+                      fmt::format("{} turns the way the last arc programmed before it turned, and the program has "
+                                  "programmed none: not modelled, and arcs arcpress writes before it decide the way "
+                                  "(--method keep writes none)",
+                                  p_->raw(b, w)));
+      if (o_->turn_reads.empty() || o_->turn_reads.back().block != bi) o_->turn_reads.push_back({bi, s_.turn});
+      return s_.turn == 0 ? g : s_.turn == 2 ? t->cw10 : t->ccw10;
+    }
+    if (const int way = d_.turn_set_by(g)) s_.turn = uint8_t(way);
+    return g;
+  }
+
+  /// After a code arcpress does not model in block `bi`: the position is not known, and the
+  /// move before it stays as written. Such a block may go on from the path element before
+  /// it (Heidenhain's chamfer G24 between two lines and rounding G25, its tangential arcs
+  /// G06 and G16, its departure G27): a primitive of arcpress's ending there, an arc where
+  /// the program had a line, or a line along another chord, would change what it makes.
+  void not_modelled(uint32_t bi) {
+    forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterUnmodelled, bi);
+    if (!o_->moves.empty() && o_->moves.back().unfit == Unfit::None) o_->moves.back().unfit = Unfit::BeforeUnmodelled;
   }
 
   /// The G-code that sets units as `meaning` says in the dialect: its own ([codes]), else
@@ -213,6 +241,7 @@ class Interpreter {
         case 'G': {
           int g = w->code10();
           if (g != 10) other_words = true;
+          if (turns_) g = read_turn(g, b, bi, *w);
           // A code the dialect reads its own way is read as RS274's code of that meaning.
           if (const CodeMeaning* m = (own_g_bits_ >> (uint32_t(g) & 63) & 1) ? d_.meaning_of('G', g) : nullptr) {
             g = own_code(*m, b, bi, *w, own);
@@ -285,7 +314,7 @@ class Interpreter {
               sink_.problem({b.line, w->col}, "E-MODEL-GCODE",
                             fmt::format("{} is not modelled; the block is kept and not fitted",
                                         p_->raw(b, *w)));
-              forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterUnmodelled, bi);
+              not_modelled(bi);
               break;
           }
           break;
@@ -728,6 +757,8 @@ class Interpreter {
   /// The G- and M-codes the dialect reads its own way, each a bit at its code (times ten)
   /// modulo 64: most words are ruled out by one test, not a search of d_.codes.
   uint64_t own_g_bits_ = 0, own_m_bits_ = 0;
+  /// The dialect has codes that turn as the last programmed arc did (Dialect::last_turn).
+  const bool turns_ = !d_.last_turn.empty();
   DiagnosticSink& sink_;
   ModalState s_;
   const Program* p_ = nullptr;

@@ -51,6 +51,11 @@ struct ModalState {
   /// Every move calls the cycle last defined at its end (a dialect's "cycle-calls" code,
   /// Heidenhain's M89), until a "cycle-call" code (M99, G79).
   bool cycle_calls = false;
+  /// The way the program's last arc code turned, for the codes that turn as it did
+  /// (Dialect::last_turn): 2 clockwise, 3 counter-clockwise, 0 none yet. Arcs arcpress writes
+  /// change it, and the emitter spells the program's out where it is read, so it is told,
+  /// not compared.
+  uint8_t turn = 0;
 
   /// Whether a reader in state `o` reads every following block as one in this state does:
   /// the same position, known axes, frame, plane, feed and spindle, and (where

@@ -102,6 +102,7 @@ enum class Unfit : uint8_t {
   NoPathAxis,       ///< it moves only E or the extra axes (a retraction, a rotary index)
   FarFromOrigin,    ///< so far from the origin that the check could not measure a fit of it (farthest_measurable_mm())
   CycleCall,        ///< it calls a cycle at its end (the dialect's modal cycle call, Heidenhain's M89)
+  BeforeUnmodelled, ///< a block after it that arcpress does not model may go on from it (a chamfer, a rounding, a tangential arc)
 };
 
 /// A few words on `why`, for reports: "comment in the block", ...
@@ -131,6 +132,10 @@ struct Move {
   Unfit unfit = Unfit::NotLine;  ///< Unfit::None: a plain G1 feed block a fitter may rewrite
 
   bool fittable() const { return unfit == Unfit::None; }
+  /// Whether a chain of runs goes on through it (extract/run.hpp, chain_runs()): a move a fit
+  /// may rewrite, or one kept as it is whose path is known and which the fit beside it joins
+  /// tangentially: an input arc, or the last move before a code arcpress does not model.
+  bool in_chain() const { return fittable() || (known && (is_arc(kind) || unfit == Unfit::BeforeUnmodelled)); }
   Vec3 xyz() const { return {to[kX], to[kY], to[kZ]}; }
 };
 
@@ -175,6 +180,14 @@ struct PoleRead {
   std::array<double, 3> words{};     ///< I, J, K: the centre in program units, absolute, or from the present point under G91
 };
 
+/// A block with a code that turns the way the last programmed arc turned (Dialect::last_turn):
+/// the way the program set last, 2 (clockwise, G02) or 3 (counter-clockwise, G03), 0 where
+/// it set none.
+struct TurnRead {
+  uint32_t block = 0;
+  uint8_t turn = 0;
+};
+
 /// Everything the interpreter learned about a program.
 struct Interpretation {
   std::vector<Frame> frames;
@@ -189,6 +202,8 @@ struct Interpretation {
   std::vector<UnplacedMove> unplaced;
   /// The blocks that read the centre I/J/K left in force, in order (Dialect::centre_modal).
   std::vector<PoleRead> pole_reads;
+  /// The blocks that turn as the last programmed arc did, in order (Dialect::last_turn).
+  std::vector<TurnRead> turn_reads;
 
   /// A copy of everything but the moves (for a path made anew from this one's). Names
   /// every field: one added above belongs here too.
@@ -200,6 +215,7 @@ struct Interpretation {
     o.start_known = start_known;
     o.unplaced = unplaced;
     o.pole_reads = pole_reads;
+    o.turn_reads = turn_reads;
     return o;
   }
 
