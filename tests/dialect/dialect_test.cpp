@@ -466,6 +466,15 @@ TEST_CASE("the last move before a code arcpress does not model stays as the prog
   const CompressResult plain = compress_as(shipped("heidenhain-iso"), tnc_arc_then("N450 G01 X+20 Y+20 *\n"), 0.01);
   CHECK(plain.output.find(last) == std::string::npos);
   CHECK(plain.stats.arcs_out == 1);
+  // So does the move before a line arcpress does not understand at all (Sinumerik's
+  // tangential arc, read in the ISO dialect).
+  std::string iso = tnc_arc_then("");
+  iso = iso.substr(iso.find("N10"), iso.find("N900") - iso.find("N10"));
+  for (size_t at; (at = iso.find(" *")) != std::string::npos;) iso.erase(at, 2);
+  const CompressResult sie = compress_as(shipped("siemens"), iso + "N450 CT X=IC(5) Y20\nM30\n", 0.01);
+  CHECK(test::broken_promise(sie) == "");
+  CHECK(sie.output.find("\nN430 G01 X+20.0000 Y+0.0000\nN450 CT") != std::string::npos);
+  CHECK(sie.stats.arcs_out == 1);
 }
 
 TEST_CASE("Heidenhain ISO's G05 turns as the last arc programmed did, and after arcs of arcpress's is written with "

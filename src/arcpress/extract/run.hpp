@@ -54,7 +54,7 @@ std::vector<Run> extract_runs(const Interpretation& in, uint32_t min_moves = 2, 
 /// between them are tangent where the path is smooth: moves first_move .. first_move +
 /// move_count - 1, holding runs first_run .. first_run + run_count - 1 and, between or around
 /// them, lone G1 moves (fittable moves that are no run), the input's own arcs and the last
-/// move before a code arcpress does not model (Move::in_chain()), all written back as they
+/// move before a block arcpress does not read (Move::in_chain()), all written back as they
 /// are. Only blocks that do not move (comments, feed words, M-codes)
 /// separate its moves, and all lie in one frame and program plane (its runs may be fitted
 /// in another plane, see extract_runs()).

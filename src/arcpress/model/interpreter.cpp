@@ -125,6 +125,9 @@ class Interpreter {
   /// the program had a line, or a line along another chord, would change what it makes.
   void not_modelled(uint32_t bi) {
     forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterUnmodelled, bi);
+    keep_last_move();
+  }
+  void keep_last_move() {
     if (!o_->moves.empty() && o_->moves.back().unfit == Unfit::None) o_->moves.back().unfit = Unfit::BeforeUnmodelled;
   }
 
@@ -174,7 +177,10 @@ class Interpreter {
       default:
         // Flow control, macros and unread lines may move anything, and may turn about the
         // centre I/J/K left in force (Heidenhain's polar moves, PR/PA words, are unread lines).
+        // A line not understood at all may also go on from the move before it, as a block
+        // with a code arcpress does not model may (not_modelled()).
         if (d_.centre_modal) note_pole_read(bi);
+        if (b.kind == BlockKind::Opaque) keep_last_move();
         forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterControl, bi);
         return;
     }

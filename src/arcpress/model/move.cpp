@@ -33,8 +33,8 @@ const char* describe(Unfit why) {
     case Unfit::FarFromOrigin: return "too far from the origin for the check to measure a fit of it within the band";
     case Unfit::CycleCall: return "it calls a cycle at its end (a modal cycle call: M89)";
     case Unfit::BeforeUnmodelled:
-      return "the last move before a code arcpress does not model, which may go on from it (a chamfer or rounding "
-             "after it, a tangential arc)";
+      return "the last move before a code or line arcpress does not read, which may go on from it (a chamfer or "
+             "rounding after it, a tangential arc)";
   }
   return "?";
 }

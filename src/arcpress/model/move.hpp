@@ -102,7 +102,8 @@ enum class Unfit : uint8_t {
   NoPathAxis,       ///< it moves only E or the extra axes (a retraction, a rotary index)
   FarFromOrigin,    ///< so far from the origin that the check could not measure a fit of it (farthest_measurable_mm())
   CycleCall,        ///< it calls a cycle at its end (the dialect's modal cycle call, Heidenhain's M89)
-  BeforeUnmodelled, ///< a block after it that arcpress does not model may go on from it (a chamfer, a rounding, a tangential arc)
+  BeforeUnmodelled, ///< a block after it that arcpress does not read (a code it does not model, a line it does not
+                    ///< understand) may go on from it (a chamfer, a rounding, a tangential arc)
 };
 
 /// A few words on `why`, for reports: "comment in the block", ...
@@ -134,7 +135,7 @@ struct Move {
   bool fittable() const { return unfit == Unfit::None; }
   /// Whether a chain of runs goes on through it (extract/run.hpp, chain_runs()): a move a fit
   /// may rewrite, or one kept as it is whose path is known and which the fit beside it joins
-  /// tangentially: an input arc, or the last move before a code arcpress does not model.
+  /// tangentially: an input arc, or the last move before a block arcpress does not read.
   bool in_chain() const { return fittable() || (known && (is_arc(kind) || unfit == Unfit::BeforeUnmodelled)); }
   Vec3 xyz() const { return {to[kX], to[kY], to[kZ]}; }
 };
