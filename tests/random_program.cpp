@@ -86,6 +86,17 @@ RandomCase random_case(std::span<const uint8_t> bytes) {
     if ((h & 0x3f) == 0x29) s += "T2 M6\n";
     if ((h & 0x3f) == 0x2a) s += "G43 H2\n";
     if ((h & 0x3f) == 0x2b) s += fmt::format("G16\nG1 X{:.3f} Y{:.1f}\nG15\n", std::hypot(x, y), 30.0 + i % 90);
+    // Heidenhain ISO in G17: an arc of the program's (half a circle about an absolute centre,
+    // which sets the way G05 turns), or a G05 (a quarter circle of radius R, turning that way).
+    if (tnc && ((form >> 3) & 3) % 3 == 0 && ((h & 0x3f) == 0x2c || (h & 0x3f) == 0x2d)) {
+      const double r = step_mm * 5;
+      if ((h & 0x3f) == 0x2c)
+        s += fmt::format("N{} G0{} X{:+.{}f} Y{:+.{}f} I{:+.{}f} J{:+.{}f} *\n", i, a < 0 ? 2 : 3, last_x + 2 * r,
+                         decimals, last_y, decimals, last_x + r, decimals, last_y, decimals);
+      else
+        s += fmt::format("N{} G05 X{:+.{}f} Y{:+.{}f} R{:+.{}f} *\n", i, last_x + 2 * r, decimals, last_y + 2 * r,
+                         decimals, 2 * r, decimals);
+    }
     const double px = std::stod(fmt::format("{:.{}f}", x, decimals)), py = std::stod(fmt::format("{:.{}f}", y, decimals));
     if (tnc)
       s += fmt::format("N{} G01 X{:+.{}f} Y{:+.{}f} Z{:+.{}f}", i + 1, x, decimals, y, decimals, z, decimals);

@@ -529,6 +529,11 @@ TEST_CASE("Heidenhain ISO's G05 turns as the last arc programmed did, and after 
   const Interpretation in = interpret(p, sink, tnc);
   CHECK(sink.warning_count("W-MODEL-ARC-TURN") == 1);
   CHECK_FALSE(in.moves[in.moves.size() - 2].known);
+  // An arc of arcpress's before it would decide its way: the moves before it are lines.
+  const CompressResult lines = compress_as(tnc, unset, 0.01);
+  CHECK(test::broken_promise(lines) == "");
+  CHECK(lines.stats.arcs_out == 0);
+  CHECK(lines.stats.lines_out < 40);  // still fewer than the 40 moves
 }
 
 TEST_CASE("a dialect's [arcs.last_turn] names G-codes, each with the clockwise and counter-clockwise codes it stands for",

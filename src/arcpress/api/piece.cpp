@@ -274,6 +274,7 @@ std::vector<FitResult> fit_runs(const Interpretation& in, const std::vector<Run>
     auto options_for = [&](const Run& r) {
       FitOptions o = fit_options_for(opt.fit, opt.dialect, in.frames[r.frame], r.plane);
       o.executed = opt.executed_rule();
+      o.arcs = o.arcs && r.first_move >= in.arcless_moves;
       return o;
     };
     auto got = fit_chain(in, c, runs, options_for, [&](const Run& r) { return tightened(options_for(r), opt, in, r); });

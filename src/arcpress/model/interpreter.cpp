@@ -105,12 +105,15 @@ class Interpreter {
   /// read as the code that turns that way (G05 after a G02 as G02). Returns the code to read.
   int read_turn(int g, const Block& b, uint32_t bi, const Word& w) {
     if (const TurnReading* t = d_.turn_reading(g)) {
-      if (s_.turn == 0)
+      if (s_.turn == 0) {
         sink_.warning({b.line, w.col}, "W-MODEL-ARC-TURN",
                       fmt::format("{} turns the way the last arc programmed before it turned, and the program has "
-                                  "programmed none: not modelled, and arcs arcpress writes before it decide the way "
-                                  "(--method keep writes none)",
+                                  "programmed none: not modelled, and the moves before it are fitted with lines only "
+                                  "(an arc of arcpress's would decide the way; in a long program, those of the first "
+                                  "pieces may already be written: --method keep writes none)",
                                   p_->raw(b, w)));
+        o_->arcless_moves = uint32_t(o_->moves.size());
+      }
       if (o_->turn_reads.empty() || o_->turn_reads.back().block != bi) o_->turn_reads.push_back({bi, s_.turn});
       return s_.turn == 0 ? g : s_.turn == 2 ? t->cw10 : t->ccw10;
     }

@@ -205,6 +205,10 @@ struct Interpretation {
   std::vector<PoleRead> pole_reads;
   /// The blocks that turn as the last programmed arc did, in order (Dialect::last_turn).
   std::vector<TurnRead> turn_reads;
+  /// Moves [0, arcless_moves) are fitted with lines only: a block after them turns as the
+  /// last programmed arc did where the program has programmed none, so an arc of arcpress's
+  /// before it would decide its way.
+  uint32_t arcless_moves = 0;
 
   /// A copy of everything but the moves (for a path made anew from this one's). Names
   /// every field: one added above belongs here too.
@@ -217,6 +221,7 @@ struct Interpretation {
     o.unplaced = unplaced;
     o.pole_reads = pole_reads;
     o.turn_reads = turn_reads;
+    o.arcless_moves = arcless_moves;
     return o;
   }
 
