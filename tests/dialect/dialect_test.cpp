@@ -536,6 +536,42 @@ TEST_CASE("Heidenhain ISO's G05 turns as the last arc programmed did, and after 
   CHECK(lines.stats.lines_out < 40);  // still fewer than the 40 moves
 }
 
+TEST_CASE("Fanuc's and Haas's smoothing and look-ahead codes set nothing the path depends on, and Fanuc's modal "
+          "macro call keeps every move it calls at",
+          "[dialect]") {
+  // 40 moves along 60 degrees of a circle of radius 20 mm, after a code of the controller's.
+  auto program = [](const std::string& code) {
+    std::string t = "%\nO1000\nG21 G17 G90 G40\nG0 X0. Y0.\nG43 Z5. H1\nG1 Z-1. F300.\n" + code + "\n";
+    for (int i = 1; i <= 40; ++i) {
+      const double a = (-90 + 60.0 * i / 40) * M_PI / 180;
+      t += fmt::format("X{:.3f} Y{:.3f}\n", 10 + 20 * std::cos(a), 20 + 20 * std::sin(a));
+    }
+    return t + "G0 Z50.\nM30\n%\n";
+  };
+  // Fanuc's AI contour control (G05.1 Q1): read as RS274's quadratic spline, no move after it
+  // was fitted.
+  const CompressResult fanuc = compress_as(shipped("fanuc"), program("G05.1 Q1"), 0.01);
+  CHECK(test::broken_promise(fanuc) == "");
+  CHECK(fanuc.stats.moves_in == 40);
+  CHECK(fanuc.stats.arcs_out >= 1);
+  CHECK(fanuc.output.find("\nG05.1 Q1\nX10.524 Y0.007\nG3 ") != std::string::npos);  // no motion word added
+  CHECK(compress_as(shipped("rs274"), program("G05.1 Q1"), 0.01).stats.moves_in == 0);
+  for (const char* code : {"G05 P10000", "G08 P1"}) {
+    INFO(code);
+    CHECK(compress_as(shipped("fanuc"), program(code), 0.01).stats.arcs_out >= 1);
+  }
+  // Haas's accuracy control: its E is a tolerance, not the extruder.
+  const CompressResult haas = compress_as(shipped("haas"), program("G187 P1 E0.01"), 0.01);
+  CHECK(test::broken_promise(haas) == "");
+  CHECK(haas.stats.arcs_out >= 1);
+  // Under G66 every move calls the macro at its end (a hole at each): none is merged.
+  const std::string holes = "%\nO1001\nG21 G17 G90\nG0 X0. Y0. Z5.\nG1 Z2. F1000.\nG66 P9010 R1. Z-5.\nX10.\nX20.\n"
+                            "X30.\nX40.\nG67\nG0 Z50.\nM30\n%\n";
+  const CompressResult calls = compress_as(shipped("fanuc"), holes, 0.01);
+  CHECK(calls.output == holes);
+  CHECK(compress_as(shipped("rs274"), holes, 0.01).output.find("\nX20.\n") == std::string::npos);
+}
+
 TEST_CASE("a dialect's [arcs.last_turn] names G-codes, each with the clockwise and counter-clockwise codes it stands for",
           "[dialect]") {
   const Dialect d = parse_dialect("name = \"x\"\n[arcs.last_turn]\nG05 = [\"G02\", \"G03\"]\nG15 = [\"G12\", \"G13\"]\n", "x.toml");

@@ -133,7 +133,11 @@ class Emitter {
       bool axes = false;
       const Word* n_word = nullptr;
       for (auto* w = p_.words_begin(b); w != p_.words_end(b); ++w) {
-        if (w->letter == 'G' && !w->is_expr && is_motion_gcode(w->value)) explicit_motion = w->code10();
+        // (A code the dialect reads its own way is no RS274 motion, unless it turns as the last
+        // arc did: Fanuc's G05.1 is a setting, Heidenhain's G05 an arc.)
+        if (w->letter == 'G' && !w->is_expr && is_motion_gcode(w->value) &&
+            (!d().meaning_of('G', w->code10()) || d().turn_reading(w->code10())))
+          explicit_motion = w->code10();
         if (sets_centre_mode(*w)) {
           header_done_ = true;  // the program sets the centre mode itself
           if (out_centres_ != CentresOut::Fixed)
