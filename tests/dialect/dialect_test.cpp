@@ -564,6 +564,13 @@ TEST_CASE("Fanuc's and Haas's smoothing and look-ahead codes set nothing the pat
   const CompressResult haas = compress_as(shipped("haas"), program("G187 P1 E0.01"), 0.01);
   CHECK(test::broken_promise(haas) == "");
   CHECK(haas.stats.arcs_out >= 1);
+  // A code arcpress does not model ends anywhere, whatever axis words its block holds: Haas's
+  // engraving G47 starts at its X/Y, so the move after it, from wherever the text ends, is
+  // kept as written (joined to the arc after it, it would start at X1 Y1).
+  const std::string g47 = "G21 G90 G17\nG0 X0. Y0. Z1.\nG1 Z-0.1 F300.\nG47 P0 (AB) X1. Y1. I0. J0.2 R0.1 Z-0.05 F300. E50.\n"
+                          "G1 X2. Y1.5\nG1 X3. Y1.8\nG1 X4. Y1.9\nG1 X5. Y1.8\nG1 X6. Y1.5\nG0 Z5.\nM30\n";
+  const CompressResult engraved = compress_as(shipped("haas"), g47, 0.05);
+  CHECK(engraved.output.find("\nG1 X2. Y1.5\nG2 X6. Y1.5 ") != std::string::npos);
   // Under G66 every move calls the macro at its end (a hole at each): none is merged.
   const std::string holes = "%\nO1001\nG21 G17 G90\nG0 X0. Y0. Z5.\nG1 Z2. F1000.\nG66 P9010 R1. Z-5.\nX10.\nX20.\n"
                             "X30.\nX40.\nG67\nG0 Z50.\nM30\n%\n";

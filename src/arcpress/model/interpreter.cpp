@@ -71,7 +71,7 @@ class Interpreter {
  private:
   /// What a code the dialect reads its own way ([codes]) did in a block, bit by bit.
   static constexpr uint32_t kOwnSettings = 1, kOwnFrame = 2, kOwnMachine = 4, kOwnPole = 8, kOwnCycleCalls = 16,
-                            kOwnCycleCall = 32, kOwnToolCall = 64;
+                            kOwnCycleCall = 32, kOwnToolCall = 64, kOwnEndsAnywhere = 128;
   /// Reads code `w` of block `bi` as the dialect's `meaning`: what it does that the block's
   /// reading must know goes into `own`; returns the RS274 code it stands for (G20 or G21,
   /// times ten), or -1. (A function of its own, and the block's state passed as bits: the
@@ -87,7 +87,10 @@ class Interpreter {
         forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterOffset, bi);
         return -1;
       case CodeMeaning::Machine: own |= kOwnMachine; return -1;
-      case CodeMeaning::Moves: forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterCodeMove, bi); return -1;
+      case CodeMeaning::Moves:
+        own |= kOwnEndsAnywhere;
+        forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterCodeMove, bi);
+        return -1;
       case CodeMeaning::Pole: own |= kOwnPole; return -1;
       case CodeMeaning::Polar: note_pole_read(bi); break;
       case CodeMeaning::CycleCalls: own |= kOwnCycleCalls; return -1;
@@ -96,6 +99,7 @@ class Interpreter {
     }
     sink_.problem({b.line, w.col}, "E-MODEL-GCODE",
                   fmt::format("{} is not modelled under {}; the block is kept and not fitted", p_->raw(b, w), d_.name));
+    own |= kOwnEndsAnywhere;
     not_modelled(bi);
     return -1;
   }
@@ -323,6 +327,7 @@ class Interpreter {
               sink_.problem({b.line, w->col}, "E-MODEL-GCODE",
                             fmt::format("{} is not modelled; the block is kept and not fitted",
                                         p_->raw(b, *w)));
+              own |= kOwnEndsAnywhere;
               not_modelled(bi);
               break;
           }
@@ -561,6 +566,14 @@ class Interpreter {
         s_.cause_line = at_start ? s_.why[ax].line : b.line;
         break;
       }
+    // A code arcpress does not model, or one that moves the tool where the program does not
+    // say, may end anywhere whatever axis words its block holds (Haas's engraving G47 starts
+    // at its X/Y; Marlin's G26 prints a pattern from its X/Y).
+    if (own & kOwnEndsAnywhere) {
+      for (int ax = 0; ax < kAxisCount; ++ax)
+        if (ax != kE && ((known_after >> ax) & 1u)) set_why(ax, s_.why[ax].reason);
+      known_after &= 1u << kE;
+    }
     if (kind == MoveKind::Other && (s_.motion != 0 || skip)) {  // cycles and skip moves end where they like
       for (int ax : {kX, kY, kZ})
         if ((known_after >> ax) & 1u) set_why(ax, Unfit::UnknownAfterCycle);
