@@ -5,8 +5,11 @@
 // the stages that read programs (model) and write them (emit) consult it instead of
 // branching on a controller's name. A default-constructed Dialect is generic RS274/NGC and
 // equals dialects/rs274.toml.
+#include <algorithm>
+#include <cctype>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "arcpress/core/geometry.hpp"
@@ -163,6 +166,20 @@ struct Dialect {
     for (const TurnReading& t : last_turn)
       if (t.cw10 == code10 || t.ccw10 == code10) return t.cw10 == code10 ? 2 : 3;
     return 0;
+  }
+  /// Whether the extended command on `line` is one of position_keeping_commands (any case).
+  bool keeps_position(std::string_view line) const {
+    if (position_keeping_commands.empty()) return false;
+    size_t i = 0;
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '/')) ++i;
+    size_t e = i;
+    while (e < line.size() && (std::isalnum(static_cast<unsigned char>(line[e])) || line[e] == '_')) ++e;
+    const std::string_view command = line.substr(i, e - i);
+    return std::any_of(position_keeping_commands.begin(), position_keeping_commands.end(), [&](const std::string& n) {
+      return n.size() == command.size() && std::equal(n.begin(), n.end(), command.begin(), [](char x, char y) {
+               return x == std::toupper(static_cast<unsigned char>(y));
+             });
+    });
   }
   const CodeMeaning* meaning_of(char letter, int code10) const {
     for (const CodeReading& c : codes)

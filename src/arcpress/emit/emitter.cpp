@@ -12,6 +12,7 @@
 #include "arcpress/core/deviation.hpp"
 #include "arcpress/core/workers.hpp"
 #include "arcpress/emit/number_format.hpp"
+#include "arcpress/emit/output_habits.hpp"
 
 namespace arcpress {
 namespace {
@@ -28,16 +29,6 @@ int own_decimals(double v, int most) {
   int dec = 0;
   while (dec < most && std::abs(rounded(v, dec) - v) > kSameValue * std::max(1.0, std::abs(v))) ++dec;
   return dec;
-}
-
-bool is_motion_gcode(double v) {
-  int g = Word::code10_of(v);
-  return g == 0 || g == 10 || g == 20 || g == 30 || (g >= 50 && g <= 53) || g == 330 || g == 331 ||
-         (g >= 382 && g <= 385) || g == 730 || g == 760 || (g >= 800 && g <= 890 && g % 10 == 0);
-}
-
-bool moves_axis(char letter) {
-  return std::string_view("XYZABCUVWE").find(letter) != std::string_view::npos;
 }
 
 /// How the input writes its blocks, so new blocks look like their neighbours.
@@ -782,36 +773,6 @@ class Emitter {
 };
 
 }  // namespace
-
-OutputHabits output_habits(const Program& p) {
-  OutputHabits h;
-  size_t padded = 0, plain = 0, whole_point = 0, whole_bare = 0;
-  for (const auto& b : p.blocks) {
-    for (auto* w = p.words_begin(b); w != p.words_end(b); ++w)
-      if (moves_axis(w->letter) && w->decimals == 0 && !w->is_expr && !w->flag) (w->has_point ? whole_point : whole_bare)++;
-  }
-  h.keep_point = whole_point > 0 && whole_bare == 0;
-  for (const auto& b : p.blocks) {
-    for (auto* w = p.words_begin(b); w != p.words_end(b); ++w) {
-      if (w->letter != 'G' || w->is_expr || !is_motion_gcode(w->value)) continue;
-      auto t = p.raw(b, *w);
-      (t.size() >= 3 && t[1] == '0' && t[2] >= '0' && t[2] <= '3') ? ++padded : ++plain;
-    }
-    if (padded + plain > 200) break;
-  }
-  h.padded = padded > plain;
-  // Signs and block ends as most of the program writes them (Heidenhain ISO: "X+10 *").
-  size_t plus = 0, unsigned_positive = 0, ended = 0, open = 0;
-  for (const auto& b : p.blocks) {
-    if (b.kind != BlockKind::Code) continue;
-    (b.block_end ? ended : open)++;
-    for (auto* w = p.words_begin(b); w != p.words_end(b); ++w)
-      if (moves_axis(w->letter) && !w->is_expr && !w->flag && w->value >= 0) (w->plus ? plus : unsigned_positive)++;
-  }
-  h.plus_sign = plus > unsigned_positive;
-  h.block_end = ended > open;
-  return h;
-}
 
 std::string emit_program(const Program& program, const Interpretation& in, const std::vector<Run>& runs,
                          const std::vector<FitResult>& fits, const EmitOptions& options, EmitStats* stats) {

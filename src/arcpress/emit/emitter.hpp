@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "arcpress/dialect/dialect.hpp"
+#include "arcpress/emit/output_habits.hpp"
 #include "arcpress/extract/run.hpp"
 #include "arcpress/fit/primitive.hpp"
 #include "arcpress/lex/block.hpp"
@@ -43,17 +44,6 @@ struct EmitStats {
   std::vector<CopiedLine> copied;
 };
 
-/// Program-wide habits of the input that new blocks copy: G01 or G1, whole numbers as "1." or
-/// "1", positive numbers as "+1" or "1", and blocks ended with " *" (Heidenhain ISO) or not.
-struct OutputHabits {
-  bool padded = false;
-  bool keep_point = false;
-  bool plus_sign = false;
-  bool block_end = false;
-};
-/// The habits of `program` (the first 200 motion words decide G01 or G1; the axis words and
-/// code blocks, the signs and the block end).
-OutputHabits output_habits(const Program& program);
 
 /// Whether `w` sets the arc centre mode (G90.1 or G91.1): the dialect's arc header is then
 /// not written.

@@ -14,22 +14,6 @@
 namespace arcpress {
 namespace {
 
-int axis_of_letter(char c) {
-  switch (c) {
-    case 'X': return kX;
-    case 'Y': return kY;
-    case 'Z': return kZ;
-    case 'A': return kA;
-    case 'B': return kB;
-    case 'C': return kC;
-    case 'U': return kU;
-    case 'V': return kV;
-    case 'W': return kW;
-    case 'E': return kE;
-    default: return -1;
-  }
-}
-
 /// Per letter (from 'A'): whether a controller refuses to see it twice in one block (the
 /// axes, the centre words, R, F and P).
 constexpr auto kOncePerBlock = [] {
@@ -146,22 +130,6 @@ class Interpreter {
     return fmt::format("G{}", rs274 / 10);
   }
 
-  /// Whether the extended command on `line` is one the dialect says moves nothing.
-  bool keeps_position(std::string_view line) const {
-    const auto& names = d_.position_keeping_commands;
-    if (names.empty()) return false;
-    size_t i = 0;
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '/')) ++i;
-    size_t e = i;
-    while (e < line.size() && (std::isalnum(static_cast<unsigned char>(line[e])) || line[e] == '_')) ++e;
-    const std::string_view name = line.substr(i, e - i);
-    return std::any_of(names.begin(), names.end(), [&](const std::string& n) {
-      return n.size() == name.size() && std::equal(n.begin(), n.end(), name.begin(), [](char x, char y) {
-               return x == std::toupper(static_cast<unsigned char>(y));
-             });
-    });
-  }
-
   void block(uint32_t bi, const Block& b) {
     switch (b.kind) {
       case BlockKind::Empty:
@@ -178,7 +146,7 @@ class Interpreter {
         if (b.word_count > 0 && p_->words_begin(b)->letter == 'M' && !p_->words_begin(b)->is_expr &&
             p_->words_begin(b)->code10() != 320)
           return;
-        if (keeps_position(p_->raw(b))) return;
+        if (d_.keeps_position(p_->raw(b))) return;
         forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterControl, bi);
         return;
       default:

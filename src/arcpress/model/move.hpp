@@ -16,6 +16,22 @@ namespace arcpress {
 /// Axis slots, in this order everywhere: X Y Z A B C U V W E.
 enum Axis : int { kX, kY, kZ, kA, kB, kC, kU, kV, kW, kE, kAxisCount };
 inline constexpr char kAxisLetters[kAxisCount] = {'X', 'Y', 'Z', 'A', 'B', 'C', 'U', 'V', 'W', 'E'};
+/// The axis slot of a word's (upper-case) letter, or -1.
+inline constexpr int axis_of_letter(char c) {
+  switch (c) {
+    case 'X': return kX;
+    case 'Y': return kY;
+    case 'Z': return kZ;
+    case 'A': return kA;
+    case 'B': return kB;
+    case 'C': return kC;
+    case 'U': return kU;
+    case 'V': return kV;
+    case 'W': return kW;
+    case 'E': return kE;
+    default: return -1;
+  }
+}
 /// Linear axes scale with G20/G21; rotary A/B/C are degrees in both.
 inline constexpr bool kAxisIsLinear[kAxisCount] = {true, true, true, false, false, false, true, true, true, true};
 using AxisValues = std::array<double, kAxisCount>;
