@@ -54,6 +54,8 @@ class Emitter {
     plus_sign_ = h.plus_sign;
     pole_moved_ = opt.start.pole_maybe_moved ? 0b111u : 0u;
     turn_moved_ = opt.start.turn_maybe_moved;
+    for (const CodeReading& c : d().codes)
+      if (c.letter == 'G' && is_motion_gcode(c.code10 / 10.0) && !d().turn_reading(c.code10)) own_motion_.push_back(c.code10);
     block_end_ = h.block_end;
     in_motion_ = opt.start.in_motion;
     out_motion_ = opt.start.out_motion;
@@ -111,11 +113,11 @@ class Emitter {
   void copy_block(const Block& b) {
     std::string_view raw = p_.raw(b);
     const std::string centre = d().centre_modal ? restate_pole_for_copy(b) : std::string();
-    std::string spelled;
-    int shift_at = 0, shift = 0;  // columns past shift_at move by shift in `spelled`
-    if (!d().last_turn.empty() && spell_turn_for_copy(b, spelled, shift_at)) {
-      shift = int(spelled.size()) - int(raw.size());
-      raw = spelled;
+    int shift_at = 0, shift = 0;  // columns past shift_at move by shift in the spelled text
+    const bool spelled = !d().last_turn.empty() && spell_turn_for_copy(b, spelled_, shift_at);
+    if (spelled) {
+      shift = int(spelled_.size()) - int(raw.size());
+      raw = spelled_;
     }
     auto col_of = [&](const Word& w) { return size_t(int(w.col) + (int(w.col) > shift_at ? shift : 0)); };
     if (b.kind == BlockKind::Code) {
@@ -124,10 +126,9 @@ class Emitter {
       bool axes = false;
       const Word* n_word = nullptr;
       for (auto* w = p_.words_begin(b); w != p_.words_end(b); ++w) {
-        // (A code the dialect reads its own way is no RS274 motion, unless it turns as the last
-        // arc did: Fanuc's G05.1 is a setting, Heidenhain's G05 an arc.)
+        // (A code the dialect reads its own way is no RS274 motion: own_motion_.)
         if (w->letter == 'G' && !w->is_expr && is_motion_gcode(w->value) &&
-            (!d().meaning_of('G', w->code10()) || d().turn_reading(w->code10())))
+            (w->value < 3.5 || std::find(own_motion_.begin(), own_motion_.end(), w->code10()) == own_motion_.end()))
           explicit_motion = w->code10();
         if (sets_centre_mode(*w)) {
           header_done_ = true;  // the program sets the centre mode itself
@@ -139,7 +140,7 @@ class Emitter {
       }
       if (explicit_motion >= 0) in_motion_ = out_motion_ = explicit_motion;
       const bool motion_word = explicit_motion < 0 && axes && in_motion_ != out_motion_ && in_motion_ >= 0;
-      if (motion_word || !centre.empty() || !spelled.empty()) {
+      if (motion_word || !centre.empty() || spelled) {
         const BlockStyle st = style_of(b);
         const Word& last = *(p_.words_end(b) - 1);
         const size_t tail = col_of(last) - 1 + last.length;  // just after the block's last word
@@ -763,6 +764,11 @@ class Emitter {
   /// that codes of Dialect::last_turn read.
   bool turn_moved_ = false;
   size_t turn_next_ = 0;     ///< the next of in_.turn_reads to reach
+  /// RS274's motion codes the dialect reads its own way (Fanuc's G05.1: a setting), which
+  /// are no motion word here; not those that turn as the last arc did (Heidenhain's G05).
+  /// G0 to G3 are always RS274's.
+  std::vector<int> own_motion_;
+  std::string spelled_;  ///< a copied block's text with its code spelled (spell_turn_for_copy())
   bool block_end_ = false;  ///< new blocks end with " *"
   /// The end of a block arcpress writes: " *" where the program's blocks end so.
   void end_block(std::string& s) const {

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <bitset>
 #include <cctype>
 #include <cmath>
 #include <optional>
@@ -31,9 +32,11 @@ class Interpreter {
  public:
   Interpreter(const Dialect& d, DiagnosticSink& sink, const ModalState& start) : d_(d), sink_(sink), s_(start) {
     for (const CodeReading& c : d.codes) {
-      if (c.letter == 'G') own_g_bits_ |= uint64_t(1) << (uint32_t(c.code10) & 63);
-      if (c.letter == 'M') own_m_bits_ |= uint64_t(1) << (uint32_t(c.code10) & 63);
+      if (c.letter == 'G') own_g_.set(uint32_t(c.code10) % kOwnSlots);
+      if (c.letter == 'M') own_m_.set(uint32_t(c.code10) % kOwnSlots);
     }
+    for (const TurnReading& t : d.last_turn)  // (and G02/G03, which set the way too)
+      for (int code10 : {t.code10, t.cw10, t.ccw10, 20, 30}) own_g_.set(uint32_t(code10) % kOwnSlots);
   }
 
   void begin(const Program& p, Interpretation& out) {
@@ -222,11 +225,14 @@ class Interpreter {
         case 'G': {
           int g = w->code10();
           if (g != 10) other_words = true;
-          if (turns_) g = read_turn(g, b, bi, *w);
-          // A code the dialect reads its own way is read as RS274's code of that meaning.
-          if (const CodeMeaning* m = (own_g_bits_ >> (uint32_t(g) & 63) & 1) ? d_.meaning_of('G', g) : nullptr) {
-            g = own_code(*m, b, bi, *w, own);
-            if (g < 0) break;
+          // A code the dialect reads its own way is read as RS274's code of that meaning, one
+          // that turns as the last arc did as the code for that way.
+          if (own_g_[uint32_t(g) % kOwnSlots]) {
+            if (turns_) g = read_turn(g, b, bi, *w);
+            if (const CodeMeaning* m = d_.meaning_of('G', g)) {
+              g = own_code(*m, b, bi, *w, own);
+              if (g < 0) break;
+            }
           }
           switch (g) {
             case 0: case 10: case 20: case 30: motion = g; break;
@@ -304,7 +310,7 @@ class Interpreter {
         case 'M': {
           other_words = true;
           const int m = w->code10();
-          if (const CodeMeaning* own_m = (own_m_bits_ >> (uint32_t(m) & 63) & 1) ? d_.meaning_of('M', m) : nullptr) {
+          if (const CodeMeaning* own_m = own_m_[uint32_t(m) % kOwnSlots] ? d_.meaning_of('M', m) : nullptr) {
             if (const int g = own_code(*own_m, b, bi, *w, own); g >= 0) F().unit_mm = g == 200 ? 25.4 : 1.0, s_.units_told = true;
             break;
           }
@@ -744,9 +750,11 @@ class Interpreter {
   }
 
   const Dialect& d_;
-  /// The G- and M-codes the dialect reads its own way, each a bit at its code (times ten)
-  /// modulo 64: most words are ruled out by one test, not a search of d_.codes.
-  uint64_t own_g_bits_ = 0, own_m_bits_ = 0;
+  /// The G- and M-codes the dialect reads its own way, and those of Dialect::last_turn, each a
+  /// bit at its code (times ten) modulo kOwnSlots: most words are ruled out by one test, not a
+  /// search of d_.codes (a table of 64 sent every G1 to the search behind Marlin's G33).
+  static constexpr uint32_t kOwnSlots = 1024;
+  std::bitset<kOwnSlots> own_g_, own_m_;
   /// The dialect has codes that turn as the last programmed arc did (Dialect::last_turn).
   const bool turns_ = !d_.last_turn.empty();
   DiagnosticSink& sink_;
