@@ -181,6 +181,13 @@ struct Dialect {
              });
     });
   }
+  /// The G-code (times ten) [codes] gives `meaning`, else `rs274` (the units' codes, named in
+  /// W-MODEL-UNITS).
+  int code_for(CodeMeaning meaning, int rs274) const {
+    for (const CodeReading& c : codes)
+      if (c.meaning == meaning) return c.code10;
+    return rs274;
+  }
   const CodeMeaning* meaning_of(char letter, int code10) const {
     for (const CodeReading& c : codes)
       if (c.letter == letter && (letter == 'T' || c.code10 == code10)) return &c.meaning;

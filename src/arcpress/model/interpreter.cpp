@@ -125,14 +125,6 @@ class Interpreter {
     if (!o_->moves.empty() && o_->moves.back().unfit == Unfit::None) o_->moves.back().unfit = Unfit::BeforeUnmodelled;
   }
 
-  /// The G-code that sets units as `meaning` says in the dialect: its own ([codes]), else
-  /// RS274's (`rs274`, times ten).
-  std::string unit_code(CodeMeaning meaning, int rs274) const {
-    for (const CodeReading& c : d_.codes)
-      if (c.meaning == meaning) return c.code10 % 10 ? fmt::format("G{}.{}", c.code10 / 10, c.code10 % 10) : fmt::format("G{}", c.code10 / 10);
-    return fmt::format("G{}", rs274 / 10);
-  }
-
   void block(uint32_t bi, const Block& b) {
     switch (b.kind) {
       case BlockKind::Empty:
@@ -363,12 +355,13 @@ class Interpreter {
       }
     }
     if (length_col > 0 && !s_.units_told) {
+      auto g_name = [](int c10) { return c10 % 10 ? fmt::format("G{}.{}", c10 / 10, c10 % 10) : fmt::format("G{}", c10 / 10); };
       // Read as the frame says (millimetres, unless the dialect starts in inches); said once.
       sink_.warning({b.line, length_col}, "W-MODEL-UNITS",
                     fmt::format("a length before any {} or {}: read in millimetres until the program states its units; a "
                                 "controller set to start in inches reads it 25.4 times larger (--units inch; --units mm, "
                                 "or a printer's --dialect, says it starts in millimetres)",
-                                unit_code(CodeMeaning::Inch, 200), unit_code(CodeMeaning::Mm, 210)));
+                                g_name(d_.code_for(CodeMeaning::Inch, 200)), g_name(d_.code_for(CodeMeaning::Mm, 210))));
       s_.units_told = true;
     }
     // Where the firmware retracts (d_.firmware_retraction), G10 without L and without axis
