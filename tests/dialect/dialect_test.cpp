@@ -576,6 +576,13 @@ TEST_CASE("Fanuc's and Haas's smoothing and look-ahead codes set nothing the pat
                             "X30.\nX40.\nG67\nG0 Z50.\nM30\n%\n";
   const CompressResult calls = compress_as(shipped("fanuc"), holes, 0.01);
   CHECK(calls.output == holes);
+  // (G66's own Z is the macro's argument: the holes are at Z2.)
+  DiagnosticSink sink("h.nc");
+  const Program hp = lex("h.nc", holes, sink);
+  const Interpretation hi = interpret(hp, sink, shipped("fanuc"));
+  REQUIRE(hi.moves.size() == 2 + 4 + 1);
+  CHECK(hi.moves[2].to[kZ] == 2);
+  CHECK(hi.moves[2].known);
   CHECK(compress_as(shipped("rs274"), holes, 0.01).output.find("\nX20.\n") == std::string::npos);
 }
 

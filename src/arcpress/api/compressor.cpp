@@ -216,7 +216,7 @@ struct Compressor::Impl {
       // no such move where the last move is not one either: never between such a move and
       // the lines after it, where a code arcpress does not model keeps it as written (it
       // may go on from it, a rounding say), which it could no longer do from the next
-      // piece. Only a path followed by kMaxPieceBytes of lines with no move is cut there.
+      // piece. Past twice kMaxPieceBytes the piece is cut after any line.
       const bool fittable_line = m >= 0 && in.moves[size_t(m)].fittable();
       const bool last_fittable = !in.moves.empty() && in.moves.back().fittable();
       if (fittable_line && silent && m >= 1) {

@@ -65,6 +65,8 @@ enum class CodeMeaning : uint8_t {
                ///< Unmodelled, and the centre is stated again before it where arcpress's own arcs moved it
   CycleCalls,  ///< from this block on, every move calls the cycle last defined at its end (Heidenhain's M89)
   CycleCall,   ///< calls that cycle at the end of this block's move, or where the tool is, and ends CycleCalls
+  MacroCalls,  ///< as CycleCalls from the next move on; its own block's axis words are the call's
+               ///< arguments, not a place (Fanuc's G66)
   Unmodelled,  ///< not read: the block is kept, not fitted, and the position is known again as after Frame
 };
 

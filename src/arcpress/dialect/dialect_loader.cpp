@@ -303,7 +303,7 @@ Dialect parse_dialect(const std::string& text, const std::string& path) {
       if (!code && !(k == "T" || k == "t"))
         r.fail(key.source(), k, "expected a G- or M-code as the key (\"G70\", \"G54.1\", \"M91\"), or \"T\"");
       const int meaning = r.choice(k, {"inch", "mm", "settings", "frame", "machine", "moves", "pole", "polar", "cycle-calls", "cycle-call",
-                                      "unmodelled"});
+                                      "macro-calls", "unmodelled"});
       d.codes.push_back({code ? code->first : 'T', code ? code->second : 0, CodeMeaning(meaning)});
     }
     r.finish();

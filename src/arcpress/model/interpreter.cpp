@@ -81,6 +81,7 @@ class Interpreter {
       case CodeMeaning::Pole: own |= kOwnPole; return -1;
       case CodeMeaning::Polar: note_pole_read(bi); break;
       case CodeMeaning::CycleCalls: own |= kOwnCycleCalls; return -1;
+      case CodeMeaning::MacroCalls: own |= kOwnCycleCalls | kOwnSettings; return -1;
       case CodeMeaning::CycleCall: own |= kOwnCycleCall; return -1;
       case CodeMeaning::Unmodelled: break;
     }
