@@ -97,6 +97,11 @@ RandomCase random_case(std::span<const uint8_t> bytes) {
         s += fmt::format("N{} G05 X{:+.{}f} Y{:+.{}f} R{:+.{}f} *\n", i, last_x + 2 * r, decimals, last_y + 2 * r,
                          decimals, 2 * r, decimals);
     }
+    // The Sinumerik language: a line of path settings (keywords, read as words of their
+    // block), and a tangential arc CT, which goes on from the move before it.
+    if (c.opt.dialect.name == "sinumerik" && (h & 0x3f) == 0x2e) s += "G642 SOFT FFWON ADIS=0.05\n";
+    if (c.opt.dialect.name == "sinumerik" && (h & 0x3f) == 0x2f)
+      s += fmt::format("CT X{:.3f} Y{:.3f}\n", last_x + step_mm * 5, last_y - step_mm * 3);
     const double px = std::stod(fmt::format("{:.{}f}", x, decimals)), py = std::stod(fmt::format("{:.{}f}", y, decimals));
     if (tnc)
       s += fmt::format("N{} G01 X{:+.{}f} Y{:+.{}f} Z{:+.{}f}", i + 1, x, decimals, y, decimals, z, decimals);

@@ -18,7 +18,7 @@ namespace arcpress::test {
 
 ProgramDiff diff_texts(const std::string& a, const std::string& b, const DiffOptions& opt, const Dialect& dialect) {
   DiagnosticSink sa("a.nc"), sb("b.nc");
-  const Program pa = lex("a.nc", a, sa), pb = lex("b.nc", b, sb);
+  const Program pa = lex("a.nc", a, sa, keywords_read(dialect)), pb = lex("b.nc", b, sb, keywords_read(dialect));
   const Interpretation ia = interpret(pa, sa, dialect), ib = interpret(pb, sb, dialect);
   return diff_programs(pa, ia, pb, ib, opt);
 }

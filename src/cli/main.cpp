@@ -164,8 +164,8 @@ int run_diff(const DiffArgs& d) {
   Dialect dialect = cli::dialect_for(d.dialect, d.dialect_given, d.dialect_file, text_a);
   cli::set_start_units(dialect, d.units);
   DiagnosticSink sa(d.a), sb(d.b);
-  Program pa = lex(d.a, std::move(text_a), sa);
-  Program pb = lex(d.b, std::move(text_b), sb);
+  Program pa = lex(d.a, std::move(text_a), sa, keywords_read(dialect));
+  Program pb = lex(d.b, std::move(text_b), sb, keywords_read(dialect));
   // Two files that are not programs have no paths to compare: never a SAME.
   for (auto [program, sink] : {std::pair{&pa, &sa}, std::pair{&pb, &sb}})
     if (const std::optional<ForeignContent> foreign = foreign_content(*program, true))

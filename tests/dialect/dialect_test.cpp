@@ -28,7 +28,7 @@ namespace {
 const std::vector<std::string> kShipped = {"rs274",   "linuxcnc", "fanuc",  "haas",  "haas-lathe", "mach3",
                                            "mach4",   "grbl",     "grblhal", "siemens", "heidenhain-iso",
                                            "okuma",   "marlin",   "klipper", "reprapfirmware",
-                                           "smoothieware", "prusa"};
+                                           "smoothieware", "prusa", "sinumerik"};
 
 std::vector<std::string> source_dialect_path() { return {ARCPRESS_SOURCE_DIR "/dialects"}; }
 

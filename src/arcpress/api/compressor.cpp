@@ -248,6 +248,7 @@ struct Compressor::Impl {
       take(cur->program.text, spare->program.text);
       take(cur->program.blocks, spare->program.blocks);
       take(cur->program.words, spare->program.words);
+      cur->program.keywords = std::move(spare->program.keywords);
       take(cur->in.moves, spare->in.moves);
       take(cur->in.move_of_block, spare->in.move_of_block);
       spare.reset();
@@ -255,6 +256,7 @@ struct Compressor::Impl {
     cur->index = pieces++;
     gather_bytes = piece_bytes(cur->index);
     cur->program.name = name;
+    if (cur->program.keywords.empty()) cur->program.keywords = keywords_read(opt.dialect);
     reserve_piece(cur->program, cur->in);
     cur->start = reader.state();
     cur->emit = next_emit;

@@ -53,6 +53,8 @@ enum class StartCentres : uint8_t {
 enum class CodeMeaning : uint8_t {
   Inch,        ///< lengths in inches from here (RS274's G20)
   Mm,          ///< lengths in millimetres from here (RS274's G21)
+  Diameter,    ///< X words are diameters from here (RS274's lathe G7; Sinumerik's DIAMON)
+  Radius,      ///< X words are radii from here (RS274's lathe G8; Sinumerik's DIAMOF)
   Settings,    ///< sets something the path does not depend on; its axis words are values, not a
                ///< place, and a T word in its block names a tool without calling it
   Frame,       ///< changes the coordinates (a datum shift, mirroring, rotation, scaling): its axis
@@ -70,11 +72,13 @@ enum class CodeMeaning : uint8_t {
   Unmodelled,  ///< not read: the block is kept, not fitted, and the position is known again as after Frame
 };
 
-/// One code the dialect reads its own way: a G- or M-code, or every T word.
+/// One code the dialect reads its own way: a G- or M-code, every word of a letter (T, D, L),
+/// or a keyword (Sinumerik's `SOFT`, `TRANS`, `MCALL`).
 struct CodeReading {
-  char letter = 'G';  ///< 'G', 'M' or 'T'
-  int code10 = 0;     ///< the code times ten (G70: 700, G54.1: 541); for 'T' unused
+  char letter = 'G';  ///< 'G', 'M', 'T', 'D', 'L', or '&' for a keyword
+  int code10 = 0;     ///< the code times ten (G70: 700, G54.1: 541); 0 for a letter or keyword
   CodeMeaning meaning = CodeMeaning::Unmodelled;
+  std::string keyword;  ///< a keyword's name in upper case
 };
 
 /// A G-code that turns the way the last arc programmed before it turned (Heidenhain's G05 and
@@ -153,8 +157,6 @@ struct Dialect {
   std::vector<std::string> position_keeping_commands;
   /// Codes read otherwise than RS274 reads them ([codes]); the rest as RS274.
   std::vector<CodeReading> codes;
-  /// The meaning the dialect gives the code `letter` `code10` (times ten; any for 'T'), or
-  /// null where it reads it as RS274.
   /// The entry of last_turn for G-code `code10`, or null.
   const TurnReading* turn_reading(int code10) const {
     for (const TurnReading& t : last_turn)
@@ -190,9 +192,20 @@ struct Dialect {
       if (c.meaning == meaning) return c.code10;
     return rs274;
   }
+  /// The meaning the dialect gives code `letter` `code10` (times ten; 0 for every word of a
+  /// letter), or null where it reads it as RS274.
   const CodeMeaning* meaning_of(char letter, int code10) const {
     for (const CodeReading& c : codes)
-      if (c.letter == letter && (letter == 'T' || c.code10 == code10)) return &c.meaning;
+      if (c.letter == letter && c.code10 == code10) return &c.meaning;
+    return nullptr;
+  }
+  /// The meaning of keyword `word` (any case), or null where the dialect reads no such keyword.
+  const CodeMeaning* keyword_meaning(std::string_view word) const {
+    for (const CodeReading& c : codes)
+      if (c.letter == '&' && c.keyword.size() == word.size() &&
+          std::equal(word.begin(), word.end(), c.keyword.begin(),
+                     [](char x, char y) { return std::toupper(static_cast<unsigned char>(x)) == y; }))
+        return &c.meaning;
     return nullptr;
   }
 

@@ -293,18 +293,27 @@ Dialect parse_dialect(const std::string& text, const std::string& path) {
   }
   if (const toml::table* t = top.table("codes")) {
     // CODE = "meaning": each key a G- or M-code as programs write it ("G70", "G54.1", "M91"),
-    // or "T" for every T word.
+    // "T", "D" or "L" for every word of that letter, or a keyword ("SOFT", "TRANS").
     TableReader r(*t, path, "codes.");
     for (auto&& [key, value] : *t) {
       const std::string k(key.str());
       if (value.is_table())
         r.fail(key.source(), k, "a code with a point is quoted (\"G54.1\" = ...): bare, TOML reads it as a table");
+      std::string upper = k;
+      for (char& ch : upper) ch = char(std::toupper(static_cast<unsigned char>(ch)));
       const auto code = code_named(k);
-      if (!code && !(k == "T" || k == "t"))
-        r.fail(key.source(), k, "expected a G- or M-code as the key (\"G70\", \"G54.1\", \"M91\"), or \"T\"");
-      const int meaning = r.choice(k, {"inch", "mm", "settings", "frame", "machine", "moves", "pole", "polar", "cycle-calls", "cycle-call",
+      const bool letter = upper == "T" || upper == "D" || upper == "L";
+      auto alpha = [](char c) { return std::isalpha(static_cast<unsigned char>(c)) != 0; };
+      const bool keyword = upper.size() >= 2 && alpha(upper[0]) && alpha(upper[1]) &&
+                           std::all_of(upper.begin(), upper.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+      if (!code && !letter && !keyword)
+        r.fail(key.source(), k,
+               "expected a G- or M-code as the key (\"G70\", \"G54.1\", \"M91\"), \"T\", \"D\" or \"L\", or a keyword (\"SOFT\")");
+      const int meaning = r.choice(k, {"inch", "mm", "diameter", "radius", "settings", "frame", "machine", "moves", "pole", "polar", "cycle-calls", "cycle-call",
                                       "macro-calls", "unmodelled"});
-      d.codes.push_back({code ? code->first : 'T', code ? code->second : 0, CodeMeaning(meaning)});
+      if (code) d.codes.push_back({code->first, code->second, CodeMeaning(meaning), {}});
+      else if (letter) d.codes.push_back({upper[0], 0, CodeMeaning(meaning), {}});
+      else d.codes.push_back({'&', 0, CodeMeaning(meaning), upper});
     }
     r.finish();
   }

@@ -2,6 +2,7 @@
 #pragma once
 // Blocks: one per input line, holding the parsed words and the exact raw bytes so that a
 // block that is not rewritten is written back byte for byte.
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -11,7 +12,11 @@
 
 namespace arcpress {
 
-/// One address word: a letter and its value. `letter` is upper case.
+/// The letter of a word that is a keyword the program's dialect reads (Program::keywords):
+/// Sinumerik's `SOFT`, `TRANS`, `ADIS=0.05`. Its value is the number after `=`, else 0.
+inline constexpr char kKeywordLetter = '&';
+
+/// One address word: a letter and its value. `letter` is upper case (or kKeywordLetter).
 struct Word {
   double value = 0;      ///< meaningless when is_expr
   uint32_t col = 0;      ///< 1-based column of the letter
@@ -20,7 +25,8 @@ struct Word {
   bool is_expr = false;  ///< value is `[expression]` or `#parameter`: not evaluable here
   uint8_t decimals = 0;  ///< digits written after the decimal point
   bool has_point = false;
-  bool flag = false;     ///< a letter without a number (firmware flags: `M84 X Y E`); value 0
+  bool flag = false;     ///< a letter without a number (firmware flags: `M84 X Y E`), or a keyword with
+                         ///< nothing after it on its line (`MCALL`); value 0
   bool plus = false;     ///< written with a '+' sign (`X+10.5`, Heidenhain's habit)
 
   /// The value as a code number times ten, rounded half away from zero: G90.1 is 901, G1 is
@@ -67,12 +73,22 @@ struct CopiedLine {
   uint32_t block = 0;
 };
 
+/// A word of two letters or more that a dialect reads within a block, beside the address
+/// words (Sinumerik's `G17 G90 G71 G642 SOFT`): lexed as a word of kKeywordLetter, bare or
+/// with a number after `=` (`ADIS=0.05`). Any other such word leaves its line unread (Opaque).
+struct KeywordSpelling {
+  std::string name;        ///< upper case; programs may write it in any case
+  bool takes_call = false; ///< the rest of its line is a call it makes (`MCALL CYCLE81(10,0,2,-5)`), not words
+};
+
 /// A lexed program: the bytes, the blocks and all words (blocks index into `words`).
 struct Program {
   std::string name;  ///< file name for diagnostics
   std::string text;
   std::vector<Block> blocks;
   std::vector<Word> words;
+  /// The keywords its dialect reads (none: a multi-letter word leaves its line unread).
+  std::vector<KeywordSpelling> keywords;
 
   std::string_view raw(const Block& b) const { return std::string_view(text).substr(b.begin, b.length); }
   std::string_view eol(const Block& b) const {
@@ -82,6 +98,11 @@ struct Program {
   const Word* words_end(const Block& b) const { return words.data() + b.first_word + b.word_count; }
   /// First word with `letter` in the block, or nullptr.
   std::string_view raw(const Block& b, const Word& w) const { return raw(b).substr(w.col - 1, w.length); }
+  /// The name of keyword word `w` as written (`SOFT`, `ADIS` of `ADIS=0.05`).
+  std::string_view keyword_name(const Block& b, const Word& w) const {
+    const std::string_view r = raw(b, w);
+    return r.substr(0, std::min(r.find_first_of("= \t"), r.size()));
+  }
   const Word* find(const Block& b, char letter) const {
     for (auto* w = words_begin(b); w != words_end(b); ++w)
       if (w->letter == letter) return w;

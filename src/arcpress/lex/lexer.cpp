@@ -94,8 +94,10 @@ class LineLexer {
       // A letter: an address word, or the start of a multi-letter keyword.
       size_t j = skip_space(i + 1);
       if (i + 1 < n_ && (is_alpha(s_[i + 1]) || s_[i + 1] == '_')) {
-        keyword(i, first_token);
-        return;
+        if (!keyword(i, first_token)) return;
+        first_token = false;
+        i = after_;
+        continue;
       }
       if (upper(c) == 'O' && j < n_ && s_[j] == '<') {  // o<name> ...
         set_kind(BlockKind::Control);
@@ -147,21 +149,57 @@ class LineLexer {
     sink_.problem({b_.line, uint32_t(i + 1)}, code, std::move(msg));
   }
 
-  void keyword(size_t i, bool first_token) {
+  /// The multi-letter word at `i`: one of the dialect's keywords is read as a word (true:
+  /// lexing goes on at after_); flow control makes the line a Macro, a first word an extended
+  /// command, and any other keyword leaves the line unread.
+  bool keyword(size_t i, bool first_token) {
     size_t e = i;
     while (e < n_ && (is_alpha(s_[e]) || is_digit(s_[e]) || s_[e] == '_')) ++e;
     std::string kw;
     for (size_t k = i; k < e; ++k) kw += upper(s_[k]);
+    for (const KeywordSpelling& k : p_.keywords)
+      if (k.name == kw) return dialect_keyword(i, e, k);
     if (kw == "IF" || kw == "WHILE" || kw == "GOTO" || kw == "END" || kw.rfind("END", 0) == 0 ||
         kw.rfind("DO", 0) == 0 || kw == "THEN") {
       set_kind(BlockKind::Macro);
-      return;
+      return false;
     }
     if (first_token && (e >= n_ || is_space(s_[e]) || s_[e] == '=' || s_[e] == ';')) {
       set_kind(BlockKind::HostCommand);  // Klipper/RepRap style extended command
-      return;
+      return false;
     }
     opaque(i, "E-LEX-KEYWORD", fmt::format("unknown keyword '{}'", kw));
+    return false;
+  }
+
+  /// The dialect's keyword `k`, written from `i` to `e`: bare, with a number after `=`, or,
+  /// where it makes a call, with the call after it (which ends the block's words).
+  bool dialect_keyword(size_t i, size_t e, const KeywordSpelling& k) {
+    auto ends_word = [&](size_t q) { return q >= n_ || is_space(s_[q]) || s_[q] == ';'; };
+    const size_t next = skip_space(e);
+    if (k.takes_call) {
+      const bool alone = next >= n_ || s_[next] == ';';
+      if (!push(i, e, kKeywordLetter, 0, false, 0, false, alone)) return false;
+      b_.has_comment = b_.has_comment || (alone && next < n_);
+      set_kind(BlockKind::Code);
+      return false;
+    }
+    if (next < n_ && s_[next] == '=') {
+      size_t q = skip_space(next + 1);
+      bool negative = false;
+      if (q < n_ && (s_[q] == '-' || s_[q] == '+')) negative = s_[q++] == '-';
+      const size_t start = q;
+      const Number n = scan_plain_number(q);
+      if (n.digits > 0 && !n.rescan && ends_word(q)) {
+        const double v = value_of(n, start, q);
+        return push(i, q, kKeywordLetter, negative ? -v : v, false, n.decimals, n.point, false);
+      }
+      opaque(start, "E-LEX-KEYWORD-VALUE", fmt::format("the value of '{}' is not a number", k.name));
+      return false;
+    }
+    if (ends_word(e)) return push(i, e, kKeywordLetter, 0, false, 0, false, true);
+    opaque(e, "E-LEX-KEYWORD", fmt::format("'{}' followed by '{}' is not read", k.name, printable(s_[e])));
+    return false;
   }
 
   /// Lexes the word whose letter is at `i`; `j` is the first non-space after the letter.
@@ -215,15 +253,7 @@ class LineLexer {
       opaque(i, "E-LEX-NUMBER", fmt::format("word '{}' has no number (found {})", letter, found));
       return false;
     }
-    double value;
-    if (!n.slow && n.decimals <= kExactPow10Max) {
-      value = double(n.mant) / kPow10[n.decimals];
-    } else {
-      std::string buf;
-      for (size_t q = start; q < k; ++q)
-        if (s_[q] != ' ' && s_[q] != '\t') buf += s_[q];
-      value = std::strtod(buf.c_str(), nullptr);
-    }
+    const double value = value_of(n, start, k);
     if (!push(i, k, letter, negative ? -value : value, false, n.decimals, n.point, false)) return false;
     p_.words.back().plus = plus;
     return true;
@@ -289,6 +319,15 @@ class LineLexer {
     }
     while (k > start && (s_[k - 1] == ' ' || s_[k - 1] == '\t')) --k;  // trailing blanks are not the number's
     return n;
+  }
+
+  /// The value of number `n`, written at [start, k).
+  double value_of(const Number& n, size_t start, size_t k) const {
+    if (!n.slow && n.decimals <= kExactPow10Max) return double(n.mant) / kPow10[n.decimals];
+    std::string buf;
+    for (size_t q = start; q < k; ++q)
+      if (s_[q] != ' ' && s_[q] != '\t') buf += s_[q];
+    return std::strtod(buf.c_str(), nullptr);
   }
 
   /// Letters without numbers are flags after an M-code or G28/G29/G61 (firmware syntax).
@@ -387,8 +426,10 @@ void lex_line(Program& p, size_t begin, size_t end, uint32_t line, DiagnosticSin
   LineLexer(p, p.blocks.back(), sink).run();
 }
 
-Program lex(std::string name, std::string text, DiagnosticSink& sink) {
-  return lex(std::move(name), std::move(text), sink, Program{}, {});
+Program lex(std::string name, std::string text, DiagnosticSink& sink, std::vector<KeywordSpelling> keywords) {
+  Program source;
+  source.keywords = std::move(keywords);
+  return lex(std::move(name), std::move(text), sink, source, {});
 }
 
 Program lex(std::string name, std::string text, DiagnosticSink& sink, const Program& source,
@@ -396,6 +437,7 @@ Program lex(std::string name, std::string text, DiagnosticSink& sink, const Prog
   Program p;
   p.name = std::move(name);
   p.text = std::move(text);
+  p.keywords = source.keywords;
   p.blocks.reserve(p.text.size() / 24 + 1);
   p.words.reserve(p.text.size() / 6 + 1);
   uint32_t line = 0;

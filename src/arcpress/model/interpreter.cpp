@@ -58,16 +58,19 @@ class Interpreter {
  private:
   /// What a code the dialect reads its own way ([codes]) did in a block, bit by bit.
   static constexpr uint32_t kOwnSettings = 1, kOwnFrame = 2, kOwnMachine = 4, kOwnPole = 8, kOwnCycleCalls = 16,
-                            kOwnCycleCall = 32, kOwnToolCall = 64, kOwnEndsAnywhere = 128;
+                            kOwnCycleCall = 32, kOwnToolCall = 64, kOwnEndsAnywhere = 128, kOwnInch = 256,
+                            kOwnMm = 512, kOwnDiameter = 1024, kOwnRadius = 2048;
   /// Reads code `w` of block `bi` as the dialect's `meaning`: what it does that the block's
   /// reading must know goes into `own`; returns the RS274 code it stands for (G20 or G21,
-  /// times ten), or -1. (A function of its own, and the block's state passed as bits: the
+  /// G7 or G8, times ten), or -1. (A function of its own, and the block's state passed as bits: the
   /// block reader's locals stay out of memory, which a lambda taking them by reference costs
   /// on every block.)
   int own_code(CodeMeaning meaning, const Block& b, uint32_t bi, const Word& w, uint32_t& own) {
     switch (meaning) {
       case CodeMeaning::Inch: return 200;
       case CodeMeaning::Mm: return 210;
+      case CodeMeaning::Diameter: return 70;
+      case CodeMeaning::Radius: return 80;
       case CodeMeaning::Settings: own |= kOwnSettings; return -1;
       case CodeMeaning::Frame:
         own |= kOwnFrame;
@@ -90,6 +93,22 @@ class Interpreter {
     own |= kOwnEndsAnywhere;
     not_modelled(bi);
     return -1;
+  }
+
+  /// The own bit for what RS274 code `g` (own_code(): G20, G21, G7 or G8, times ten, or -1)
+  /// sets, where a code that is no G-code (an M-code, a letter, a keyword) is read as it.
+  static uint32_t own_setting(int g) {
+    return g == 200 ? kOwnInch : g == 210 ? kOwnMm : g == 70 ? kOwnDiameter : g == 80 ? kOwnRadius : 0;
+  }
+
+  /// Reads word `w` of block `bi`, a letter's (D, L) or a keyword's, as the dialect's [codes]
+  /// say, if they name it. (Out of the block reader: few programs have such words.)
+  [[gnu::noinline]] void own_word(const Block& b, uint32_t bi, const Word& w, uint32_t& own) {
+    const CodeMeaning* m = w.letter == kKeywordLetter ? d_.keyword_meaning(p_->keyword_name(b, w)) : d_.meaning_of(w.letter, 0);
+    if (!m) return;
+    // A modal call's keyword with no call after it (Sinumerik's MCALL alone) ends the calls.
+    const CodeMeaning meaning = *m == CodeMeaning::CycleCalls && w.flag ? CodeMeaning::CycleCall : *m;
+    own |= own_setting(own_code(meaning, b, bi, w, own));
   }
 
   /// Where the dialect has codes that turn as the last programmed arc did (Dialect::last_turn):
@@ -304,7 +323,7 @@ class Interpreter {
           other_words = true;
           const int m = w->code10();
           if (const CodeMeaning* own_m = own_m_[uint32_t(m) % kOwnSlots] ? d_.meaning_of('M', m) : nullptr) {
-            if (const int g = own_code(*own_m, b, bi, *w, own); g >= 0) F().unit_mm = g == 200 ? 25.4 : 1.0, s_.units_told = true;
+            own |= own_setting(own_code(*own_m, b, bi, *w, own));
             break;
           }
           if (m == 820) F().e_relative = false;
@@ -346,14 +365,22 @@ class Interpreter {
           if (const CodeMeaning* t = d_.codes.empty() ? nullptr : d_.meaning_of('T', 0); t && *t == CodeMeaning::Moves)
             own |= kOwnToolCall;
           break;
-        case 'L':
+        case 'L':  // G10's table, or a subprogram call (Sinumerik's L10: [codes] L = "moves")
           l_seen = true;
           other_words = true;
+          if (!d_.codes.empty()) own_word(b, bi, *w, own);
           break;
         default:
+          // (Among them a tool's offsets D, its length compensation too on a Sinumerik, and
+          // the dialect's keywords: the lexer reads no others.)
           other_words = true;
+          if ((L == 'D' || L == kKeywordLetter) && !d_.codes.empty()) own_word(b, bi, *w, own);
           break;
       }
+    }
+    if (own & (kOwnInch | kOwnMm | kOwnDiameter | kOwnRadius)) {  // codes that are no G-code, read as G20, G21, G7, G8
+      if (own & (kOwnInch | kOwnMm)) F().unit_mm = (own & kOwnInch) ? 25.4 : 1.0, s_.units_told = true;
+      if (own & (kOwnDiameter | kOwnRadius)) F().diameter_mode = (own & kOwnDiameter) != 0;
     }
     if (length_col > 0 && !s_.units_told) {
       auto g_name = [](int c10) { return c10 % 10 ? fmt::format("G{}.{}", c10 / 10, c10 % 10) : fmt::format("G{}", c10 / 10); };
@@ -781,6 +808,13 @@ void ModalInterpreter::begin(const Program& program, Interpretation& out) { impl
 void ModalInterpreter::step(uint32_t block) { impl_->step(block); }
 const ModalState& ModalInterpreter::state() const { return impl_->state(); }
 void ModalInterpreter::reset(const ModalState& state) { impl_->reset(state); }
+
+std::vector<KeywordSpelling> keywords_read(const Dialect& dialect) {
+  std::vector<KeywordSpelling> out;
+  for (const CodeReading& c : dialect.codes)
+    if (c.letter == '&') out.push_back({c.keyword, c.meaning == CodeMeaning::CycleCalls || c.meaning == CodeMeaning::MacroCalls});
+  return out;
+}
 
 Interpretation interpret(const Program& program, DiagnosticSink& sink, const Dialect& dialect, ModalState* state) {
   Interpretation out;

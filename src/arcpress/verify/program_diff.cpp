@@ -34,13 +34,22 @@ constexpr double kSameCentreShare = 1e-12;
 /// little, few enough that two or more threads have shares to take.
 constexpr size_t kShareSegments = 65536;
 
+/// Whether block `b` holds a keyword of its dialect (Sinumerik's `G642 SOFT`, `TRANS X10`,
+/// `MCALL CYCLE81(...)`, whose call is in no word).
+bool has_keyword(const Program& p, const Block& b) {
+  if (p.keywords.empty()) return false;
+  for (auto* w = p.words_begin(b); w != p.words_end(b); ++w)
+    if (w->letter == kKeywordLetter) return true;
+  return false;
+}
+
 /// The key by which non-motion blocks are compared, written into `key`: their M, T, S
 /// words, a dwell, and their comment (with `comments`), so that units, spacing and modal
 /// G-codes do not count; for blocks that are not ordinary words (`%`, flow control, macros,
-/// host commands), their whole text.
+/// host commands) or that hold a keyword, their whole text.
 void non_motion_key(const Program& p, const Block& b, bool comments, std::string& key) {
   key.clear();
-  if (b.kind != BlockKind::Code && b.kind != BlockKind::Empty) {
+  if ((b.kind != BlockKind::Code && b.kind != BlockKind::Empty) || has_keyword(p, b)) {
     // Tape marks, flow control, macros, host commands, blocks not understood: their text.
     std::string_view raw = p.raw(b);
     while (!raw.empty() && std::isspace(static_cast<unsigned char>(raw.back()))) raw.remove_suffix(1);
@@ -71,7 +80,7 @@ void non_motion_key(const Program& p, const Block& b, bool comments, std::string
 
 /// Whether non_motion_key() of the block is not empty, without building it.
 bool has_non_motion_key(const Program& p, const Block& b, bool comments) {
-  if (b.kind != BlockKind::Code && b.kind != BlockKind::Empty)
+  if ((b.kind != BlockKind::Code && b.kind != BlockKind::Empty) || has_keyword(p, b))
     return p.raw(b).find_first_not_of(" \t\r\n\f\v") != std::string_view::npos;
   for (auto* w = p.words_begin(b); w != p.words_end(b); ++w)
     if (w->letter == 'M' || w->letter == 'T' || w->letter == 'S' ||

@@ -1,0 +1,191 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The Sinumerik language (dialects/sinumerik.toml): its keywords are words of a block, its
+// G70/G71 are units, and what arcpress does not read of it is kept as written.
+#include <catch2/catch.hpp>
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "arcpress/arcpress.hpp"
+#include "arcpress/core/error.hpp"
+#include "arcpress/dialect/dialect_loader.hpp"
+#include "arcpress/lex/lexer.hpp"
+#include "arcpress/model/interpreter.hpp"
+#include "random_program.hpp"
+#include "support.hpp"
+
+using namespace arcpress;
+
+namespace {
+
+Dialect sinumerik() { return find_dialect("sinumerik", {ARCPRESS_SOURCE_DIR "/dialects"}); }
+Dialect rs274() { return find_dialect("rs274", {ARCPRESS_SOURCE_DIR "/dialects"}); }
+
+CompressResult compress_as(const Dialect& d, const std::string& text, double tol_mm) {
+  DiagnosticSink sink;
+  CompressOptions opt;
+  opt.dialect = d;
+  opt.fit.tolerance_mm = tol_mm;
+  return compress("part.mpf", text, opt, sink);
+}
+
+/// `header`, then 40 moves along half a circle of radius `r` (in the program's units) about
+/// (-r, 0), printed to `decimals`, then `after`.
+std::string half_circle(const std::string& header, double r, int decimals, const std::string& after = "") {
+  std::string t = header + "N20 G0 X0 Y0 Z0.2\nN30 G1 Z-0.1 F20\n";
+  for (int i = 1; i <= 40; ++i) {
+    const double a = M_PI * i / 40;
+    t += fmt::format("N{} G1 X{:.{}f} Y{:.{}f}\n", 30 + 10 * i, r * std::cos(a) - r, decimals, r * std::sin(a), decimals);
+  }
+  return t + after + "N500 G0 Z1\nN510 M30\n";
+}
+
+struct Read {
+  Program program;
+  Interpretation in;
+  DiagnosticSink sink{"part.mpf"};
+};
+
+std::unique_ptr<Read> read_as(const Dialect& d, const std::string& text) {
+  auto r = std::make_unique<Read>();
+  r->program = lex("part.mpf", text, r->sink, keywords_read(d));
+  r->in = interpret(r->program, r->sink, d);
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("a Sinumerik header's keywords are words of its block, and its G70 makes every length inches", "[dialect]") {
+  const std::string inch = half_circle("N10 G17 G90 G70 G642 SOFT FFWON\n", 2.0, 4);
+  const auto r = read_as(sinumerik(), inch);
+  CHECK(r->sink.reported() == 0);
+  CHECK(r->sink.warning_count("W-MODEL-UNITS") == 0);
+  REQUIRE(r->program.blocks[0].kind == BlockKind::Code);
+  CHECK(r->program.blocks[0].word_count == 7);
+  REQUIRE(r->in.moves.size() == 1 + 1 + 40 + 1);
+  CHECK(r->in.moves[2].to[kX] == Approx((2.0 * std::cos(M_PI / 40) - 2.0) * 25.4).margin(1e-3));
+  // The band is millimetres: the chords' sagitta is 0.039 mm, so no circle passes within 0.01 mm
+  // of both their ends and their middles; within 0.05 mm, one does.
+  const CompressResult fine = compress_as(sinumerik(), inch, 0.01);
+  CHECK(test::broken_promise(fine) == "");
+  CHECK(fine.stats.arcs_out == 0);
+  const CompressResult coarse = compress_as(sinumerik(), inch, 0.05);
+  CHECK(test::broken_promise(coarse) == "");
+  CHECK(coarse.stats.arcs_out == 1);
+  CHECK(coarse.output.rfind("N10 G17 G90 G70 G642 SOFT FFWON\n", 0) == 0);
+  // Not read so elsewhere: the line is not understood, and the program is taken for millimetres.
+  const auto iso = read_as(rs274(), inch);
+  CHECK(iso->program.blocks[0].kind == BlockKind::Opaque);
+  CHECK(iso->sink.warning_count("E-LEX-KEYWORD") == 1);
+  CHECK(iso->sink.warning_count("W-MODEL-UNITS") == 1);
+  // Where the program never states its units, the warning names the language's own codes.
+  const auto unstated = read_as(sinumerik(), half_circle("N10 G17 G90\n", 50, 3));
+  REQUIRE(unstated->sink.warning_count("W-MODEL-UNITS") == 1);
+  CHECK(unstated->sink.format_all().find("before any G70 or G71") != std::string::npos);
+}
+
+TEST_CASE("a Sinumerik keyword is read bare, in any case, or with a number after '=', and no other keyword is read",
+          "[dialect]") {
+  const auto r = read_as(sinumerik(), "N10 G64 soft\nN20 G641 ADIS=0.05 ADISPOS = 0.1\nN30 G0 X0 Y0 Z1 ; go\n"
+                                      "N40 G641 ADIS=R1\nN50 G0 X0 Y0 Z1 FOO\nN60 SOFT\n");
+  const Program& p = r->program;
+  for (int b : {0, 1, 2, 5}) {
+    INFO(b);
+    CHECK(p.blocks[size_t(b)].kind == BlockKind::Code);
+  }
+  const Word& adis = p.words[p.blocks[1].first_word + 2];
+  CHECK(adis.letter == kKeywordLetter);
+  CHECK(p.keyword_name(p.blocks[1], adis) == "ADIS");
+  CHECK(adis.value == 0.05);
+  CHECK(p.words[p.blocks[1].first_word + 3].value == 0.1);
+  CHECK(p.blocks[3].kind == BlockKind::Opaque);  // a value arcpress does not compute
+  CHECK(r->sink.warning_count("E-LEX-KEYWORD-VALUE") == 1);
+  CHECK(p.blocks[4].kind == BlockKind::Opaque);  // a keyword the dialect does not list
+  CHECK(r->sink.warning_count("E-LEX-KEYWORD") == 1);
+  // Keywords set nothing the path depends on: the position stays known across them.
+  const auto across = read_as(sinumerik(), "N10 G0 X0 Y0 Z5\nN20 G641 ADIS=0.05 SOFT FFWON\nN30 G0 X0 Y0 Z1\n");
+  REQUIRE(across->in.moves.size() == 2);
+  CHECK(across->in.moves[1].known);
+  CHECK_FALSE(read_as(rs274(), "N10 G0 X0 Y0 Z5\nN20 G641 ADIS=0.05 SOFT FFWON\nN30 G0 X0 Y0 Z1\n")->in.moves[1].known);
+}
+
+TEST_CASE("Sinumerik's modal call keeps every move it calls at, and its frames, subprogram calls and tangential arcs "
+          "are not read through",
+          "[dialect]") {
+  // MCALL CYCLE81(...) drills at the end of every move until MCALL alone: none is merged.
+  const std::string holes = "N10 G17 G90 G71\nN20 G0 X0 Y0 Z5\nN30 G1 Z2 F1000\nN40 MCALL CYCLE81(10,0,2,-5)\n"
+                            "N50 X10\nN60 X20\nN70 X30\nN80 X40\nN90 MCALL\nN100 G0 Z50\nN110 M30\n";
+  const CompressResult calls = compress_as(sinumerik(), holes, 0.01);
+  CHECK(calls.output == holes);
+  CHECK(compress_as(rs274(), holes, 0.01).output.find("\nN60 X20\n") == std::string::npos);
+  // A keyword's block is compared whole: a call changed, or a line of settings left out, is a difference.
+  std::string deeper = holes, unsettled = holes;
+  deeper.replace(deeper.find("-5)"), 3, "-8)");
+  unsettled.replace(unsettled.find("N10 G17 G90 G71\n"), 16, "N10 G17 G90 G71 SOFT\n");
+  DiffOptions dopt;
+  CHECK(test::diff_texts(holes, holes, dopt, sinumerik()).verdict(0.01) == ProgramDiff::Verdict::Same);
+  for (const std::string& other : {deeper, unsettled}) {
+    const ProgramDiff d = test::diff_texts(holes, other, dopt, sinumerik());
+    CHECK(d.non_motion_differences >= 1);
+    CHECK(d.verdict(0.01) == ProgramDiff::Verdict::Different);
+  }
+
+  // TRANS shifts the coordinates: its X is the shift, and where the tool is after it is not known.
+  const auto trans = read_as(sinumerik(), "N10 G71 G90\nN20 G0 X0 Y0 Z1\nN30 TRANS X10\nN40 G1 X5 Y5 F100\nN50 G1 X6\n");
+  REQUIRE(trans->in.moves.size() == 3);
+  CHECK_FALSE(trans->in.moves[1].known);
+  CHECK(trans->in.moves[1].unfit == Unfit::UnknownAfterOffset);
+  CHECK(trans->in.moves[2].known);
+
+  // A subprogram call (L10) and a tool's edge (D1) may move the tool.
+  for (const char* call : {"N35 L10\n", "N35 D1\n"}) {
+    INFO(call);
+    const auto sub = read_as(sinumerik(), std::string("N10 G71 G90\nN20 G0 X0 Y0 Z1\nN30 G1 X1 F100\n") + call +
+                                              "N40 G1 X5 Y5\nN50 G1 X6\n");
+    REQUIRE(sub->in.moves.size() == 4);
+    CHECK_FALSE(sub->in.moves[2].known);
+  }
+
+  // CT goes on tangentially from the block before it: that move stays as written.
+  const std::string ct = half_circle("N10 G17 G90 G71\n", 20, 3, "N450 CT X-60 Y-20\n");
+  const CompressResult tangent = compress_as(sinumerik(), ct, 0.05);
+  CHECK(test::broken_promise(tangent) == "");
+  CHECK(tangent.stats.arcs_out >= 1);
+  CHECK(tangent.output.find("\nN430 G1 X-40.000 Y0.000\nN450 CT X-60 Y-20\n") != std::string::npos);
+}
+
+TEST_CASE("under Sinumerik's DIAMON X words are diameters, and the moves are compared, not fitted", "[dialect]") {
+  const std::string lathe = "N10 G18 G90 G71 DIAMON\nN20 G0 X40 Z1\nN30 G1 Z0 F100\nN40 G1 X42 Z-1\nN50 G1 X43 Z-2\n"
+                            "N60 DIAMOF\nN70 G1 X22 Z-3\n";
+  const auto r = read_as(sinumerik(), lathe);
+  REQUIRE(r->in.moves.size() == 5);
+  CHECK(r->in.moves[0].to[kX] == 20);
+  CHECK(r->in.moves[2].unfit == Unfit::DiameterMode);
+  CHECK(r->in.moves[4].to[kX] == 22);
+  CHECK(r->in.moves[4].unfit != Unfit::DiameterMode);
+}
+
+TEST_CASE("a dialect's [codes] take keywords and the letters T, D and L, with what each means", "[dialect]") {
+  const Dialect d = parse_dialect("name = \"x\"\n[codes]\nsoft = \"settings\"\nMCALL = \"cycle-calls\"\nD = \"moves\"\n"
+                                  "DIAMON = \"diameter\"\n",
+                                  "x.toml");
+  REQUIRE(d.keyword_meaning("Soft"));
+  CHECK(*d.keyword_meaning("SOFT") == CodeMeaning::Settings);
+  CHECK(*d.keyword_meaning("diamon") == CodeMeaning::Diameter);
+  CHECK(d.keyword_meaning("BRISK") == nullptr);
+  REQUIRE(d.meaning_of('D', 0));
+  CHECK(*d.meaning_of('D', 0) == CodeMeaning::Moves);
+  const std::vector<KeywordSpelling> k = keywords_read(d);
+  REQUIRE(k.size() == 3);  // (in the order of the names)
+  CHECK(k[0].name == "DIAMON");
+  CHECK(k[1].name == "MCALL");
+  CHECK(k[1].takes_call);
+  CHECK(k[2].name == "SOFT");
+  CHECK_FALSE(k[2].takes_call);
+  try {
+    parse_dialect("name = \"x\"\n[codes]\nS = \"settings\"\n", "x.toml");
+    FAIL("no error");
+  } catch (const Error& e) {
+    CHECK(std::string(e.what()).find("codes.S: expected a G- or M-code") != std::string::npos);
+  }
+}
