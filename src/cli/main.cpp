@@ -254,7 +254,8 @@ int main(int argc, char** argv) {
   CLI::Option* dialect_option =
       app.add_option("--dialect", a.dialect,
                      "Target controller dialect (see 'arcpress dialects'); absent: the one the program names for "
-                     "itself (a slicer's gcode_flavor or FLAVOR line, a Heidenhain ISO program's %NAME G71 * block), else rs274")
+                     "itself (a slicer's gcode_flavor or FLAVOR line, a Heidenhain ISO program's %NAME G71 * block, a "
+                     "Sinumerik program file's %_N_NAME_MPF line), else rs274")
           ->type_name("NAME");
   app.add_option("--dialect-file", a.dialect_file, "Load the dialect from this TOML file instead");
   app.add_option("--arc-format", a.arc_format, "ijk: centre words; r: radius words where the dialect reads them "
@@ -335,7 +336,8 @@ int main(int argc, char** argv) {
       diff_cmd
           ->add_option("--dialect", diff.dialect,
                        "How both programs are read; absent: the dialect A names for itself (a slicer's flavor "
-                       "line, a Heidenhain ISO program's %NAME G71 * block), else rs274")
+                       "line, a Heidenhain ISO program's %NAME G71 * block, a Sinumerik program file's %_N_NAME_MPF "
+                       "line), else rs274")
           ->type_name("NAME");
   diff_cmd->add_option("--dialect-file", diff.dialect_file, "Read both programs with this dialect file");
   diff_cmd->add_option("--units", diff.units,

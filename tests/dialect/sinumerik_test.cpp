@@ -9,6 +9,7 @@
 #include "arcpress/arcpress.hpp"
 #include "arcpress/core/error.hpp"
 #include "arcpress/dialect/dialect_loader.hpp"
+#include "arcpress/dialect/program_flavor.hpp"
 #include "arcpress/lex/lexer.hpp"
 #include "arcpress/model/interpreter.hpp"
 #include "random_program.hpp"
@@ -188,4 +189,27 @@ TEST_CASE("a dialect's [codes] take keywords and the letters T, D and L, with wh
   } catch (const Error& e) {
     CHECK(std::string(e.what()).find("codes.S: expected a G- or M-code") != std::string::npos);
   }
+}
+
+TEST_CASE("a Sinumerik program file names its dialect by its first line or its folder on the control",
+          "[dialect][flavor]") {
+  const auto header = program_flavor("%_N_PART1_MPF\n;$PATH=/_N_MPF_DIR\nN10 G17 G90 G71 SOFT\n");
+  REQUIRE(header);
+  CHECK(header->dialect == "sinumerik");
+  CHECK(header->evidence == "%_N_PART1_MPF");
+  CHECK_FALSE(header->slicer);
+  const auto folder = program_flavor("; part 1\n;$PATH=/_N_WKS_DIR/_N_PLATE_WPD\nN10 G17 G90 G71\n");
+  REQUIRE(folder);
+  CHECK(folder->dialect == "sinumerik");
+  CHECK(folder->line == 2);
+  CHECK(program_flavor("%_N_PART1\nG1 X1\n") == std::nullopt);
+  CHECK(program_flavor("%\nO1000\nG1 X1\n") == std::nullopt);
+  // Without --dialect the command reads it so: its header's keywords and units are read.
+  const auto c = test::run_arcpress("--stats --tolerance 0.05", "%_N_PART1_MPF\n" + half_circle("N10 G17 G90 G70 SOFT\n", 2.0, 4));
+  CHECK(c.exit_code == 0);
+  CHECK(c.err.find("dialect        sinumerik") != std::string::npos);
+  CHECK(c.err.find("by the program's '%_N_PART1_MPF' at line 1") != std::string::npos);
+  CHECK(c.err.find("E-LEX-KEYWORD") == std::string::npos);
+  CHECK(c.err.find("W-MODEL-UNITS") == std::string::npos);
+  CHECK(c.err.find("1 G2/G3") != std::string::npos);
 }

@@ -50,6 +50,14 @@ bool tnc_begin_block(std::string_view text) {
   return !rest.empty() && rest.front() == '*';
 }
 
+/// Whether `text` is the first line a Sinumerik control writes in a program file it passes
+/// on, `%_N_PART1_MPF` (a main program; `_SPF` a subprogram).
+bool sinumerik_file_header(std::string_view text) {
+  if (text.size() < 9 || text.substr(0, 4) != "%_N_") return false;
+  const std::string_view tail = text.substr(text.size() - 4);
+  return tail == "_MPF" || tail == "_SPF";
+}
+
 }  // namespace
 
 std::optional<ProgramFlavor> program_flavor(std::string_view program) {
@@ -65,9 +73,11 @@ std::optional<ProgramFlavor> program_flavor(std::string_view program) {
     if (first && !text.empty()) {
       first = false;
       if (tnc_begin_block(text)) return ProgramFlavor{"heidenhain-iso", std::string(text), line, false};
+      if (sinumerik_file_header(text)) return ProgramFlavor{"sinumerik", std::string(text), line, false};
     }
     if (text.empty() || text.front() != ';') continue;
     const std::string l = lower(text);
+    if (l.rfind(";$path=/_n_", 0) == 0) return ProgramFlavor{"sinumerik", std::string(text), line, false};
     std::string flavor;
     if (l.rfind(";flavor:", 0) == 0) {  // Cura
       flavor = lower(trimmed(std::string_view(l).substr(8)));

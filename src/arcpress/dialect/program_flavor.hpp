@@ -26,7 +26,9 @@ struct ProgramFlavor {
 /// The first flavor line of `program`: the shipped dialect it maps to without doubt, or an
 /// empty dialect where the flavor is one that several firmwares answer to (RepRap/Sprinter);
 /// heidenhain-iso where the program's first line is a TNC program's begin block (`%NAME G71 *`
-/// or `G70`); nothing where the program has neither.
+/// or `G70`); sinumerik where it is a Sinumerik program file's (`%_N_PART1_MPF`), or where a
+/// line gives its folder on the control (`;$PATH=/_N_MPF_DIR`); nothing where the program has
+/// none of them.
 std::optional<ProgramFlavor> program_flavor(std::string_view program);
 
 /// The dialects a flavor line maps to, for a message that says what to pass instead.
