@@ -21,6 +21,7 @@ namespace {
 
 Dialect sinumerik() { return find_dialect("sinumerik", {ARCPRESS_SOURCE_DIR "/dialects"}); }
 Dialect rs274() { return find_dialect("rs274", {ARCPRESS_SOURCE_DIR "/dialects"}); }
+Dialect shipped_siemens_iso() { return find_dialect("siemens", {ARCPRESS_SOURCE_DIR "/dialects"}); }
 
 CompressResult compress_as(const Dialect& d, const std::string& text, double tol_mm) {
   DiagnosticSink sink;
@@ -153,6 +154,35 @@ TEST_CASE("Sinumerik's modal call keeps every move it calls at, and its frames, 
   CHECK(test::broken_promise(tangent) == "");
   CHECK(tangent.stats.arcs_out >= 1);
   CHECK(tangent.output.find("\nN430 G1 X-40.000 Y0.000\nN450 CT X-60 Y-20\n") != std::string::npos);
+}
+
+TEST_CASE("a Sinumerik arc's CR= is its radius, as RS274's R, and arcpress writes none", "[dialect]") {
+  // From (20, 0) a quarter circle of radius 20 about the origin, then a line on along Y.
+  const std::string cr = "N10 G17 G90 G71\nN20 G0 X20 Y-5 Z0\nN30 G1 Y0 F500\nN40 G3 X0 Y20 CR=20\n"
+                         "N50 G1 X-1 Y20\nN60 G1 X-2 Y20\n";
+  const auto r = read_as(sinumerik(), cr);
+  CHECK(r->sink.reported() == 0);
+  REQUIRE(r->in.moves.size() == 5);
+  CHECK(r->in.moves[2].known);
+  CHECK(r->in.moves[2].center.norm() == Approx(0).margin(1e-9));
+  CHECK(r->in.moves[3].known);  // the position is known after it
+  CHECK(read_as(shipped_siemens_iso(), cr)->in.moves.size() == 4);  // ISO mode: a line not understood
+  // Over half a turn, CR is negative: the centre lies beyond the chord.
+  const auto big = read_as(sinumerik(), "N10 G17 G90 G71\nN20 G0 X20 Y0 Z0\nN30 G3 X0 Y-20 CR=-20 F500\n");
+  REQUIRE(big->in.moves.size() == 2);
+  CHECK(big->in.moves[1].center.norm() == Approx(0).margin(1e-9));
+  // R1..R99 are parameters there: R-form arcs are never written.
+  CompressOptions opt;
+  opt.dialect = sinumerik();
+  opt.arc_format = ArcFormat::Radius;
+  DiagnosticSink sink;
+  CHECK_THROWS_AS(compress("part.mpf", cr, opt, sink), Error);
+  try {
+    parse_dialect("name = \"x\"\n[codes]\nG5 = \"arc-radius\"\n", "x.toml");
+    FAIL("no error");
+  } catch (const Error& e) {
+    CHECK(std::string(e.what()).find("is a keyword's meaning") != std::string::npos);
+  }
 }
 
 TEST_CASE("under Sinumerik's DIAMON X words are diameters, and the moves are compared, not fitted", "[dialect]") {

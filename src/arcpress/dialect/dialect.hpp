@@ -70,6 +70,7 @@ enum class CodeMeaning : uint8_t {
   MacroCalls,  ///< as CycleCalls from the next move on; its own block's axis words are the call's
                ///< arguments, not a place (Fanuc's G66)
   Unmodelled,  ///< not read: the block is kept, not fitted, and the position is known again as after Frame
+  ArcRadius,   ///< a keyword whose value is the arc's radius, as RS274's R word (Sinumerik's CR=5)
 };
 
 /// One code the dialect reads its own way: a G- or M-code, every word of a letter (T, D, L),

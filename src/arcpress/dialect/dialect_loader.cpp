@@ -310,7 +310,9 @@ Dialect parse_dialect(const std::string& text, const std::string& path) {
         r.fail(key.source(), k,
                "expected a G- or M-code as the key (\"G70\", \"G54.1\", \"M91\"), \"T\", \"D\" or \"L\", or a keyword (\"SOFT\")");
       const int meaning = r.choice(k, {"inch", "mm", "diameter", "radius", "settings", "frame", "machine", "moves", "pole", "polar", "cycle-calls", "cycle-call",
-                                      "macro-calls", "unmodelled"});
+                                      "macro-calls", "unmodelled", "arc-radius"});
+      if (CodeMeaning(meaning) == CodeMeaning::ArcRadius && (code || letter))
+        r.fail(key.source(), k, "\"arc-radius\" is a keyword's meaning (CR = \"arc-radius\"): its value is the radius");
       if (code) d.codes.push_back({code->first, code->second, CodeMeaning(meaning), {}});
       else if (letter) d.codes.push_back({upper[0], 0, CodeMeaning(meaning), {}});
       else d.codes.push_back({'&', 0, CodeMeaning(meaning), upper});

@@ -59,7 +59,7 @@ class Interpreter {
   /// What a code the dialect reads its own way ([codes]) did in a block, bit by bit.
   static constexpr uint32_t kOwnSettings = 1, kOwnFrame = 2, kOwnMachine = 4, kOwnPole = 8, kOwnCycleCalls = 16,
                             kOwnCycleCall = 32, kOwnToolCall = 64, kOwnEndsAnywhere = 128, kOwnInch = 256,
-                            kOwnMm = 512, kOwnDiameter = 1024, kOwnRadius = 2048;
+                            kOwnMm = 512, kOwnDiameter = 1024, kOwnRadius = 2048, kOwnArcRadius = 4096;
   /// Reads code `w` of block `bi` as the dialect's `meaning`: what it does that the block's
   /// reading must know goes into `own`; returns the RS274 code it stands for (G20 or G21,
   /// G7 or G8, times ten), or -1. (A function of its own, and the block's state passed as bits: the
@@ -86,6 +86,7 @@ class Interpreter {
       case CodeMeaning::CycleCalls: own |= kOwnCycleCalls; return -1;
       case CodeMeaning::MacroCalls: own |= kOwnCycleCalls | kOwnSettings; return -1;
       case CodeMeaning::CycleCall: own |= kOwnCycleCall; return -1;
+      case CodeMeaning::ArcRadius: own |= kOwnArcRadius; return -1;
       case CodeMeaning::Unmodelled: break;
     }
     sink_.problem({b.line, w.col}, "E-MODEL-GCODE",
@@ -108,6 +109,7 @@ class Interpreter {
     if (!m) return;
     // A modal call's keyword with no call after it (Sinumerik's MCALL alone) ends the calls.
     const CodeMeaning meaning = *m == CodeMeaning::CycleCalls && w.flag ? CodeMeaning::CycleCall : *m;
+    if (meaning == CodeMeaning::ArcRadius) own_radius_ = number(w);
     own |= own_setting(own_code(meaning, b, bi, w, own));
   }
 
@@ -378,6 +380,7 @@ class Interpreter {
           break;
       }
     }
+    if (own & kOwnArcRadius) r_seen = true, r_value = own_radius_, other_words = true;
     if (own & (kOwnInch | kOwnMm | kOwnDiameter | kOwnRadius)) {  // codes that are no G-code, read as G20, G21, G7, G8
       if (own & (kOwnInch | kOwnMm)) F().unit_mm = (own & kOwnInch) ? 25.4 : 1.0, s_.units_told = true;
       if (own & (kOwnDiameter | kOwnRadius)) F().diameter_mode = (own & kOwnDiameter) != 0;
@@ -771,6 +774,7 @@ class Interpreter {
   }
 
   const Dialect& d_;
+  double own_radius_ = 0;  ///< the value of the block's keyword read as the arc's radius (kOwnArcRadius)
   /// The G- and M-codes the dialect reads its own way, and those of Dialect::last_turn, each a
   /// bit at its code (times ten) modulo kOwnSlots: most words are ruled out by one test, not a
   /// search of d_.codes (a table of 64 sent every G1 to the search behind Marlin's G33).
