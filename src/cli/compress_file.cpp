@@ -48,7 +48,7 @@ std::string exe_dir() { return platform::program_folder(); }
 /// `--dialect` where `name_given`), or else the one the program names for itself (a
 /// slicer's flavor line), or else `name` (the default). `why` says which, for --stats.
 Dialect dialect_for(const std::string& name, bool name_given, const std::string& file, std::string_view program,
-                    std::string_view tail, std::string* why) {
+                    std::string_view path, std::string_view tail, std::string* why) {
   std::string reason = !file.empty() ? "--dialect-file" : name_given ? "--dialect" : "the default";
   std::string picked = name;
   bool slicer_program = false;  // a slicer's flavor line: a printer's program, in millimetres
@@ -70,6 +70,9 @@ Dialect dialect_for(const std::string& name, bool name_given, const std::string&
         picked = flavor->dialect;
         reason = where;
       }
+    } else if (const std::string by_extension = dialect_of_extension(path); !by_extension.empty()) {
+      picked = by_extension;
+      reason = fmt::format("the file's extension ({})", path.substr(path.find_last_of('.')));
     }
   }
   if (why) *why = reason;
@@ -142,7 +145,7 @@ int compress_file(const CompressArgs& a, FileReport& report, std::atomic<size_t>
   }
   const std::string name = a.input == "-" ? "<stdin>" : a.input;
   std::string why_dialect;
-  opt.dialect = dialect_for(a.dialect, a.dialect_given, a.dialect_file, chunk,
+  opt.dialect = dialect_for(a.dialect, a.dialect_given, a.dialect_file, chunk, a.input == "-" ? "" : a.input,
                             head == 0 || chunk.size() < head ? std::string() : input.tail(kFlavorBytes), &why_dialect);
   set_start_units(opt.dialect, a.units);
   if (opt.band == CompressOptions::Band::Executed) require_executed_rule(opt.dialect, "--band executed");

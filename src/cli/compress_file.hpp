@@ -55,10 +55,11 @@ std::string diagnostics_text(std::initializer_list<const DiagnosticSink*> sinks)
 
 /// The dialect to read `program` with: the one the command line names (`--dialect-file`,
 /// `--dialect` where `name_given`), or else the one the program names for itself (a
-/// slicer's flavor line, at its start or in `tail`, its end), or else `name`. `why` says which.
-/// A program with a slicer's flavor line starts in millimetres, as every printer firmware does.
+/// slicer's flavor line, at its start or in `tail`, its end), or else the one the extension of
+/// `path`, the file it is read from, names (dialect_of_extension()), or else `name`. `why` says
+/// which. A program with a slicer's flavor line starts in millimetres, as every printer firmware does.
 Dialect dialect_for(const std::string& name, bool name_given, const std::string& file, std::string_view program,
-                    std::string_view tail = {}, std::string* why = nullptr);
+                    std::string_view path, std::string_view tail = {}, std::string* why = nullptr);
 
 /// Throws Error(kExitInput), naming `option`, unless `dialect` names the arc segmentation
 /// its firmware moves along.

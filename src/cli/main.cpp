@@ -161,7 +161,7 @@ int run_compress(const cli::CompressArgs& a) {
 int run_diff(const DiffArgs& d) {
   std::string text_a = cli::read_input(d.a), text_b = cli::read_input(d.b);
   // Both programs are read the same way, in the dialect A would be compressed for.
-  Dialect dialect = cli::dialect_for(d.dialect, d.dialect_given, d.dialect_file, text_a);
+  Dialect dialect = cli::dialect_for(d.dialect, d.dialect_given, d.dialect_file, text_a, d.a == "-" ? "" : d.a);
   cli::set_start_units(dialect, d.units);
   DiagnosticSink sa(d.a), sb(d.b);
   Program pa = lex(d.a, std::move(text_a), sa, keywords_read(dialect));
@@ -255,7 +255,7 @@ int main(int argc, char** argv) {
       app.add_option("--dialect", a.dialect,
                      "Target controller dialect (see 'arcpress dialects'); absent: the one the program names for "
                      "itself (a slicer's gcode_flavor or FLAVOR line, a Heidenhain ISO program's %NAME G71 * block, a "
-                     "Sinumerik program file's %_N_NAME_MPF line), else rs274")
+                     "Sinumerik program file's %_N_NAME_MPF line or .mpf/.spf extension), else rs274")
           ->type_name("NAME");
   app.add_option("--dialect-file", a.dialect_file, "Load the dialect from this TOML file instead");
   app.add_option("--arc-format", a.arc_format, "ijk: centre words; r: radius words where the dialect reads them "
@@ -337,7 +337,7 @@ int main(int argc, char** argv) {
           ->add_option("--dialect", diff.dialect,
                        "How both programs are read; absent: the dialect A names for itself (a slicer's flavor "
                        "line, a Heidenhain ISO program's %NAME G71 * block, a Sinumerik program file's %_N_NAME_MPF "
-                       "line), else rs274")
+                       "line or .mpf/.spf extension), else rs274")
           ->type_name("NAME");
   diff_cmd->add_option("--dialect-file", diff.dialect_file, "Read both programs with this dialect file");
   diff_cmd->add_option("--units", diff.units,

@@ -242,4 +242,20 @@ TEST_CASE("a Sinumerik program file names its dialect by its first line or its f
   CHECK(c.err.find("E-LEX-KEYWORD") == std::string::npos);
   CHECK(c.err.find("W-MODEL-UNITS") == std::string::npos);
   CHECK(c.err.find("1 G2/G3") != std::string::npos);
+  // A program that names nothing itself is read as its file's extension says: .mpf, .spf.
+  CHECK(dialect_of_extension("/cam/out/PART1.MPF") == "sinumerik");
+  CHECK(dialect_of_extension("sub.spf") == "sinumerik");
+  CHECK(dialect_of_extension("part.nc").empty());
+  CHECK(dialect_of_extension("dir.mpf/part").empty());
+  const test::TempDir d("sinumerik-ext");
+  test::write_file(d / "part1.mpf", half_circle("N10 G17 G90 G70 SOFT\n", 2.0, 4));
+  test::write_file(d / "part1.nc", half_circle("N10 G17 G90 G70 SOFT\n", 2.0, 4));
+  const auto mpf = test::run_arcpress("'" + (d / "part1.mpf").string() + "' -o '" + (d / "o1").string() +
+                                      "' --stats --tolerance 0.05");
+  CHECK(mpf.exit_code == 0);
+  CHECK(mpf.err.find("by the file's extension (.mpf)") != std::string::npos);
+  CHECK(mpf.err.find("E-LEX-KEYWORD") == std::string::npos);
+  const auto nc = test::run_arcpress("'" + (d / "part1.nc").string() + "' -o '" + (d / "o2").string() +
+                                     "' --stats --tolerance 0.05");
+  CHECK(nc.err.find("dialect        rs274") != std::string::npos);
 }

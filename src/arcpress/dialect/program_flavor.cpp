@@ -94,6 +94,13 @@ std::optional<ProgramFlavor> program_flavor(std::string_view program) {
   return std::nullopt;
 }
 
+std::string dialect_of_extension(std::string_view path) {
+  const size_t dot = path.find_last_of('.');
+  if (dot == std::string_view::npos || path.find_first_of("/\\", dot) != std::string_view::npos) return {};
+  const std::string ext = lower(path.substr(dot + 1));
+  return ext == "mpf" || ext == "spf" ? "sinumerik" : std::string();
+}
+
 std::vector<std::string> flavor_dialects() {
   std::vector<std::string> out;
   for (const auto& [name, dialect] : kFlavors)

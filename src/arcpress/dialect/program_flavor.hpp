@@ -31,6 +31,11 @@ struct ProgramFlavor {
 /// none of them.
 std::optional<ProgramFlavor> program_flavor(std::string_view program);
 
+/// The shipped dialect a program file's extension names where the program names none itself:
+/// sinumerik for a Sinumerik main or subprogram file (`part.mpf`, `part.spf`, any case);
+/// empty for any other.
+std::string dialect_of_extension(std::string_view path);
+
 /// The dialects a flavor line maps to, for a message that says what to pass instead.
 std::vector<std::string> flavor_dialects();
 
