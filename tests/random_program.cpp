@@ -140,8 +140,17 @@ std::string broken_promise(const CompressResult& r) {
 }
 
 std::string text_promise(const std::string& text) {
+  // Read as RS274, and as a controller whose keywords are words of a block (the Sinumerik's).
+  static const Dialect sinumerik = find_dialect("sinumerik", dialect_search_path(""));
+  for (const Dialect& d : {Dialect{}, sinumerik})
+    if (std::string broken = text_promise(text, d); !broken.empty()) return d.name + ": " + broken;
+  return {};
+}
+
+std::string text_promise(const std::string& text, const Dialect& dialect) {
   CompressOptions opt;
   opt.threads = 1;
+  opt.dialect = dialect;
   {
     DiagnosticSink sink("fuzz.nc");
     CompressOptions keep = opt;
@@ -163,8 +172,8 @@ std::string text_promise(const std::string& text) {
                          fmt::join(r.check.findings, "; "));
   }
   DiagnosticSink sa("a.nc"), sb("b.nc");
-  const Program pa = lex("a.nc", text, sa), pb = lex("b.nc", text, sb);
-  const Interpretation ia = interpret(pa, sa), ib = interpret(pb, sb);
+  const Program pa = lex("a.nc", text, sa, keywords_read(dialect)), pb = lex("b.nc", text, sb, keywords_read(dialect));
+  const Interpretation ia = interpret(pa, sa, dialect), ib = interpret(pb, sb, dialect);
   DiffOptions dopt;
   dopt.threads = 1;
   ProgramDiff d;

@@ -36,5 +36,8 @@ std::string broken_promise(const CompressResult& r);
 /// refused with diagnostics or written inside the band; and `arcpress diff` never finds it
 /// different from itself (the same, or incomplete where moves cannot be placed).
 std::string text_promise(const std::string& text);
+/// The same, the program read as `dialect`'s controller reads it (text_promise() reads it as
+/// RS274 and as the Sinumerik language, whose keywords are words of a block).
+std::string text_promise(const std::string& text, const Dialect& dialect);
 
 }  // namespace arcpress::test
