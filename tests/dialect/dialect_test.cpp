@@ -586,6 +586,31 @@ TEST_CASE("Fanuc's and Haas's smoothing and look-ahead codes set nothing the pat
   CHECK(compress_as(shipped("rs274"), holes, 0.01).output.find("\nX20.\n") == std::string::npos);
 }
 
+TEST_CASE("a code that switches a mode shares its block with a move, which is read as RS274 reads it", "[dialect]") {
+  // Exact stop at the end of the block (Fanuc, Haas), continuous path and look-ahead: the
+  // block still moves, and the move after it goes on from there.
+  for (const auto& [name, code] : {std::pair{"fanuc", "G09"}, std::pair{"haas", "G09"}, std::pair{"haas", "G103 P1"},
+                                   std::pair{"sinumerik", "G642"}, std::pair{"sinumerik", "G9"},
+                                   std::pair{"sinumerik", "SOFT"}}) {
+    INFO(name << " " << code);
+    const std::string t = fmt::format("G21 G90 G17\nG0 X0. Y0. Z0.\nG1 X1. F100.\n{} G1 X10. Y5. F500.\nG1 X11. Y6.\nM30\n", code);
+    DiagnosticSink sink("m.nc");
+    const Program p = lex("m.nc", t, sink, keywords_read(shipped(name)));
+    const Interpretation in = interpret(p, sink, shipped(name));
+    REQUIRE(in.moves.size() == 4);
+    CHECK(in.moves[2].to[kX] == 10);
+    CHECK(in.moves[2].feed_mm_min == 500);
+    CHECK(in.moves[3].known);
+  }
+  // A code read as settings holds values: Sinumerik's dwell G4 F2 (seconds) leaves the feed.
+  const std::string dwell = "G71 G90 G17\nG0 X0 Y0 Z0\nG1 X1 F500\nG4 F2\nG1 X2\n";
+  DiagnosticSink sink("d.mpf");
+  const Program p = lex("d.mpf", dwell, sink, keywords_read(shipped("sinumerik")));
+  const Interpretation in = interpret(p, sink, shipped("sinumerik"));
+  REQUIRE(in.moves.size() == 3);
+  CHECK(in.moves[2].feed_mm_min == 500);
+}
+
 TEST_CASE("a dialect's [arcs.last_turn] names G-codes, each with the clockwise and counter-clockwise codes it stands for",
           "[dialect]") {
   const Dialect d = parse_dialect("name = \"x\"\n[arcs.last_turn]\nG05 = [\"G02\", \"G03\"]\nG15 = [\"G12\", \"G13\"]\n", "x.toml");

@@ -55,8 +55,10 @@ enum class CodeMeaning : uint8_t {
   Mm,          ///< lengths in millimetres from here (RS274's G21)
   Diameter,    ///< X words are diameters from here (RS274's lathe G7; Sinumerik's DIAMON)
   Radius,      ///< X words are radii from here (RS274's lathe G8; Sinumerik's DIAMOF)
-  Settings,    ///< sets something the path does not depend on; its axis words are values, not a
-               ///< place, and a T word in its block names a tool without calling it
+  Settings,    ///< sets something the path does not depend on; its axis words and F are values, not a
+               ///< place and a feed, and a T word in its block names a tool without calling it
+  Mode,        ///< switches a mode the path does not depend on (exact stop, look-ahead, smoothing); the
+               ///< rest of its block is read as RS274 reads it: `G09 G01 X10.` moves
   Frame,       ///< changes the coordinates (a datum shift, mirroring, rotation, scaling): its axis
                ///< words are the change's, and the position is known again only once every axis is given
   Machine,     ///< the block's axis words are machine coordinates (RS274's G53)

@@ -72,6 +72,7 @@ class Interpreter {
       case CodeMeaning::Diameter: return 70;
       case CodeMeaning::Radius: return 80;
       case CodeMeaning::Settings: own |= kOwnSettings; return -1;
+      case CodeMeaning::Mode: return -1;
       case CodeMeaning::Frame:
         own |= kOwnFrame;
         forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterOffset, bi);
@@ -411,6 +412,7 @@ class Interpreter {
     bool cycle_here = false;  // a cycle is called at the end of this block's move
     if (own != 0 || s_.cycle_calls) {
       if (own & (kOwnSettings | kOwnFrame)) axis_consumer = true;
+      if (own & kOwnSettings) feed_set = false;  // (its F is one of its values: Sinumerik's dwell G4 F2, in seconds)
       if (own & kOwnMachine) g53 = true;
       if ((own & kOwnToolCall) && !(own & kOwnSettings)) forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterToolChange, bi);
       // A cycle called at this block (M89 in force, or a code that calls it) runs at the end
