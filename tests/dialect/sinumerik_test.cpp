@@ -259,3 +259,22 @@ TEST_CASE("a Sinumerik program file names its dialect by its first line or its f
                                      "' --stats --tolerance 0.05");
   CHECK(nc.err.find("dialect        rs274") != std::string::npos);
 }
+
+TEST_CASE("the Sinumerik sample is read as its extension names, its contour fitted and its calls kept", "[dialect][cli]") {
+  const std::string sample = ARCPRESS_SOURCE_DIR "/samples/pocket.mpf";
+  const test::TempDir d("sinumerik-sample");
+  const std::string out = (d / "pocket.mpf").string();
+  const auto c = test::run_arcpress("'" + sample + "' -o '" + out + "' --stats --tolerance 0.01");
+  REQUIRE(c.exit_code == 0);
+  CHECK(c.err.find("by the file's extension (.mpf)") != std::string::npos);
+  CHECK(c.err.find("warning") == std::string::npos);
+  const std::string written = test::read_file(out);
+  // The rounded rectangle's four corners as arcs, its sides as lines, tangent throughout.
+  CHECK(c.err.find("4 G2/G3") != std::string::npos);
+  CHECK(c.err.find("max kink 0.000 deg") != std::string::npos);
+  // The modal cycle call's holes each stay a block of their own, as does the program's own arc.
+  for (const char* kept : {"\nN1170 MCALL CYCLE81(5,0,2,-6)\nN1180 X-15\nN1190 X-5\nN1200 X5\nN1210 X15\nN1220 MCALL\n",
+                           "\nN1110 G3 X-14 Y-16 CR=4\n"})
+    CHECK(written.find(kept) != std::string::npos);
+  CHECK(test::run_arcpress("diff '" + sample + "' '" + out + "' --tolerance 0.01").exit_code == 0);
+}
