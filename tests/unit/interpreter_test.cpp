@@ -12,12 +12,14 @@ namespace {
 struct Interpreted {
   Program prog;
   Interpretation in;
+  size_t line_r_warnings = 0;  ///< W-MODEL-LINE-R
 };
 Interpreted run(const std::string& text) {
   DiagnosticSink sink;
   Interpreted r;
   r.prog = lex("t.nc", text, sink);
   r.in = interpret(r.prog, sink);
+  r.line_r_warnings = sink.warning_count("W-MODEL-LINE-R");
   return r;
 }
 }  // namespace
@@ -297,4 +299,19 @@ TEST_CASE("two readers read on alike when their positions and offsets differ by 
   b = a;
   b.known |= 1u << kZ;  // Z placed in one, not in the other
   CHECK_FALSE(a.reads_as(b, false));
+}
+
+TEST_CASE("a line's block with an R word ends where the program does not say", "[model]") {
+  // RepRapFirmware's G1 R1 moves to the position saved in slot 1, offset by X/Y/Z; a Fanuc
+  // lathe rounds the corner after G01 X.. R..: the move after starts elsewhere.
+  auto r = run("G21 G90\nG0 X0 Y0 Z1\nG1 X1 Y0 F600\nG1 R1 X0 Y0 Z2\nG1 X2 Y0\nG1 X3 Y0\n");
+  REQUIRE(r.in.moves.size() == 5);
+  CHECK(r.line_r_warnings == 1);
+  CHECK_FALSE(r.in.moves[3].known);
+  CHECK(r.in.moves[4].known);
+  // An arc's R is its radius: the position after it is known.
+  auto arc = run("G21 G90\nG0 X0 Y0 Z0\nG2 X2 Y0 R1 F600\nG1 X3 Y0\n");
+  REQUIRE(arc.in.moves.size() == 3);
+  CHECK(arc.in.moves[2].known);
+  CHECK(arc.line_r_warnings == 0);
 }

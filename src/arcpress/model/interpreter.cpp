@@ -103,6 +103,15 @@ class Interpreter {
     return g == 200 ? kOwnInch : g == 210 ? kOwnMm : g == 70 ? kOwnDiameter : g == 80 ? kOwnRadius : 0;
   }
 
+  /// A G0 or G1 block `b` with an R word: it ends where the program does not say (see block()).
+  [[gnu::noinline]] void line_with_radius(const Block& b, uint32_t& own) {
+    const Word* r = p_->find(b, 'R');
+    sink_.warning({b.line, r ? r->col : 1}, "W-MODEL-LINE-R",
+                  "R in a G0/G1 block: a saved position's number (RepRapFirmware) or a corner rounding after the "
+                  "block (a Fanuc lathe); the block is kept, and the position after it is not known");
+    own |= kOwnEndsAnywhere;
+  }
+
   /// Reads word `w` of block `bi`, a letter's (D, L) or a keyword's, as the dialect's [codes]
   /// say, if they name it. (Out of the block reader: few programs have such words.)
   [[gnu::noinline]] void own_word(const Block& b, uint32_t bi, const Word& w, uint32_t& own) {
@@ -549,6 +558,10 @@ class Interpreter {
       else if (s_.motion == 20) kind = flip ? MoveKind::ArcCCW : MoveKind::ArcCW;
       else if (s_.motion == 30) kind = flip ? MoveKind::ArcCW : MoveKind::ArcCCW;
     }
+    // An R word in a line's block: RS274 gives it no meaning there, RepRapFirmware moves to
+    // a saved position offset by the block's axis words (G1 R1 X0 Y0 Z2), a Fanuc lathe rounds
+    // the corner after the block: where the block ends is not known.
+    if (r_seen && (kind == MoveKind::Line || kind == MoveKind::Rapid)) line_with_radius(b, own);
     // The axes the move moves: those it writes, and an arc's two plane axes, which it
     // moves around the centre whether it writes them or not. An axis it does not move
     // stays where it is, known or not (a 2-D program never sets Z; a lathe never sets Y),
