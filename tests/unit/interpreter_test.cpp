@@ -302,8 +302,9 @@ TEST_CASE("two readers read on alike when their positions and offsets differ by 
 }
 
 TEST_CASE("a line's block with an R word ends where the program does not say", "[model]") {
-  // RepRapFirmware's G1 R1 moves to the position saved in slot 1, offset by X/Y/Z; a Fanuc
-  // lathe rounds the corner after G01 X.. R..: the move after starts elsewhere.
+  // RepRapFirmware's G1 R1 moves to the position saved in slot 1, offset by X/Y/Z; a lathe
+  // that takes direct drawing dimensions rounds the corner after G01 X.. R..: the move after
+  // starts elsewhere.
   auto r = run("G21 G90\nG0 X0 Y0 Z1\nG1 X1 Y0 F600\nG1 R1 X0 Y0 Z2\nG1 X2 Y0\nG1 X3 Y0\n");
   REQUIRE(r.in.moves.size() == 5);
   CHECK(r.line_r_warnings == 1);

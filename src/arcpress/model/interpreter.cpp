@@ -108,7 +108,7 @@ class Interpreter {
     const Word* r = p_->find(b, 'R');
     sink_.warning({b.line, r ? r->col : 1}, "W-MODEL-LINE-R",
                   "R in a G0/G1 block: a saved position's number (RepRapFirmware) or a corner rounding after the "
-                  "block (a Fanuc lathe); the block is kept, and the position after it is not known");
+                  "block (a lathe's direct drawing dimensions); the block is kept, and the position after it is not known");
     own |= kOwnEndsAnywhere;
   }
 
@@ -559,8 +559,8 @@ class Interpreter {
       else if (s_.motion == 30) kind = flip ? MoveKind::ArcCW : MoveKind::ArcCCW;
     }
     // An R word in a line's block: RS274 gives it no meaning there, RepRapFirmware moves to
-    // a saved position offset by the block's axis words (G1 R1 X0 Y0 Z2), a Fanuc lathe rounds
-    // the corner after the block: where the block ends is not known.
+    // a saved position offset by the block's axis words (G1 R1 X0 Y0 Z2), a lathe that takes
+    // direct drawing dimensions rounds the corner after it: where the block ends is not known.
     if (r_seen && (kind == MoveKind::Line || kind == MoveKind::Rapid)) line_with_radius(b, own);
     // The axes the move moves: those it writes, and an arc's two plane axes, which it
     // moves around the centre whether it writes them or not. An axis it does not move
