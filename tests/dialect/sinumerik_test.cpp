@@ -109,6 +109,18 @@ TEST_CASE("a Sinumerik keyword is read bare, in any case, or with a number after
   REQUIRE(across->in.moves.size() == 2);
   CHECK(across->in.moves[1].known);
   CHECK_FALSE(read_as(rs274(), "N10 G0 X0 Y0 Z5\nN20 G641 ADIS=0.05 SOFT FFWON\nN30 G0 X0 Y0 Z1\n")->in.moves[1].known);
+  // A keyword with its arguments in parentheses: a message and the high-speed settings leave
+  // the position known, a swivel of the plane and a drilling cycle where the tool is do not;
+  // a call the dialect does not list leaves its line unread.
+  for (const auto& [line, known] : {std::pair{"MSG(\"Roughing (1)\")", true}, std::pair{"CYCLE832(0.01,_FINISH,1)", true},
+                                    std::pair{"CYCLE800(1,\"\",0,57,0,0,0,0,0,0,0,0,0,1)", false},
+                                    std::pair{"CYCLE81(10,0,2,-5)", false}, std::pair{"POCKET9(1,2)", false}}) {
+    INFO(line);
+    const auto call = read_as(sinumerik(), std::string("N10 G0 X0 Y0 Z5\nN20 ") + line + "\nN30 G0 X0 Y0 Z1\n");
+    REQUIRE(call->in.moves.size() == 2);
+    CHECK(call->in.moves[1].known == known);
+    CHECK((call->program.blocks[1].kind == BlockKind::Opaque) == (std::string(line).rfind("POCKET9", 0) == 0));
+  }
 }
 
 TEST_CASE("Sinumerik's modal call keeps every move it calls at, and its frames, subprogram calls and tangential arcs "
@@ -121,11 +133,14 @@ TEST_CASE("Sinumerik's modal call keeps every move it calls at, and its frames, 
   CHECK(calls.output == holes);
   CHECK(compress_as(rs274(), holes, 0.01).output.find("\nN60 X20\n") == std::string::npos);
   // A keyword's block is compared whole: a call changed, or a line of settings left out, is a difference.
-  std::string deeper = holes, unsettled = holes;
+  std::string deeper = holes, unsettled = holes, faster = holes;
+  faster.replace(faster.find("N10 G17 G90 G71\n"), 16, "N10 G17 G90 G71\nCYCLE832(0.05,_ROUGH,1)\n");
   deeper.replace(deeper.find("-5)"), 3, "-8)");
   unsettled.replace(unsettled.find("N10 G17 G90 G71\n"), 16, "N10 G17 G90 G71 SOFT\n");
   DiffOptions dopt;
   CHECK(test::diff_texts(holes, holes, dopt, sinumerik()).verdict(0.01) == ProgramDiff::Verdict::Same);
+  const std::string finer = std::string(faster).replace(faster.find("0.05,_ROUGH"), 11, "0.01,_FINISH");
+  CHECK(test::diff_texts(faster, finer, dopt, sinumerik()).verdict(0.01) == ProgramDiff::Verdict::Different);
   for (const std::string& other : {deeper, unsettled}) {
     const ProgramDiff d = test::diff_texts(holes, other, dopt, sinumerik());
     CHECK(d.non_motion_differences >= 1);

@@ -74,8 +74,9 @@ struct CopiedLine {
 };
 
 /// A word of two letters or more that a dialect reads within a block, beside the address
-/// words (Sinumerik's `G17 G90 G71 G642 SOFT`): lexed as a word of kKeywordLetter, bare or
-/// with a number after `=` (`ADIS=0.05`). Any other such word leaves its line unread (Opaque).
+/// words (Sinumerik's `G17 G90 G71 G642 SOFT`): lexed as a word of kKeywordLetter, bare, with
+/// a number after `=` (`ADIS=0.05`), or with its arguments in parentheses after it, which
+/// end the block (`CYCLE832(0.01,_FINISH,1)`). Any other such word leaves its line unread (Opaque).
 struct KeywordSpelling {
   std::string name;        ///< upper case; programs may write it in any case
   bool takes_call = false; ///< the rest of its line is a call it makes (`MCALL CYCLE81(10,0,2,-5)`), not words

@@ -172,12 +172,13 @@ class LineLexer {
     return false;
   }
 
-  /// The dialect's keyword `k`, written from `i` to `e`: bare, with a number after `=`, or,
-  /// where it makes a call, with the call after it (which ends the block's words).
+  /// The dialect's keyword `k`, written from `i` to `e`: bare, with a number after `=`, with
+  /// its arguments in parentheses (`CYCLE832(0.01,_FINISH,1)`, `MSG("...")`), or, where it
+  /// makes a call, with the call after it; arguments and a call end the block's words.
   bool dialect_keyword(size_t i, size_t e, const KeywordSpelling& k) {
     auto ends_word = [&](size_t q) { return q >= n_ || is_space(s_[q]) || s_[q] == ';'; };
     const size_t next = skip_space(e);
-    if (k.takes_call) {
+    if (k.takes_call || (next < n_ && s_[next] == '(')) {
       const bool alone = next >= n_ || s_[next] == ';';
       if (!push(i, e, kKeywordLetter, 0, false, 0, false, alone)) return false;
       b_.has_comment = b_.has_comment || (alone && next < n_);
