@@ -22,7 +22,8 @@ std::string random_text(std::mt19937& rng) {
       "G90", "G91", "G90.1", "G91.1", "G92", "G93", "G94", "M3", "M4", "M5", "M82", "M83", "M117 hello", "M486 S1",
       "(note)", "; note", "#1=2", "O100 sub", "%", "/", "*12", "$H", "F600", "S300", "P2", "T1", "N10",
       // The Sinumerik language's keywords, which text_promise() reads under its dialect too.
-      "SOFT", "ADIS=0.5", "G70", "G71", "MCALL CYCLE81(1,2)", "MCALL", "TRANS", "CR=5", "CT", "DIAMON", "L10", "D1"};
+      "SOFT", "ADIS=0.5", "G70", "G71", "MCALL CYCLE81(1,2)", "MCALL", "TRANS", "CR=5", "CT", "DIAMON", "L10", "D1",
+      "CYCLE832(0.01,_FINISH,1)", "MSG(\"a (b)\")", "CYCLE81(10,0,2,-5)", "CYCLE800("};
   static const char axes[] = "XYZAEIJKRF";
   std::uniform_int_distribution<int> pick(0, 99), word(0, int(words.size()) - 1), axis(0, 9), lines(1, 60);
   std::uniform_real_distribution<double> small(-20, 20);
