@@ -201,10 +201,12 @@ TEST_CASE("a Sinumerik arc's CR= is its radius, as RS274's R, and arcpress write
 }
 
 TEST_CASE("under Sinumerik's DIAMON X words are diameters, and the moves are compared, not fitted", "[dialect]") {
-  const std::string lathe = "N10 G18 G90 G71 DIAMON\nN20 G0 X40 Z1\nN30 G1 Z0 F100\nN40 G1 X42 Z-1\nN50 G1 X43 Z-2\n"
-                            "N60 DIAMOF\nN70 G1 X22 Z-3\n";
+  const std::string lathe = "N10 G18 G90 G71 DIAMON\nN15 SETMS(1)\nN20 G0 X40 Z1\nN25 G96 S200 LIMS=3000\nN30 G1 Z0 F100\n"
+                            "N40 G1 X42 Z-1\nN50 G1 X43 Z-2\nN60 DIAMOF\nN70 G1 X22 Z-3\n";
   const auto r = read_as(sinumerik(), lathe);
+  CHECK(r->sink.reported() == 0);  // (the master spindle and its speed limit read as modes)
   REQUIRE(r->in.moves.size() == 5);
+  CHECK(r->in.moves[1].known);
   CHECK(r->in.moves[0].to[kX] == 20);
   CHECK(r->in.moves[2].unfit == Unfit::DiameterMode);
   CHECK(r->in.moves[4].to[kX] == 22);
