@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "arcpress/model/arc_centre.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 
 namespace arcpress {
@@ -46,6 +48,87 @@ RadiusCentre radius_centre(const Vec2& s, const Vec2& e, double r_mm, bool ccw, 
   // G3 with R > 0 (short way round): centre on the left of the chord; G2: on the right.
   const double side = (ccw ? 1.0 : -1.0) * (r_mm >= 0 ? 1.0 : -1.0);
   out.centre = (s + e) / 2 + side * h * left_normal(chord / d);
+  return out;
+}
+
+ArcCentreRead read_arc_centre(const Dialect& d, const Frame& fr, Plane plane, const AxisValues& from,
+                              const AxisValues& target, const ArcWords& words, bool ccw, const Vec3& pole,
+                              uint32_t pole_known, DiagnosticSink& sink, uint32_t line) {
+  ArcCentreRead out;
+  const auto a = axes_of(plane);
+  const double* ijk = words.ijk;
+  const bool* ijk_seen = words.ijk_seen;
+  // I/J/K belong to X/Y/Z respectively.
+  Vec3& c = out.centre;
+  c = Vec3(from[kX], from[kY], from[kZ]);
+  if (words.r_seen) {
+    // A radius shorter than half the chord reaches no circle through both ends; controllers
+    // take one within their radius check as the half circle and refuse the rest.
+    const double allowance_mm = d.radius_abs_mm > 0 ? d.radius_abs_mm : kRadiusAimMm;
+    const double r = words.r_value * fr.unit_mm;
+    const RadiusCentre rc = radius_centre(Vec2(from[a.first], from[a.second]), Vec2(target[a.first], target[a.second]),
+                                          r, ccw, allowance_mm);
+    if (rc.coincident) {
+      sink.warning({line, 1}, "W-MODEL-ARC-R", "R-form arc with coincident end points has no defined centre");
+      out.known = false;
+    } else if (!rc.centre) {
+      sink.problem({line, 1}, "E-MODEL-ARC-RADIUS",
+                    fmt::format("R {:.4f} mm is shorter than half the chord, {:.4f} mm (allowed {:.4f} mm less); "
+                                "no circle joins the end points",
+                                std::abs(r), rc.half_chord_mm, allowance_mm));
+      out.known = false;
+    } else {
+      c[a.first] = rc.centre->x();
+      c[a.second] = rc.centre->y();
+    }
+    return out;
+  }
+  // RS274 reads I/J/K as offsets from the start unless G90.1; a dialect that reads them
+  // as the absolute centre does so unless the program is in incremental mode (G91).
+  if (!ijk_seen[a.first] && !ijk_seen[a.second] && d.centre_modal) {
+    const uint32_t plane_bits = (1u << a.first) | (1u << a.second);
+    out.reads_pole = true;
+    if ((pole_known & plane_bits) == plane_bits) {
+      c[a.first] = pole[a.first];
+      c[a.second] = pole[a.second];
+    } else {
+      sink.problem({line, 1}, "E-MODEL-ARC-CENTRE",
+                    fmt::format("G{} has no centre: neither {} nor {} nor R is given, and the program has set no "
+                                "centre before it; it is kept and not measured",
+                                ccw ? 3 : 2, char('I' + a.first), char('I' + a.second)));
+      out.known = false;
+      return out;
+    }
+  } else if (!ijk_seen[a.first] && !ijk_seen[a.second]) {
+    sink.problem({line, 1}, "E-MODEL-ARC-CENTRE",
+                  fmt::format("G{} has no centre: neither {} nor {} nor R is given; it is kept and not measured",
+                              ccw ? 3 : 2, char('I' + a.first), char('I' + a.second)));
+    out.known = false;
+    return out;
+  }
+  bool absolute = d.centre == CentreReading::Absolute ? fr.absolute : fr.arc_absolute;
+  if (ijk_seen[a.first] || ijk_seen[a.second]) c = ijk_centre(fr, plane, from, ijk, ijk_seen, absolute);
+  // The controller refuses an arc whose end lies off the circle through its start about the
+  // centre by more than its radius check; where it does not check (printers), it goes on.
+  if (d.radius_abs_mm > 0) {
+    const RadiusGap g = radius_gap(d, plane, from, c, target);
+    if (!readable_arc(g)) {
+      // Read the other way (an offset as the centre, or the centre as an offset), where the
+      // program could say which: the radii may agree, and the program rely on a setting.
+      std::string other;
+      if (d.centre == CentreReading::Incremental && d.centre_mode_words) {
+        if (whole_arc(radius_gap(d, plane, from, ijk_centre(fr, plane, from, ijk, ijk_seen, !absolute), target), d))
+          other = fmt::format("; read as {} (G{}), the radii agree: say so in the program, as a controller set "
+                              "the other way reads it",
+                              absolute ? "offsets from the start" : "the absolute centre", absolute ? "91.1" : "90.1");
+      }
+      sink.problem({line, 1}, "E-MODEL-ARC-RADIUS",
+                    fmt::format("the end lies {:.4f} mm off the circle through the start about the centre "
+                                "(read as drawn up to {:.4f} mm){}; the arc is kept and not measured",
+                                g.gap_mm, std::max(g.allowed_mm, kReadRadiusSlackMm), other));
+      out.known = false;
+    }
+  }
   return out;
 }
 

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <optional>
 
+#include "arcpress/core/diagnostic.hpp"
 #include "arcpress/core/geometry.hpp"
 #include "arcpress/dialect/dialect.hpp"
 #include "arcpress/model/move.hpp"
@@ -51,5 +52,29 @@ struct RadiusCentre {
   double half_chord_mm = 0;
 };
 RadiusCentre radius_centre(const Vec2& s, const Vec2& e, double r_mm, bool ccw, double allowance_mm);
+
+/// An arc block's centre words: I/J/K where `ijk_seen` (indexed by X/Y/Z), or the radius R.
+struct ArcWords {
+  const double* ijk = nullptr;
+  const bool* ijk_seen = nullptr;
+  bool r_seen = false;
+  double r_value = 0;  ///< R as written (program units; negative the long way round)
+};
+
+/// What the controller takes for an arc's centre: `known` false where no controller runs the
+/// arc as drawn (no centre, an R too short, an end off the circle past the radius check).
+struct ArcCentreRead {
+  Vec3 centre{0, 0, 0};
+  bool known = true;
+  bool reads_pole = false;  ///< it turns about the centre left in force (Dialect::centre_modal)
+};
+
+/// The centre of an arc in `plane` from `from` to `target` (mm; `ccw` for G3 as RS274 turns)
+/// with `words`, read in `frame` as `dialect`'s controller reads them; where the dialect's
+/// centre is modal and the block has no centre words, about `pole` (the axes `pole_known`
+/// says are known). Problems (E-MODEL-ARC-*, W-MODEL-ARC-R) go to `sink` at `line`.
+ArcCentreRead read_arc_centre(const Dialect& dialect, const Frame& frame, Plane plane, const AxisValues& from,
+                              const AxisValues& target, const ArcWords& words, bool ccw, const Vec3& pole,
+                              uint32_t pole_known, DiagnosticSink& sink, uint32_t line);
 
 }  // namespace arcpress

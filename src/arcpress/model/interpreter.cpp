@@ -669,78 +669,11 @@ class Interpreter {
 
   Vec3 arc_center(const Block& b, const Frame& fr, const AxisValues& target, const double* ijk,
                   const bool* ijk_seen, bool r_seen, double r_value, MoveKind kind, bool& known) {
-    auto a = axes_of(s_.plane);
-    // I/J/K belong to X/Y/Z respectively.
-    Vec3 c(s_.pos[kX], s_.pos[kY], s_.pos[kZ]);
-    if (r_seen) {
-      // A radius shorter than half the chord reaches no circle through both ends; controllers
-      // take one within their radius check as the half circle and refuse the rest.
-      const double allowance_mm = d_.radius_abs_mm > 0 ? d_.radius_abs_mm : kRadiusAimMm;
-      const double r = r_value * fr.unit_mm;
-      const RadiusCentre rc = radius_centre(Vec2(s_.pos[a.first], s_.pos[a.second]), Vec2(target[a.first], target[a.second]),
-                                            r, kind == MoveKind::ArcCCW, allowance_mm);
-      if (rc.coincident) {
-        sink_.warning({b.line, 1}, "W-MODEL-ARC-R", "R-form arc with coincident end points has no defined centre");
-        known = false;
-      } else if (!rc.centre) {
-        sink_.problem({b.line, 1}, "E-MODEL-ARC-RADIUS",
-                      fmt::format("R {:.4f} mm is shorter than half the chord, {:.4f} mm (allowed {:.4f} mm less); "
-                                  "no circle joins the end points",
-                                  std::abs(r), rc.half_chord_mm, allowance_mm));
-        known = false;
-      } else {
-        c[a.first] = rc.centre->x();
-        c[a.second] = rc.centre->y();
-      }
-      return c;
-    }
-    // RS274 reads I/J/K as offsets from the start unless G90.1; a dialect that reads them
-    // as the absolute centre does so unless the program is in incremental mode (G91).
-    if (!ijk_seen[a.first] && !ijk_seen[a.second] && d_.centre_modal) {
-      const uint32_t plane_bits = (1u << a.first) | (1u << a.second);
-      note_pole_read(uint32_t(&b - p_->blocks.data()), true);
-      if ((s_.pole_known & plane_bits) == plane_bits) {
-        c[a.first] = s_.pole[a.first];
-        c[a.second] = s_.pole[a.second];
-      } else {
-        sink_.problem({b.line, 1}, "E-MODEL-ARC-CENTRE",
-                      fmt::format("G{} has no centre: neither {} nor {} nor R is given, and the program has set no "
-                                  "centre before it; it is kept and not measured",
-                                  kind == MoveKind::ArcCW ? 2 : 3, char('I' + a.first), char('I' + a.second)));
-        known = false;
-        return c;
-      }
-    } else if (!ijk_seen[a.first] && !ijk_seen[a.second]) {
-      sink_.problem({b.line, 1}, "E-MODEL-ARC-CENTRE",
-                    fmt::format("G{} has no centre: neither {} nor {} nor R is given; it is kept and not measured",
-                                kind == MoveKind::ArcCW ? 2 : 3, char('I' + a.first), char('I' + a.second)));
-      known = false;
-      return c;
-    }
-    bool absolute = d_.centre == CentreReading::Absolute ? fr.absolute : fr.arc_absolute;
-    if (ijk_seen[a.first] || ijk_seen[a.second]) c = ijk_centre(fr, s_.plane, s_.pos, ijk, ijk_seen, absolute);
-    // The controller refuses an arc whose end lies off the circle through its start about the
-    // centre by more than its radius check; where it does not check (printers), it goes on.
-    if (d_.radius_abs_mm > 0) {
-      const RadiusGap g = radius_gap(d_, s_.plane, s_.pos, c, target);
-      if (!readable_arc(g)) {
-        // Read the other way (an offset as the centre, or the centre as an offset), where the
-        // program could say which: the radii may agree, and the program rely on a setting.
-        std::string other;
-        if (d_.centre == CentreReading::Incremental && d_.centre_mode_words) {
-          if (whole_arc(radius_gap(d_, s_.plane, s_.pos, ijk_centre(fr, s_.plane, s_.pos, ijk, ijk_seen, !absolute), target), d_))
-            other = fmt::format("; read as {} (G{}), the radii agree: say so in the program, as a controller set "
-                                "the other way reads it",
-                                absolute ? "offsets from the start" : "the absolute centre", absolute ? "91.1" : "90.1");
-        }
-        sink_.problem({b.line, 1}, "E-MODEL-ARC-RADIUS",
-                      fmt::format("the end lies {:.4f} mm off the circle through the start about the centre "
-                                  "(read as drawn up to {:.4f} mm){}; the arc is kept and not measured",
-                                  g.gap_mm, std::max(g.allowed_mm, kReadRadiusSlackMm), other));
-        known = false;
-      }
-    }
-    return c;
+    const ArcCentreRead r = read_arc_centre(d_, fr, s_.plane, s_.pos, target, {ijk, ijk_seen, r_seen, r_value},
+                                            kind == MoveKind::ArcCCW, s_.pole, s_.pole_known, sink_, b.line);
+    if (r.reads_pole) note_pole_read(uint32_t(&b - p_->blocks.data()), true);
+    if (!r.known) known = false;
+    return r.centre;
   }
 
   /// Block `bi` reads the centre the dialect's I/J/K left in force: noted, with the words that
