@@ -63,7 +63,8 @@ struct Compressor::Impl {
   };
 
   Impl(std::string n, const CompressOptions& o, DiagnosticSink& s)
-      : name(std::move(n)), opt(o), sink(s), reader(opt.dialect, s, initial_state(opt.dialect)) {
+      : name(std::move(n)), opt(o), sink(s), reader(opt.dialect, s, initial_state(opt.dialect)),
+        keywords(keywords_read(opt.dialect)) {
     const size_t threads = worker_count(opt.threads, size_t(-1));
     limit = kPiecesInFlight * threads;
     total.ok = true;
@@ -248,7 +249,6 @@ struct Compressor::Impl {
       take(cur->program.text, spare->program.text);
       take(cur->program.blocks, spare->program.blocks);
       take(cur->program.words, spare->program.words);
-      cur->program.keywords = std::move(spare->program.keywords);
       take(cur->in.moves, spare->in.moves);
       take(cur->in.move_of_block, spare->in.move_of_block);
       spare.reset();
@@ -256,7 +256,7 @@ struct Compressor::Impl {
     cur->index = pieces++;
     gather_bytes = piece_bytes(cur->index);
     cur->program.name = name;
-    if (cur->program.keywords.empty()) cur->program.keywords = keywords_read(opt.dialect);
+    cur->program.keywords = keywords;
     reserve_piece(cur->program, cur->in);
     cur->start = reader.state();
     cur->emit = next_emit;
@@ -417,6 +417,7 @@ struct Compressor::Impl {
   CompressOptions opt;
   DiagnosticSink& sink;
   ModalInterpreter reader;
+  const std::vector<KeywordSpelling> keywords;  // those the dialect reads, each piece's program's
   std::string pending;          // bytes after the last whole line
   std::unique_ptr<Piece> cur;   // the piece being read
   std::unique_ptr<Piece> spare; // the last piece released, whose buffers the next one reads into
