@@ -108,6 +108,20 @@ constexpr size_t kFlavorPipeBytes = size_t(1) << 16;
 /// How much of the input is read at once.
 constexpr size_t kReadBytes = size_t(1) << 20;
 
+/// Reads the jumps of the program in regular file `path` into `c` before its blocks are
+/// pushed (Compressor::read_jumps()): a jump back to a block is then known in time.
+void read_jumps_ahead(const std::string& path, Compressor& c) {
+  cli::InputFile in(path);
+  std::string text;
+  while (in.read(text, kReadBytes) > 0) {
+    const size_t last = text.rfind('\n');
+    if (last == std::string::npos) continue;  // (a line longer than a read)
+    c.read_jumps(std::string_view(text.data(), last + 1), 0);  // (no line is named: none is late)
+    text.erase(0, last + 1);
+  }
+  c.read_jumps(text, 0);
+}
+
 int compress_file(const CompressArgs& a, FileReport& report, std::atomic<size_t>* read_counter) {
   std::string& log = report.log;
   report.input = a.input;
@@ -152,6 +166,7 @@ int compress_file(const CompressArgs& a, FileReport& report, std::atomic<size_t>
   opt.block_rate = a.stats;
   DiagnosticSink sink(name);
   Compressor compressor(name, opt, sink);
+  if (size && a.input != "-") read_jumps_ahead(a.input, compressor);  // (standard input is read once)
   cli::OutputFile out(out_path);
   report.output = out_path;
   // In a batch, the batch's progress line counts what is read.

@@ -166,6 +166,12 @@ int run_diff(const DiffArgs& d) {
   DiagnosticSink sa(d.a), sb(d.b);
   Program pa = lex(d.a, std::move(text_a), sa, keywords_read(dialect));
   Program pb = lex(d.b, std::move(text_b), sb, keywords_read(dialect));
+  // Each read with the blocks its jumps enter (JumpTargets), as the compressor reads them.
+  for (Program* p : {&pa, &pb}) {
+    auto jumps = std::make_shared<JumpTargets>();
+    jumps->read(p->text, 1);
+    if (jumps->any()) p->jumps = std::move(jumps);
+  }
   // Two files that are not programs have no paths to compare: never a SAME.
   for (auto [program, sink] : {std::pair{&pa, &sa}, std::pair{&pb, &sb}})
     if (const std::optional<ForeignContent> foreign = foreign_content(*program, true))

@@ -100,9 +100,15 @@ struct Compressor::Impl {
       const size_t nl = bytes.find('\n');
       pending.append(bytes.substr(0, nl == std::string_view::npos ? bytes.size() : nl + 1));
       if (nl == std::string_view::npos) return release(false);
-      add_line(pending);
-      pending.clear();
       at = nl + 1;
+    }
+    // The jumps in these lines first: a jump back to a block among them is then in time.
+    if (const size_t last = bytes.rfind('\n'); !jumps_ahead && last != std::string_view::npos && last + 1 > at)
+      read_jumps(bytes.substr(at, last + 1 - at), line + 1 + (pending.empty() ? 0 : 1), false);
+    if (!pending.empty()) {
+      if (!jumps_ahead) read_jumps(pending, line + 1, false);
+      if (!failed) add_line(pending);
+      pending.clear();
     }
     for (size_t nl; !failed && (nl = bytes.find('\n', at)) != std::string_view::npos; at = nl + 1)
       add_line(bytes.substr(at, nl + 1 - at));
@@ -114,6 +120,7 @@ struct Compressor::Impl {
     rethrow();
     if (finished) return;
     finished = true;
+    if (!failed && !pending.empty() && !jumps_ahead) read_jumps(pending, line + 1, false);
     if (!failed && !pending.empty()) add_line(pending);
     pending.clear();
     if (!failed && cur) {
@@ -164,6 +171,35 @@ struct Compressor::Impl {
     ModalState state;
   };
 
+  /// Reads the jumps in `lines` (whole lines from line `first_line`): the blocks they name
+  /// are read as places the program may be entered at. One that names a block already read
+  /// as no such place comes too late, and fails the program, but where `ahead` (the program's
+  /// text read before it is pushed: a file read twice) the lines were not pushed yet.
+  void read_jumps(std::string_view lines, uint32_t first_line, bool ahead) {
+    jumps_ahead = jumps_ahead || ahead;
+    JumpTargets found;
+    found.read(lines, first_line, ahead ? nullptr : &passed);
+    if (!found.any()) return;
+    auto next = jumps ? std::make_shared<JumpTargets>(*jumps) : std::make_shared<JumpTargets>();
+    next->merge(found);
+    jumps = std::move(next);
+    if (cur) cur->program.jumps = jumps;
+    if (const auto& late = found.late()) {
+      sink.error({late->line, 1}, "E-FLOW-JUMP-BACK",
+                 late->computed ? std::string("a jump to a block number the program computes, read after numbered "
+                                              "blocks that were read as no jump's target: their moves may have been "
+                                              "joined with others; give arcpress the program as a file, whose jumps "
+                                              "it reads before its blocks")
+                                : fmt::format("a jump back to N{}, a block read before as no jump's target: its "
+                                              "moves may have been joined with others; give arcpress the program "
+                                              "as a file, whose jumps it reads before its blocks",
+                                              late->number));
+      failed = true;
+      total.ok = false;
+      ready.clear();
+    }
+  }
+
   /// One whole line (with its end of line, or the program's last without).
   void add_line(std::string_view text) {
     if (!cur) open_piece();
@@ -182,6 +218,8 @@ struct Compressor::Impl {
     p.text.append(text);
     lex_line(p, begin, p.text.size(), ++line, sink);
     const uint32_t bi = uint32_t(p.blocks.size() - 1);
+    if (const Block& b = p.blocks[bi]; b.word_count > 0 && p.words[b.first_word].letter == 'N')
+      if (const double n = p.words[b.first_word].value; !jumps || !jumps->enters(n)) passed.pass(n);
     reader.step(bi);
     if (sink.error_count() > 0) {  // strict mode: nothing more is written
       failed = true;
@@ -257,6 +295,7 @@ struct Compressor::Impl {
     gather_bytes = piece_bytes(cur->index);
     cur->program.name = name;
     cur->program.keywords = keywords;
+    cur->program.jumps = jumps;
     reserve_piece(cur->program, cur->in);
     cur->start = reader.state();
     cur->emit = next_emit;
@@ -418,6 +457,9 @@ struct Compressor::Impl {
   DiagnosticSink& sink;
   ModalInterpreter reader;
   const std::vector<KeywordSpelling> keywords;  // those the dialect reads, each piece's program's
+  std::shared_ptr<const JumpTargets> jumps;      // the blocks the program's jumps read so far enter
+  PassedNumbers passed;                          // block numbers read as no jump's target
+  bool jumps_ahead = false;                      // the jumps were read before the program was pushed
   std::string pending;          // bytes after the last whole line
   std::unique_ptr<Piece> cur;   // the piece being read
   std::unique_ptr<Piece> spare; // the last piece released, whose buffers the next one reads into
@@ -477,6 +519,9 @@ auto Compressor::guarded(F&& f) -> decltype(f()) {
 }
 
 void Compressor::push(std::string_view bytes) { guarded([&] { impl_->push(bytes); }); }
+void Compressor::read_jumps(std::string_view lines, uint32_t first_line) {
+  guarded([&] { impl_->read_jumps(lines, first_line, true); });
+}
 size_t Compressor::take(std::string& out) { return guarded([&] { return impl_->take(out); }); }
 void Compressor::finish() { guarded([&] { impl_->finish(); }); }
 const CompressResult& Compressor::result() const { return impl_->total; }

@@ -68,6 +68,12 @@ class Compressor {
   /// after finish(). A call of push(), take() or finish() that throws (a thread that cannot
   /// start, memory) leaves the compressor broken: every later call throws the same.
   void push(std::string_view bytes);
+  /// Reads the jumps of the program (`GOTO 100`, `M99 P100`: JumpTargets) from its text
+  /// ahead of push(), whole lines from line `first_line` on, so that a jump back to a block
+  /// is known before the block is (a program pushed as it comes, from a pipe, fails where a
+  /// jump back names a block already read as none's target: E-FLOW-JUMP-BACK). Once called,
+  /// push() reads no more jumps: the text given here is taken to be the whole program's.
+  void read_jumps(std::string_view lines, uint32_t first_line);
   /// Appends the output finished so far, in order, to `out` and returns how many bytes that
   /// was. Output is final once taken: it is never revised.
   size_t take(std::string& out);

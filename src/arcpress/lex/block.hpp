@@ -4,11 +4,13 @@
 // block that is not rewritten is written back byte for byte.
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "arcpress/core/diagnostic.hpp"
+#include "arcpress/lex/jump_targets.hpp"
 
 namespace arcpress {
 
@@ -90,6 +92,9 @@ struct Program {
   std::vector<Word> words;
   /// The keywords its dialect reads (none: a multi-letter word leaves its line unread).
   std::vector<KeywordSpelling> keywords;
+  /// The blocks its jumps may enter (null: none known), read from its whole text before its
+  /// blocks are read: a block a jump enters goes on from where the jump was made.
+  std::shared_ptr<const JumpTargets> jumps;
 
   std::string_view raw(const Block& b) const { return std::string_view(text).substr(b.begin, b.length); }
   std::string_view eol(const Block& b) const {

@@ -439,6 +439,7 @@ Program lex(std::string name, std::string text, DiagnosticSink& sink, const Prog
   p.name = std::move(name);
   p.text = std::move(text);
   p.keywords = source.keywords;
+  p.jumps = source.jumps;
   p.blocks.reserve(p.text.size() / 24 + 1);
   p.words.reserve(p.text.size() / 6 + 1);
   uint32_t line = 0;

@@ -21,7 +21,7 @@ Program lex(std::string name, std::string text, DiagnosticSink& sink, std::vecto
 /// words, kind and flags instead of being lexed again. Lexing reads nothing but a line's own
 /// bytes, so the program is the one lex() makes; the lines not copied, those whose bytes
 /// differ, blocks whose lexing reported a problem (so that every diagnostic is reported
-/// again) and first lines (a byte-order mark) are lexed. It reads `source`'s keywords.
+/// again) and first lines (a byte-order mark) are lexed. It reads `source`'s keywords, and takes its jumps.
 Program lex(std::string name, std::string text, DiagnosticSink& sink, const Program& source,
             std::span<const CopiedLine> copies);
 

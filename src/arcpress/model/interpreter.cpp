@@ -274,8 +274,8 @@ class Interpreter {
             case 210: F().unit_mm = 1.0, s_.units_told = true; break;
             case 70: F().diameter_mode = true; break;
             case 80: F().diameter_mode = false; break;
-            case 900: F().absolute = true; F().e_relative = false; break;
-            case 910: F().absolute = false; F().e_relative = true; break;
+            case 900: F().absolute = true; F().e_relative = false; s_.distance_unknown = false; break;
+            case 910: F().absolute = false; F().e_relative = true; s_.distance_unknown = false; break;
             case 901: F().arc_absolute = true, s_.centre_told = true; break;
             case 911: F().arc_absolute = false, s_.centre_told = true; break;
             case 920: g92 = true; axis_consumer = true; break;
@@ -342,6 +342,7 @@ class Interpreter {
           if (m == 830) F().e_relative = true;
           if (m == 980 || m == 990)  // subprogram call / return
             forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterControl, bi);
+          if (m == 20 || m == 300 || m == 990) enter(bi);  // the blocks after an end run only when entered
           // A tool change may move the tool (to a tool change position), and
           // the controller goes on from where it left it: LinuxCNC re-reads its position after M6.
           if (m == 60) forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterToolChange, bi);
@@ -371,6 +372,7 @@ class Interpreter {
           s_.spindle = w->value;
           break;
         case 'N':
+          if (p_->jumps && p_->jumps->enters(w->value)) enter(bi);
           break;
         case 'T':
           other_words = true;
@@ -536,6 +538,11 @@ class Interpreter {
         known_after |= (1u << ax);
       }
     }
+    if (s_.distance_unknown) [[unlikely]]  // each word an absolute place or an increment
+      for (uint32_t axes = words_seen & ~(1u << kE); axes != 0; axes &= axes - 1) {
+        known_after &= ~(1u << std::countr_zero(axes));
+        set_why(std::countr_zero(axes), Unfit::UnknownDistanceMode);
+      }
 
     // In polar coordinates the plane's words are a radius and an angle (about the origin or,
     // under G91, the present point): the point they name is not computed, and both the
@@ -658,6 +665,13 @@ class Interpreter {
       else if (why_after(ax) != s_.why[ax].reason) s_.why[ax] = {why_after(ax), b.line};
     }
     if (cycle_here && words_seen != 0) forget(kXyzMask, Unfit::UnknownAfterCycle, bi);
+  }
+
+  /// Block `bi` may be entered from elsewhere (JumpTargets), or the blocks after it only so
+  /// (it ends a program): the position and whether G90 or G91 is in force are not known.
+  [[gnu::noinline]] void enter(uint32_t bi) {
+    forget(kAllAxes & ~(1u << kE), Unfit::UnknownAtEntry, bi);
+    s_.distance_unknown = true;
   }
 
   /// Axes in `mask` become unknown, `why`, from block `bi` on (the latest reason is kept).

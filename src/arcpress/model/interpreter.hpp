@@ -39,6 +39,9 @@ struct ModalState {
   /// warning said so (once): either way, nothing more to say of the units. It changes no
   /// reading, so reads_as() does not compare it.
   bool units_told = false;
+  /// Whether G90 or G91 is in force is not known: the blocks from here on may be entered from
+  /// elsewhere (after M2, M30 or M99, at a jump's target), until the program states one.
+  bool distance_unknown = false;
   /// G90.1 or G91.1 has been read, or an arc showed how a controller set by a setting of its
   /// own reads I/J/K (Dialect::start_centres): no more to learn of it. Told, not compared.
   bool centre_told = false;
@@ -69,6 +72,7 @@ struct ModalState {
       f.offset[ax] = o.frame.offset[ax];
     }
     return f.same_as(o.frame) && plane == o.plane && known == o.known && spindle == o.spindle && cycle_calls == o.cycle_calls &&
+           distance_unknown == o.distance_unknown &&
            feed_known == o.feed_known && (!feed_known || feed_mm == o.feed_mm) && (!with_motion || motion == o.motion);
   }
 };

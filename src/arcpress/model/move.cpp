@@ -17,6 +17,11 @@ const char* describe(Unfit why) {
     case Unfit::UnknownInPolar: return "position not computed in polar coordinates (G16)";
     case Unfit::UnknownAfterToolChange: return "position unknown after a tool change (M6, or the dialect's tool call), which may move the tool";
     case Unfit::UnknownAfterCodeMove: return "position unknown after a code the dialect says may move the tool";
+    case Unfit::UnknownAtEntry:
+      return "position unknown at a block the program may enter from elsewhere (the target of a GOTO, M99 P or M97 P, "
+             "a block after M2, M30 or M99)";
+    case Unfit::UnknownDistanceMode:
+      return "position unknown: moved after such an entry before the program stated G90 or G91";
     case Unfit::UnknownAfterUnmodelled: return "position unknown after a G-code arcpress does not model";
     case Unfit::UnreadableArc: return "an arc the controller cannot run: no centre, or R too short for its chord";
     case Unfit::RepeatedWord: return "a word repeated in the block";

@@ -594,6 +594,29 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
     d.findings.push_back(fmt::format("non-motion blocks (M, T, S, dwell{}): {} in A, {} in B",
                                      opt.comments ? ", comments" : "", na.count(), nb.count()));
   }
+  // The blocks A's jumps enter (JumpTargets), in order: each must be a block of B, with its
+  // number, or the jump finds another place, or none.
+  if (a.jumps) {
+    auto entered = [&](const Program& p) {
+      std::vector<std::pair<double, uint32_t>> out;  // the block's number, its line
+      for (const Block& blk : p.blocks)
+        if (blk.word_count > 0 && p.words[blk.first_word].letter == 'N' && a.jumps->enters(p.words[blk.first_word].value))
+          out.push_back({p.words[blk.first_word].value, blk.line});
+      return out;
+    };
+    const auto ea = entered(a), eb = entered(b);
+    for (size_t k = 0; k < std::max(ea.size(), eb.size()); ++k) {
+      if (k < ea.size() && k < eb.size() && ea[k].first == eb[k].first) continue;
+      d.findings.push_back(k < ea.size()
+                               ? fmt::format("block N{} (A line {}), which a jump enters, is not in B{}", ea[k].first,
+                                             ea[k].second,
+                                             k < eb.size() ? fmt::format(" (B line {} is N{})", eb[k].second, eb[k].first)
+                                                           : std::string())
+                               : fmt::format("B line {} is a block N{}, which a jump of A enters, where A has none",
+                                             eb[k].second, eb[k].first));
+      break;
+    }
+  }
   return d;
 }
 

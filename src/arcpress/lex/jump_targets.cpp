@@ -1,0 +1,183 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "arcpress/lex/jump_targets.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace arcpress {
+
+namespace {
+
+bool is_letter(char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || c == '_'; }
+bool is_digit(char c) { return c >= '0' && c <= '9'; }
+char upper(char c) { return c >= 'a' && c <= 'z' ? char(c - 'a' + 'A') : c; }
+
+/// What a jump names, read from `i` on: a block number (N100, or 100), a number the program
+/// computes (#1, [#1+10]), or neither (a label's name, nothing).
+struct Named {
+  enum Kind { Nothing, Number, Computed } kind = Nothing;
+  uint64_t number = 0;
+};
+
+Named named_at(std::string_view s, size_t i, bool n_allowed) {
+  while (i < s.size() && (s[i] == ' ' || s[i] == '\t')) ++i;
+  if (i >= s.size()) return {};
+  if (s[i] == '#' || s[i] == '[') return {Named::Computed, 0};
+  if (n_allowed && upper(s[i]) == 'N' && i + 1 < s.size() && is_digit(s[i + 1])) ++i;
+  if (!is_digit(s[i])) return {};
+  uint64_t n = 0;
+  for (; i < s.size() && is_digit(s[i]); ++i) {
+    if (n > (uint64_t(1) << 50)) return {};
+    n = n * 10 + uint64_t(s[i] - '0');
+  }
+  if (i < s.size() && s[i] == '.') {  // P100. is 100; P100.5 names no block
+    for (++i; i < s.size() && is_digit(s[i]); ++i)
+      if (s[i] != '0') return {};
+  }
+  return {Named::Number, n};
+}
+
+/// The jumps in the line text[start, end): `add(number, at)` for a block number named,
+/// `add_computed(at)` for a computed one.
+template <class Add, class AddComputed>
+void read_line(std::string_view text, size_t start, size_t end, Add& add, AddComputed& add_computed) {
+  bool jump_m = false;  // M97 or M99
+  bool call_m = false;  // M98
+  Named p, q;           // the line's P and Q words
+  for (size_t i = start; i < end; ++i) {
+    const char c = text[i];
+    const bool starts = i == start || !is_letter(text[i - 1]);
+    switch (c) {
+      case '(':
+        while (i + 1 < end && text[i + 1] != ')') ++i;
+        break;
+      case '"':
+        while (i + 1 < end && text[i + 1] != '"') ++i;
+        ++i;
+        break;
+      case ';':
+        i = end;
+        break;
+      case 'G': case 'g': {
+        if (!starts || i + 3 >= end || upper(text[i + 1]) != 'O' || upper(text[i + 2]) != 'T' || upper(text[i + 3]) != 'O')
+          break;
+        size_t j = i + 4;
+        if (j < end && (upper(text[j]) == 'F' || upper(text[j]) == 'B' || upper(text[j]) == 'C')) ++j;
+        if (j < end && is_letter(text[j])) break;  // another word (a name beginning GOTO)
+        const Named t = named_at(text.substr(0, end), j, true);
+        if (t.kind == Named::Number) add(t.number, i);
+        if (t.kind == Named::Computed) add_computed(i);
+        i = j - 1;
+        break;
+      }
+      case 'M': case 'm': {
+        if (!starts) break;
+        size_t j = i + 1;
+        while (j < end && (text[j] == ' ' || text[j] == '\t')) ++j;
+        while (j + 2 < end && text[j] == '0' && is_digit(text[j + 1]) && is_digit(text[j + 2])) ++j;
+        if (j + 1 < end && text[j] == '9' && (text[j + 1] == '7' || text[j + 1] == '8' || text[j + 1] == '9') &&
+            (j + 2 >= end || (!is_digit(text[j + 2]) && text[j + 2] != '.')))
+          (text[j + 1] == '8' ? call_m : jump_m) = true;
+        break;
+      }
+      case 'P': case 'p': case 'Q': case 'q': {
+        if (!starts) break;
+        size_t j = i + 1;
+        while (j < end && (text[j] == ' ' || text[j] == '\t')) ++j;
+        if (j < end && (is_digit(text[j]) || text[j] == '#' || text[j] == '['))
+          (upper(c) == 'P' ? p : q) = named_at(text.substr(0, end), j, false);
+        break;
+      }
+      default:
+        break;
+    }
+  }
+  // M97 Pn and M99 Pn name block n; M98 P.. Qn starts the program it calls at block n.
+  const Named& named = jump_m ? p : call_m ? q : Named{};
+  if (named.kind == Named::Number) add(named.number, start);
+  if (named.kind == Named::Computed) add_computed(start);
+}
+
+}  // namespace
+
+void JumpTargets::read(std::string_view text, uint32_t first_line, const PassedNumbers* passed) {
+  const size_t before = numbers_.size();
+  // The line of a jump, counted only where one is found (most programs have none).
+  size_t counted = 0;
+  uint32_t counted_line = first_line;
+  auto line_at = [&](size_t pos) {
+    counted_line += uint32_t(std::count(text.begin() + long(counted), text.begin() + long(pos), '\n'));
+    counted = pos;
+    return counted_line;
+  };
+  auto add = [&](uint64_t number, size_t at) {
+    const uint32_t line = line_at(at);
+    if (!late_ && passed && passed->passed(number)) late_ = Late{line, number, false};
+    numbers_.push_back(number);
+  };
+  auto add_computed = [&](size_t at) {
+    const uint32_t line = line_at(at);
+    if (!late_ && !computed_ && passed && passed->any()) late_ = Late{line, 0, true};
+    computed_ = true;
+  };
+  // Only a line with an M or an O (of GOTO), either case, can hold a jump: those are found
+  // by memchr, a byte at a time only in such lines.
+  constexpr char kKeys[4] = {'M', 'm', 'O', 'o'};
+  size_t next[4];
+  const size_t n = text.size();
+  auto find = [&](int k, size_t from) {
+    const void* hit = from < n ? std::memchr(text.data() + from, kKeys[k], n - from) : nullptr;
+    next[k] = hit ? size_t(static_cast<const char*>(hit) - text.data()) : n;
+  };
+  for (int k = 0; k < 4; ++k) find(k, 0);
+  for (size_t from = 0;;) {
+    const size_t at = *std::min_element(next, next + 4);
+    if (at >= n) break;
+    const size_t start = at == 0 ? 0 : text.rfind('\n', at - 1) + 1;  // (npos + 1 is 0)
+    size_t end = text.find('\n', at);
+    if (end == std::string_view::npos) end = n;
+    if (start >= from) read_line(text, start, end, add, add_computed);
+    from = end + 1;
+    for (int k = 0; k < 4; ++k)
+      if (next[k] < from) find(k, from);
+  }
+  if (numbers_.size() != before) {
+    std::sort(numbers_.begin(), numbers_.end());
+    numbers_.erase(std::unique(numbers_.begin(), numbers_.end()), numbers_.end());
+  }
+}
+
+void JumpTargets::merge(const JumpTargets& other) {
+  if (!late_) late_ = other.late_;
+  computed_ = computed_ || other.computed_;
+  if (other.numbers_.empty()) return;
+  numbers_.insert(numbers_.end(), other.numbers_.begin(), other.numbers_.end());
+  std::sort(numbers_.begin(), numbers_.end());
+  numbers_.erase(std::unique(numbers_.begin(), numbers_.end()), numbers_.end());
+}
+
+bool JumpTargets::enters(double n) const {
+  if (computed_) return true;
+  if (numbers_.empty() || !(n >= 0) || n != std::floor(n) || n >= 1e15) return false;
+  return std::binary_search(numbers_.begin(), numbers_.end(), uint64_t(n));
+}
+
+void PassedNumbers::pass(double n) {
+  if (!(n >= 0) || n != std::floor(n)) return;
+  any_ = true;
+  if (n >= double(kBits)) {
+    high_ = true;
+    return;
+  }
+  const uint64_t k = uint64_t(n);
+  if (bits_.size() <= k / 64) bits_.resize(k / 64 + 1);
+  bits_[k / 64] |= uint64_t(1) << (k % 64);
+}
+
+bool PassedNumbers::passed(uint64_t n) const {
+  if (n >= kBits) return high_;
+  return n / 64 < bits_.size() && (bits_[n / 64] >> (n % 64)) & 1u;
+}
+
+}  // namespace arcpress

@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// The blocks a program's jumps may enter. A controller that runs `GOTO 100` or `M99 P100`
+// goes on at the block numbered N100 from wherever it was; such a block must stay a block
+// of its own with its number, and the position before it is not the one its neighbour in the
+// text leaves. Read from the text, before the blocks are: a jump back names a block read
+// before it.
+#include <cstdint>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+namespace arcpress {
+
+/// Block numbers read so far as no jump's target, for a program read as it comes: a jump
+/// read later that names one of them comes too late for it (JumpTargets::Late).
+class PassedNumbers {
+ public:
+  /// Block number `n` (an N word's value) was read as no target.
+  void pass(double n);
+  bool passed(uint64_t n) const;
+  bool any() const { return any_; }
+
+ private:
+  // A bit each below kBits; above it only that there were some.
+  static constexpr uint64_t kBits = uint64_t(1) << 20;
+  std::vector<uint64_t> bits_;
+  bool any_ = false, high_ = false;
+};
+
+class JumpTargets {
+ public:
+  /// Reads the jumps in `text`, whole lines, the first of them line `first_line`:
+  /// `GOTO n` (Fanuc's and Haas's macro language, in an `IF [...] GOTO n` too; Okuma's
+  /// `GOTO N100`; Sinumerik's `GOTOF`, `GOTOB`, `GOTOC`), `M99 Pn` (a subprogram's return to
+  /// block n, or a jump there), `M97 Pn` (Haas's call of block n of the same program) and
+  /// `M98 P.. Qn` (a call of a program from its block n, Mitsubishi's and Okuma's). A
+  /// number computed by the program (`GOTO #1`, `M99 P#5`) may be any block's. A jump to a
+  /// label (`GOTOB LOOP1`) names no number: a label's line is one arcpress does not read.
+  /// Comments and quoted text are skipped. With `passed`, a jump to a block among them is
+  /// noted as late().
+  void read(std::string_view text, uint32_t first_line, const PassedNumbers* passed = nullptr);
+  /// Adds the targets of `other` (and its late jump, if this has none).
+  void merge(const JumpTargets& other);
+
+  /// Whether a jump names some block, or a computed one any.
+  bool any() const { return computed_ || !numbers_.empty(); }
+  /// Whether a jump may enter the block numbered `n` (the value of its N word).
+  bool enters(double n) const;
+
+  /// The first jump read after the block it names had been read as no target.
+  struct Late {
+    uint32_t line = 0;       ///< the jump's
+    uint64_t number = 0;     ///< the block's number (0 with `computed`)
+    bool computed = false;   ///< a computed jump, read after numbered blocks
+  };
+  const std::optional<Late>& late() const { return late_; }
+
+ private:
+  std::vector<uint64_t> numbers_;  // sorted, each once
+  bool computed_ = false;
+  std::optional<Late> late_;
+};
+
+}  // namespace arcpress

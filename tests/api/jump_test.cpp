@@ -1,0 +1,184 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// A program's jumps (GOTO n, M99 Pn, M97 Pn) enter the blocks they name from wherever they
+// were made: such a block stays as written, with its number, and nothing after it is fitted
+// from the position its neighbour in the text leaves. The blocks after a program's end run
+// only when a call enters them.
+#include <catch2/catch.hpp>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "arcpress/api/compressor.hpp"
+#include "arcpress/arcpress.hpp"
+#include "arcpress/dialect/dialect_loader.hpp"
+#include "arcpress/lex/jump_targets.hpp"
+#include "support.hpp"
+
+using namespace arcpress;
+using namespace arcpress::test;
+
+namespace {
+
+Dialect shipped(const std::string& name) { return find_dialect(name, {ARCPRESS_SOURCE_DIR "/dialects"}); }
+
+JumpTargets jumps_of(std::string_view text) {
+  JumpTargets j;
+  j.read(text, 1);
+  return j;
+}
+
+/// 31 moves along a quarter circle of radius 20 mm about (-20, 0), printed to 4 decimals,
+/// the one at index `numbered` (when >= 0) written as block N100.
+std::string quarter(int numbered = -1) {
+  std::string t;
+  for (int i = 0; i <= 30; ++i) {
+    const double a = M_PI * i / 60;
+    t += fmt::format("{}G1 X{:.4f} Y{:.4f}\n", i == numbered ? "N100 " : "", 20 * std::cos(a) - 20, 20 * std::sin(a));
+  }
+  return t;
+}
+
+CompressResult compress_as(const std::string& dialect, const std::string& text) {
+  DiagnosticSink sink;
+  CompressOptions opt;
+  opt.dialect = shipped(dialect);
+  opt.fit.tolerance_mm = 0.01;
+  return compress("part.nc", text, opt, sink);
+}
+
+size_t count_of(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("the blocks a program's jumps name are read from its text, comments and quoted text left out", "[jumps]") {
+  const JumpTargets j = jumps_of(
+      "GOTO 100\nIF [#1 LT 3] GOTO200\nM99 P300\nP400 M99\nM97 P500 L2\nM099 P600\nGOTOB N700\nGOTOF 800.\n"
+      "M98 P2000 Q900\n"
+      "(GOTO 11) G1 X0 ; GOTO 12\nMSG(\"GOTO 13\")\nM990 P14\nM98 P15\nM99 P16.5\nGOTOF LABEL1\nXGOTO 17\n");
+  for (double n : {100, 200, 300, 400, 500, 600, 700, 800, 900}) CHECK(j.enters(n));
+  for (double n : {11, 12, 13, 14, 15, 16, 17, 1, 2000}) CHECK_FALSE(j.enters(n));
+  CHECK_FALSE(jumps_of("G1 X10 Y10 M3\nM99\nM30\n").any());
+  // A number the program computes may be any block's.
+  CHECK(jumps_of("GOTO #1\n").enters(12345));
+  CHECK(jumps_of("M99 P[#2+10]\n").enters(7));
+}
+
+TEST_CASE("a jump's target stays a block of its own, and the moves after it are not fitted from before it", "[jumps]") {
+  const std::string head = "O1000\nG90 G17 G21\nG0 X0 Y0\nG1 F500\n";
+  const std::string tail = "#1=#1+1\nIF [#1 LT 3] GOTO 100\nM30\n";
+  for (const std::string dialect : {"fanuc", "haas", "rs274"}) {
+    INFO(dialect);
+    // Without the jump, N100 is one of the moves one arc replaces.
+    const CompressResult plain = compress_as(dialect, head + quarter(15) + "M30\n");
+    REQUIRE(plain.ok);
+    CHECK(plain.output.find("N100") == std::string::npos);
+    const CompressResult jumped = compress_as(dialect, head + quarter(15) + tail);
+    REQUIRE(jumped.ok);
+    CHECK(jumped.within_band());
+    // With it, N100 is written as it was, and the moves after it as they were: whether G90
+    // or G91 is in force where the jump comes from is not known.
+    CHECK(jumped.output.find(fmt::format("N100 G1 X{:.4f} Y{:.4f}\n", 20 * std::cos(M_PI / 4) - 20,
+                                         20 * std::sin(M_PI / 4))) != std::string::npos);
+    CHECK(count_of(jumped.output, "G1 X") == 16);
+    // Once the program states G90 after the target, its moves are fitted again.
+    std::string restated = quarter(15);
+    restated.insert(restated.find("N100 G1 X") + 5, "G90 ");
+    const CompressResult again = compress_as(dialect, head + restated + tail);
+    REQUIRE(again.ok);
+    CHECK(again.output.find("N100 G90 G1 X") != std::string::npos);
+    CHECK(count_of(again.output, "G1 X") <= 2);
+  }
+}
+
+TEST_CASE("the blocks after M30 run only when a call enters them, from where the call was made", "[jumps]") {
+  // Haas's M97 P1000 calls block N1000 of the same program, placed after M30; its moves
+  // go on from the caller's position, in the caller's distance mode.
+  const std::string main_part = "O1000\nG90 G17 G21\nG0 X0 Y0\nG1 F500\nM97 P1000\nG0 X50 Y50\nM97 P1000\nM30\n";
+  const CompressResult sub = compress_as("haas", main_part + "N1000 G1 X0 Y0\n" + quarter() + "M99\n");
+  REQUIRE(sub.ok);
+  CHECK(count_of(sub.output, "G3") == 0);
+  // Where the body states G90, it is fitted.
+  const CompressResult stated = compress_as("haas", main_part + "N1000 G90 G1 X0 Y0\n" + quarter() + "M99\n");
+  REQUIRE(stated.ok);
+  CHECK(count_of(stated.output, "G3") == 1);
+  // Mach3's M98 P2000 calls the program O2000 that follows M30 in the same file.
+  const std::string mach3 = "G90 G17 G21\nG0 X0 Y0\nG1 F500\nM98 P2000\nG0 X50 Y50\nM98 P2000\nM30\nO2000\n";
+  for (const std::string end : {"M30", "M2", "M99"}) {
+    std::string t = mach3 + "G1 X0 Y0\n" + quarter() + "M99\n";
+    t.replace(t.find("M30"), 3, end);
+    const CompressResult r = compress_as("mach3", t);
+    REQUIRE(r.ok);
+    CHECK(count_of(r.output, "G3") == 0);
+    t.insert(t.find("O2000\n") + 6, "G90\n");
+    CHECK(count_of(compress_as("mach3", t).output, "G3") == 1);
+  }
+}
+
+TEST_CASE("a jump back read after its target was read fails a program pushed as it comes, not one whose jumps were read ahead", "[jumps]") {
+  const std::string text = "G90 G17 G21\nG0 X0 Y0\nG1 F500\n" + quarter(15) + "G1 X1 Y30\nIF [#1 LT 3] GOTO 100\nM30\n";
+  auto run = [&](bool ahead) {
+    DiagnosticSink sink;
+    CompressOptions opt;
+    opt.dialect = shipped("fanuc");
+    opt.fit.tolerance_mm = 0.01;
+    Compressor c("part.nc", opt, sink);
+    if (ahead) c.read_jumps(text, 1);
+    for (size_t at = 0; at < text.size();) {  // a line at a time, as from a slow pipe
+      const size_t nl = text.find('\n', at) + 1;
+      c.push(std::string_view(text).substr(at, nl - at));
+      at = nl;
+    }
+    c.finish();
+    std::string out;
+    c.take(out);
+    const bool told = std::any_of(sink.all().begin(), sink.all().end(),
+                                  [](const Diagnostic& d) { return d.code == "E-FLOW-JUMP-BACK"; });
+    return std::pair(c.result().ok, told ? out : std::string("no error") + out);
+  };
+  const auto [late_ok, late_out] = run(false);
+  CHECK_FALSE(late_ok);
+  CHECK(late_out.empty());
+  const auto [ahead_ok, ahead_out] = run(true);
+  CHECK(ahead_ok);
+  CHECK(ahead_out.find("no error") == 0);
+  CHECK(ahead_out.find("\nN100 G1 X") != std::string::npos);
+}
+
+TEST_CASE("the command reads a file's jumps before its blocks, and fails a jump back it reads too late from a pipe", "[jumps][cli]") {
+  // The jump comes more than a read (1 MB) after its target.
+  std::string text = "G90 G17 G21\nG0 X0 Y0\nG1 F500\n" + quarter(15);
+  for (int k = 0; k < 70000; ++k) text += fmt::format("G1 X{:.3f} Y{:.3f}\n", k * 0.01, 30 + (k % 2) * 0.001);
+  text += "IF [#1 LT 3] GOTO 100\nM30\n";
+  const auto dir = temp_dir("jumps");
+  write_file(dir / "back.nc", text);
+  const Command file = run_arcpress(fmt::format("'{}' -o '{}' --dialect fanuc --tolerance 0.01", (dir / "back.nc").string(),
+                                                (dir / "out.nc").string()));
+  CHECK(file.exit_code == 0);
+  CHECK(read_file(dir / "out.nc").find("\nN100 G1 X") != std::string::npos);
+  const Command pipe = run_arcpress("--dialect fanuc --tolerance 0.01", text);
+  CHECK(pipe.exit_code == 2);
+  CHECK(pipe.err.find(":70035:1: error: E-FLOW-JUMP-BACK: a jump back to N100") != std::string::npos);
+}
+
+TEST_CASE("arcpress diff holds B to the blocks A's jumps enter", "[jumps][cli]") {
+  // (The jump's block states G90: the moves after it are placed, so A is SAME as itself.)
+  std::string a = "G90 G17 G21\nG0 X0 Y0\nG1 F500\n" + quarter(15) + "IF [#1 LT 3] GOTO 100\nM30\n";
+  a.insert(a.find("N100 ") + 5, "G90 ");
+  std::string b = a;
+  b.erase(b.find("N100 "), 5);  // the same path, the jump's block without its number
+  const auto dir = temp_dir("jump-diff");
+  write_file(dir / "a.nc", a);
+  write_file(dir / "b.nc", b);
+  const std::string files = fmt::format("'{}' '{}'", (dir / "a.nc").string(), (dir / "b.nc").string());
+  const Command same = run_arcpress(fmt::format("diff '{}' '{}' --tolerance 0.01", (dir / "a.nc").string(),
+                                                (dir / "a.nc").string()));
+  CHECK(same.exit_code == 0);
+  const Command differs = run_arcpress("diff " + files + " --tolerance 0.01");
+  CHECK(differs.exit_code == 1);
+  CHECK(differs.out.find("block N100 (A line 19), which a jump enters, is not in B") != std::string::npos);
+}
