@@ -55,6 +55,7 @@ RandomCase random_case(std::span<const uint8_t> bytes) {
   double e_per_mm = 0.05;  // relative extrusion (M83), its rate changing now and then
   double last_x = 0, last_y = 0;  // the last printed point, for the extrusion of a move
   bool rotary = false;             // moves carry an A word
+  long numbered = 0;               // the number of the last move written with one (0: none)
   for (size_t i = 3; i + 2 < bytes.size(); i += 3) {
     const auto a = static_cast<int8_t>(bytes[i]), b = static_cast<int8_t>(bytes[i + 1]),
                h = static_cast<int8_t>(bytes[i + 2]);
@@ -102,7 +103,15 @@ RandomCase random_case(std::span<const uint8_t> bytes) {
     if (c.opt.dialect.name == "sinumerik" && (h & 0x3f) == 0x2e) s += "G642 SOFT FFWON ADIS=0.05\n";
     if (c.opt.dialect.name == "sinumerik" && (h & 0x3f) == 0x2f)
       s += fmt::format("CT X{:.3f} Y{:.3f}\n", last_x + step_mm * 5, last_y - step_mm * 3);
+    // A jump back to a numbered move (a loop), whose block must stay one, and G90 stated
+    // again, after which the moves are placed again.
+    if (!tnc && (h & 0x3f) == 0x31 && numbered > 0)
+      s += a < 0 ? fmt::format("IF [#1 LT 2] GOTO {}\n", numbered) : fmt::format("M99 P{}\n", numbered);
+    if (!tnc && (h & 0x3f) == 0x32) s += extrudes ? "G90 M83\n" : "G90\n";  // (G90 alone makes E absolute)
+    const bool number_it = !tnc && (h & 0x3f) == 0x30;
+    if (number_it) numbered = long(i);
     const double px = std::stod(fmt::format("{:.{}f}", x, decimals)), py = std::stod(fmt::format("{:.{}f}", y, decimals));
+    if (number_it) s += fmt::format("N{} ", i);
     if (tnc)
       s += fmt::format("N{} G01 X{:+.{}f} Y{:+.{}f} Z{:+.{}f}", i + 1, x, decimals, y, decimals, z, decimals);
     else
