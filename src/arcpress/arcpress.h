@@ -95,6 +95,14 @@ void arcpress_compressor_free(arcpress_compressor* compressor);
  * G-code at all (an archive, an image, binary bytes) is refused: ARCPRESS_BAD_INPUT, with an
  * E-INPUT-NOT-GCODE diagnostic, and nothing is given out. */
 arcpress_status arcpress_push(arcpress_compressor* compressor, const char* bytes, size_t length);
+/* The program's jumps (GOTO 100, M99 P100, M97 P100: the blocks they name are written as they
+ * are, with their numbers), read from its text ahead of arcpress_push(), whole lines from
+ * line `first_line` on; call it as often as the text comes, before the first push. Without
+ * it, each push's jumps are read before its lines, and a jump back to a block an earlier push
+ * held fails the push (ARCPRESS_BAD_INPUT, E-FLOW-JUMP-BACK). Once called, the pushes read no
+ * more jumps. */
+arcpress_status arcpress_read_jumps(arcpress_compressor* compressor, const char* bytes, size_t length,
+                                    unsigned first_line);
 /* The output finished since the last take, in order; *text is not NUL-terminated. */
 arcpress_status arcpress_take(arcpress_compressor* compressor, const char** text, size_t* length);
 /* Ends the input. ARCPRESS_OK: all output may be used; ARCPRESS_BAD_INPUT or

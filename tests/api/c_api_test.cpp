@@ -295,3 +295,40 @@ TEST_CASE("the C library refuses what the command refuses, with the status of it
   arcpress_compressor_free(c);
   arcpress_options_free(o);
 }
+
+TEST_CASE("the C library reads a program's jumps ahead of its pushes, or fails a jump back it reads too late", "[capi][jumps]") {
+  // quarter_circle() with its 20th move numbered N100, and a jump back to it after the path.
+  std::string program = kProgram;
+  size_t at = 0;
+  for (int k = 0; k < 22; ++k) at = program.find('\n', at) + 1;
+  program.insert(at, "N100 ");
+  program.insert(program.find("G0 Z5."), "IF [#1 LT 3] GOTO 100\n");
+  auto run = [&](bool ahead) {
+    arcpress_options* o = arcpress_options_new();
+    REQUIRE(arcpress_options_set_dialect(o, "fanuc") == ARCPRESS_OK);
+    arcpress_compressor* c = nullptr;
+    REQUIRE(arcpress_compressor_new(o, "c", &c) == ARCPRESS_OK);
+    arcpress_options_free(o);
+    if (ahead) REQUIRE(arcpress_read_jumps(c, program.data(), program.size(), 1) == ARCPRESS_OK);
+    arcpress_status status = ARCPRESS_OK;
+    for (size_t from = 0; from < program.size() && status == ARCPRESS_OK;) {  // a line a push
+      const size_t nl = program.find('\n', from) + 1;
+      status = arcpress_push(c, program.data() + from, nl - from);
+      from = nl;
+    }
+    if (status == ARCPRESS_OK) status = arcpress_finish(c);
+    const char* text = nullptr;
+    size_t n = 0;
+    std::string out;
+    if (status == ARCPRESS_OK && arcpress_take(c, &text, &n) == ARCPRESS_OK) out.assign(text, n);
+    const std::string told = arcpress_diagnostics(c);
+    arcpress_compressor_free(c);
+    return std::tuple(status, out, told);
+  };
+  const auto [late, late_out, late_told] = run(false);
+  CHECK(late == ARCPRESS_BAD_INPUT);
+  CHECK(late_told.find("E-FLOW-JUMP-BACK") != std::string::npos);
+  const auto [ahead, ahead_out, ahead_told] = run(true);
+  CHECK(ahead == ARCPRESS_OK);
+  CHECK(ahead_out.find("\nN100 G1 X") != std::string::npos);
+}

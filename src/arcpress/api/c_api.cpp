@@ -207,6 +207,18 @@ arcpress_status arcpress_push(arcpress_compressor* c, const char* bytes, size_t 
   });
 }
 
+arcpress_status arcpress_read_jumps(arcpress_compressor* c, const char* bytes, size_t length, unsigned first_line) {
+  if (!c || (!bytes && length > 0)) return ARCPRESS_BAD_INPUT;
+  if (c->finished) {
+    c->error = "the compressor is finished";
+    return ARCPRESS_BAD_INPUT;
+  }
+  return guarded(c->error, [&] {
+    c->compressor->read_jumps(std::string_view(bytes ? bytes : "", length), first_line);
+    return c->compressor->result().ok ? ARCPRESS_OK : ARCPRESS_BAD_INPUT;
+  });
+}
+
 arcpress_status arcpress_take(arcpress_compressor* c, const char** text, size_t* length) {
   if (!c || !text || !length) return ARCPRESS_BAD_INPUT;
   return guarded(c->error, [&] {
