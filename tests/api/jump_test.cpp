@@ -95,7 +95,7 @@ TEST_CASE("a jump's target stays a block of its own, and the moves after it are 
   }
 }
 
-TEST_CASE("the blocks after M30 run only when a call enters them, from where the call was made", "[jumps]") {
+TEST_CASE("a subprogram after a program's end runs only when a call enters it, from where the call was made", "[jumps]") {
   // Haas's M97 P1000 calls block N1000 of the same program, placed after M30; its moves
   // go on from the caller's position, in the caller's distance mode.
   const std::string main_part = "O1000\nG90 G17 G21\nG0 X0 Y0\nG1 F500\nM97 P1000\nG0 X50 Y50\nM97 P1000\nM30\n";
@@ -117,6 +117,11 @@ TEST_CASE("the blocks after M30 run only when a call enters them, from where the
     t.insert(t.find("O2000\n") + 6, "G90\n");
     CHECK(count_of(compress_as("mach3", t).output, "G3") == 1);
   }
+  // Programs written one after another in a file, each ending in M30 (CamBam's operations),
+  // are read on: a sender that streams them runs each after the last.
+  const CompressResult joined = compress_as("grbl", "G90 G17 G21\nG0 X5 Y5\nM30\nG0 X0 Y0\nG1 F500\n" + quarter() + "M30\n");
+  REQUIRE(joined.ok);
+  CHECK(count_of(joined.output, "G3") == 1);
 }
 
 TEST_CASE("a jump back read after its target was read fails a program pushed as it comes, not one whose jumps were read ahead", "[jumps]") {

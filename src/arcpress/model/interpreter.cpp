@@ -342,7 +342,8 @@ class Interpreter {
           if (m == 830) F().e_relative = true;
           if (m == 980 || m == 990)  // subprogram call / return
             forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterControl, bi);
-          if (m == 20 || m == 300 || m == 990) enter(bi);  // the blocks after an end run only when entered
+          if (m == 20 || m == 300 || m == 990) s_.ended = true;
+          if (m == 990) enter(bi);  // the blocks after a return run only when a call or jump enters them
           // A tool change may move the tool (to a tool change position), and
           // the controller goes on from where it left it: LinuxCNC re-reads its position after M6.
           if (m == 60) forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterToolChange, bi);
@@ -389,6 +390,7 @@ class Interpreter {
           // the dialect's keywords: the lexer reads no others.)
           other_words = true;
           if ((L == 'D' || L == kKeywordLetter) && !d_.codes.empty()) own_word(b, bi, *w, own);
+          if (L == 'O' && s_.ended) enter(bi);  // another program, after one's end: a call enters it
           break;
       }
     }
@@ -667,8 +669,9 @@ class Interpreter {
     if (cycle_here && words_seen != 0) forget(kXyzMask, Unfit::UnknownAfterCycle, bi);
   }
 
-  /// Block `bi` may be entered from elsewhere (JumpTargets), or the blocks after it only so
-  /// (it ends a program): the position and whether G90 or G91 is in force are not known.
+  /// Block `bi` may be entered from elsewhere (JumpTargets, a program number after a program's
+  /// end), or the blocks after it only so (M99): the position and whether G90 or G91 is in
+  /// force are not known.
   [[gnu::noinline]] void enter(uint32_t bi) {
     forget(kAllAxes & ~(1u << kE), Unfit::UnknownAtEntry, bi);
     s_.distance_unknown = true;

@@ -42,6 +42,9 @@ struct ModalState {
   /// Whether G90 or G91 is in force is not known: the blocks from here on may be entered from
   /// elsewhere (after M2, M30 or M99, at a jump's target), until the program states one.
   bool distance_unknown = false;
+  /// A program's end (M2, M30, M99) has been read: a program number after it (`O2000`) begins
+  /// a program that runs when a call enters it (Mach3's and Fanuc's subprograms in one file).
+  bool ended = false;
   /// G90.1 or G91.1 has been read, or an arc showed how a controller set by a setting of its
   /// own reads I/J/K (Dialect::start_centres): no more to learn of it. Told, not compared.
   bool centre_told = false;
@@ -72,7 +75,7 @@ struct ModalState {
       f.offset[ax] = o.frame.offset[ax];
     }
     return f.same_as(o.frame) && plane == o.plane && known == o.known && spindle == o.spindle && cycle_calls == o.cycle_calls &&
-           distance_unknown == o.distance_unknown &&
+           distance_unknown == o.distance_unknown && ended == o.ended &&
            feed_known == o.feed_known && (!feed_known || feed_mm == o.feed_mm) && (!with_motion || motion == o.motion);
   }
 };
