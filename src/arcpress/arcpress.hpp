@@ -33,7 +33,9 @@ Dialect dialect_named(const std::string& name);
 
 /// Compresses the program read from `in` to `out` as it comes, in bounded memory. Returns
 /// the result; where it is not usable (!ok or !within_band()), what was written to `out` must
-/// be thrown away. Throws Error(kExitIo) when `in` or `out` fails.
+/// be thrown away. Throws Error(kExitIo) when `in` or `out` fails. A stream that can be read
+/// again (a file, a string) is read through once first for the program's jumps
+/// (Compressor::read_jumps()); from one that cannot, a jump back may come too late.
 CompressResult compress_stream(std::istream& in, std::ostream& out, const std::string& name,
                                const CompressOptions& options, DiagnosticSink& sink);
 

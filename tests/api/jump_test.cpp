@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "arcpress/api/compressor.hpp"
 #include "arcpress/arcpress.hpp"
@@ -154,11 +155,33 @@ TEST_CASE("a jump back read after its target was read fails a program pushed as 
   CHECK(ahead_out.find("\nN100 G1 X") != std::string::npos);
 }
 
-TEST_CASE("the command reads a file's jumps before its blocks, and fails a jump back it reads too late from a pipe", "[jumps][cli]") {
-  // The jump comes more than a read (1 MB) after its target.
+namespace {
+
+/// A program whose jump back comes more than a read (1 MB) after its target, N100.
+std::string far_jump_back() {
   std::string text = "G90 G17 G21\nG0 X0 Y0\nG1 F500\n" + quarter(15);
   for (int k = 0; k < 70000; ++k) text += fmt::format("G1 X{:.3f} Y{:.3f}\n", k * 0.01, 30 + (k % 2) * 0.001);
-  text += "IF [#1 LT 3] GOTO 100\nM30\n";
+  return text + "IF [#1 LT 3] GOTO 100\nM30\n";
+}
+
+}  // namespace
+
+TEST_CASE("compress_stream() reads the jumps of a stream it can read again before its blocks", "[jumps]") {
+  const std::string text = far_jump_back();
+  std::istringstream in(text);
+  std::ostringstream out;
+  DiagnosticSink sink;
+  CompressOptions opt;
+  opt.dialect = shipped("fanuc");
+  opt.fit.tolerance_mm = 0.01;
+  const CompressResult r = compress_stream(in, out, "part.nc", opt, sink);
+  CHECK(r.ok);
+  CHECK(r.within_band());
+  CHECK(out.str().find("\nN100 G1 X") != std::string::npos);
+}
+
+TEST_CASE("the command reads a file's jumps before its blocks, and fails a jump back it reads too late from a pipe", "[jumps][cli]") {
+  const std::string text = far_jump_back();
   const auto dir = temp_dir("jumps");
   write_file(dir / "back.nc", text);
   const Command file = run_arcpress(fmt::format("'{}' -o '{}' --dialect fanuc --tolerance 0.01", (dir / "back.nc").string(),

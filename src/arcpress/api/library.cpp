@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "arcpress/api/compressor.hpp"
 #include "arcpress/platform/platform.hpp"
 
 namespace arcpress {
@@ -23,6 +24,21 @@ CompressResult compress_stream(std::istream& in, std::ostream& out, const std::s
   constexpr size_t kChunk = size_t(1) << 20;
   Compressor c(name, options, sink);
   std::string chunk(kChunk, '\0'), text;
+  // A stream that can be read again has its jumps read first, whole lines at a time.
+  if (const std::streampos start = in.tellg(); start != std::streampos(-1)) {
+    std::string lines;
+    for (size_t got; in.read(chunk.data(), std::streamsize(chunk.size())), (got = size_t(in.gcount())) > 0;) {
+      lines.append(chunk.data(), got);
+      const size_t last = lines.rfind('\n');
+      if (last == std::string::npos) continue;
+      c.read_jumps(std::string_view(lines).substr(0, last + 1), 0);
+      lines.erase(0, last + 1);
+    }
+    if (in.bad()) throw Error(kExitIo, fmt::format("cannot read '{}'", name));
+    c.read_jumps(lines, 0);
+    in.clear();
+    if (!in.seekg(start)) throw Error(kExitIo, fmt::format("cannot read '{}' again", name));
+  }
   auto write = [&] {
     text.clear();
     if (c.take(text) > 0 && !out.write(text.data(), std::streamsize(text.size())))
