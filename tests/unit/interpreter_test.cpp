@@ -316,3 +316,24 @@ TEST_CASE("a line's block with an R word ends where the program does not say", "
   CHECK(arc.in.moves[2].known);
   CHECK(arc.line_r_warnings == 0);
 }
+
+TEST_CASE("after M2 or M30 the program goes on in G1, G17, G90 and G94, as LinuxCNC and Grbl end a program", "[model]") {
+  for (const char* end : {"M30", "M2"}) {
+    INFO(end);
+    // G91, G18 and G93 before the end; after it, a bare axis word is an absolute G1 move in G17.
+    auto r = run(std::string("G21 G90\nG0 X1 Y2 Z3\nG91 G18 G93\nG2 X1 Z1 I1 F1\n") + end + "\nX5 Y5 F100\nG3 X7 Y7 R2\n");
+    REQUIRE(r.in.moves.size() == 4);
+    const Move& after = r.in.moves[2];
+    CHECK(after.kind == MoveKind::Line);
+    CHECK(after.known);
+    CHECK(after.to[kX] == 5.0);
+    CHECK(after.to[kY] == 5.0);
+    CHECK(after.plane == Plane::XY);
+    CHECK(r.in.moves[3].plane == Plane::XY);
+    CHECK_FALSE(r.in.frames[after.frame].inverse_time);
+  }
+  // In another work offset than G54, the end selects G54: the position is read anew.
+  auto r = run("G21 G90 G55\nG0 X1 Y2 Z3\nM30\nG1 X5 Y5 F100\n");
+  REQUIRE(r.in.moves.size() == 2);
+  CHECK_FALSE(r.in.moves[1].known);
+}

@@ -50,6 +50,7 @@ class Interpreter {
   void step(uint32_t bi) {
     while (o_->move_of_block.size() <= bi) o_->move_of_block.push_back(-1);
     block(bi, p_->blocks[bi]);
+    if (end_read_) [[unlikely]] program_end(bi);
   }
 
   const ModalState& state() const { return s_; }
@@ -342,6 +343,7 @@ class Interpreter {
           if (m == 830) F().e_relative = true;
           if (m == 980 || m == 990)  // subprogram call / return
             forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterControl, bi);
+          if (m == 20 || m == 300) end_read_ = true;
           if (m == 20 || m == 300 || m == 990) s_.ended = true;
           if (m == 990) enter(bi);  // the blocks after a return run only when a call or jump enters them
           // A tool change may move the tool (to a tool change position), and
@@ -677,6 +679,23 @@ class Interpreter {
     s_.distance_unknown = true;
   }
 
+  /// After block `bi`, an M2 or M30: RS274's program end (LinuxCNC's, Grbl's) puts G1, G17,
+  /// G90, G94 and G54 in force; a sender that streams on runs what follows so.
+  [[gnu::noinline]] void program_end(uint32_t bi) {
+    end_read_ = false;
+    Frame f = s_.frame;
+    f.absolute = true;
+    f.inverse_time = false;
+    if (f.work_offset != 54 && f.work_offset != 540) {  // (G54 is read as 540, at the start 54)
+      forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterOffset, bi);
+      f.work_offset = 540;
+    }
+    set_frame(f);
+    s_.distance_unknown = false;
+    s_.plane = Plane::XY;
+    s_.motion = 10;
+  }
+
   /// Axes in `mask` become unknown, `why`, from block `bi` on (the latest reason is kept).
   void forget(uint32_t mask, Unfit why, uint32_t bi) {
     for (int ax = 0; ax < kAxisCount; ++ax)
@@ -739,6 +758,7 @@ class Interpreter {
   }
 
   const Dialect& d_;
+  bool end_read_ = false;  ///< the block read was a program end (program_end())
   double own_radius_ = 0;  ///< the value of the block's keyword read as the arc's radius (kOwnArcRadius)
   /// The G- and M-codes the dialect reads its own way, and those of Dialect::last_turn, each a
   /// bit at its code (times ten) modulo kOwnSlots: most words are ruled out by one test, not a
@@ -755,16 +775,6 @@ class Interpreter {
 
 }  // namespace
 
-ModalState initial_state(const Dialect& dialect) {
-  ModalState s;
-  s.frame.diameter_mode = dialect.diameter_x;
-  s.frame.unit_mm = dialect.start_units == StartUnits::Inch ? 25.4 : 1.0;
-  s.units_told = dialect.start_units != StartUnits::Machine;
-  s.frame.arc_absolute = dialect.start_centres == StartCentres::Absolute;
-  s.centre_told = dialect.start_centres != StartCentres::Machine;
-  return s;
-}
-
 struct ModalInterpreter::Impl : Interpreter {
   using Interpreter::Interpreter;
 };
@@ -777,23 +787,5 @@ void ModalInterpreter::begin(const Program& program, Interpretation& out) { impl
 void ModalInterpreter::step(uint32_t block) { impl_->step(block); }
 const ModalState& ModalInterpreter::state() const { return impl_->state(); }
 void ModalInterpreter::reset(const ModalState& state) { impl_->reset(state); }
-
-std::vector<KeywordSpelling> keywords_read(const Dialect& dialect) {
-  std::vector<KeywordSpelling> out;
-  for (const CodeReading& c : dialect.codes)
-    if (c.letter == '&') out.push_back({c.keyword, c.meaning == CodeMeaning::CycleCalls || c.meaning == CodeMeaning::MacroCalls});
-  return out;
-}
-
-Interpretation interpret(const Program& program, DiagnosticSink& sink, const Dialect& dialect, ModalState* state) {
-  Interpretation out;
-  Interpreter it(dialect, sink, state ? *state : initial_state(dialect));
-  it.begin(program, out);
-  out.move_of_block.assign(program.blocks.size(), -1);
-  out.moves.reserve(program.blocks.size());
-  for (size_t bi = 0; bi < program.blocks.size(); ++bi) it.step(uint32_t(bi));
-  if (state) *state = it.state();
-  return out;
-}
 
 }  // namespace arcpress
