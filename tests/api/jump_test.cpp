@@ -97,18 +97,27 @@ TEST_CASE("a jump's target stays a block of its own, and the moves after it are 
 }
 
 TEST_CASE("a subprogram after a program's end runs only when a call enters it, from where the call was made", "[jumps]") {
-  // Haas's M97 P1000 calls block N1000 of the same program, placed after M30; its moves
-  // go on from the caller's position, in the caller's distance mode.
+  // Haas's M97 P1000 calls block N1000 of the same program, placed after M30: its moves go on
+  // from the caller's position, in the caller's distance mode, G90 where every call is made in G90.
   const std::string main_part = "O1000\nG90 G17 G21\nG0 X0 Y0\nG1 F500\nM97 P1000\nG0 X50 Y50\nM97 P1000\nM30\n";
-  const CompressResult sub = compress_as("haas", main_part + "N1000 G1 X0 Y0\n" + quarter() + "M99\n");
+  const std::string body = "N1000 G1 X0 Y0\n" + quarter() + "M99\n";
+  const CompressResult sub = compress_as("haas", main_part + body);
   REQUIRE(sub.ok);
-  CHECK(count_of(sub.output, "G3") == 0);
-  // Where the body states G90, it is fitted.
-  const CompressResult stated = compress_as("haas", main_part + "N1000 G90 G1 X0 Y0\n" + quarter() + "M99\n");
+  CHECK(count_of(sub.output, "G3") == 1);
+  CHECK(sub.output.find("N1000 G1 X0 Y0\n") != std::string::npos);  // from where the call was made
+  // A call made in G91 may enter it in G91: not fitted, until the body states its mode.
+  std::string in_g91 = main_part;
+  in_g91.insert(in_g91.find("M97 P1000\nG0 X50"), "G91\n");
+  in_g91.insert(in_g91.find("G0 X50"), "G90\n");
+  const CompressResult unknown = compress_as("haas", in_g91 + body);
+  REQUIRE(unknown.ok);
+  CHECK(count_of(unknown.output, "G3") == 0);
+  const CompressResult stated = compress_as("haas", in_g91 + "N1000 G90 G1 X0 Y0\n" + quarter() + "M99\n");
   REQUIRE(stated.ok);
   CHECK(count_of(stated.output, "G3") == 1);
-  // Mach3's M98 P2000 calls the program O2000 that follows M30 in the same file.
-  const std::string mach3 = "G90 G17 G21\nG0 X0 Y0\nG1 F500\nM98 P2000\nG0 X50 Y50\nM98 P2000\nM30\nO2000\n";
+  // Mach3's M98 P2000 calls the program O2000 that follows the end (M30, M2 or a subprogram's
+  // M99) in the same file; here once in G91.
+  const std::string mach3 = "G90 G17 G21\nG0 X0 Y0\nG1 F500\nG91\nM98 P2000\nG90\nG0 X50 Y50\nM98 P2000\nM30\nO2000\n";
   for (const std::string end : {"M30", "M2", "M99"}) {
     std::string t = mach3 + "G1 X0 Y0\n" + quarter() + "M99\n";
     t.replace(t.find("M30"), 3, end);

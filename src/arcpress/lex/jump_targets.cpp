@@ -38,11 +38,11 @@ Named named_at(std::string_view s, size_t i, bool n_allowed) {
   return {Named::Number, n};
 }
 
-/// The jumps in the line text[start, end): `add(number, at)` for a block number named,
-/// `add_computed(at)` for a computed one.
+/// The jumps in the line text[start, end): `add(number, at, call)` for a block number named
+/// (`call`: by a call, which returns), `add_computed(at)` for a computed one.
 template <class Add, class AddComputed>
 void read_line(std::string_view text, size_t start, size_t end, Add& add, AddComputed& add_computed) {
-  bool jump_m = false;  // M97 or M99
+  char jump_m = 0;      // M97 ('7') or M99 ('9')
   bool call_m = false;  // M98
   Named p, q;           // the line's P and Q words
   for (size_t i = start; i < end; ++i) {
@@ -66,7 +66,7 @@ void read_line(std::string_view text, size_t start, size_t end, Add& add, AddCom
         if (j < end && (upper(text[j]) == 'F' || upper(text[j]) == 'B' || upper(text[j]) == 'C')) ++j;
         if (j < end && is_letter(text[j])) break;  // another word (a name beginning GOTO)
         const Named t = named_at(text.substr(0, end), j, true);
-        if (t.kind == Named::Number) add(t.number, i);
+        if (t.kind == Named::Number) add(t.number, i, false);
         if (t.kind == Named::Computed) add_computed(i);
         i = j - 1;
         break;
@@ -78,7 +78,7 @@ void read_line(std::string_view text, size_t start, size_t end, Add& add, AddCom
         while (j + 2 < end && text[j] == '0' && is_digit(text[j + 1]) && is_digit(text[j + 2])) ++j;
         if (j + 1 < end && text[j] == '9' && (text[j + 1] == '7' || text[j + 1] == '8' || text[j + 1] == '9') &&
             (j + 2 >= end || (!is_digit(text[j + 2]) && text[j + 2] != '.')))
-          (text[j + 1] == '8' ? call_m : jump_m) = true;
+          text[j + 1] == '8' ? void(call_m = true) : void(jump_m = text[j + 1]);
         break;
       }
       case 'P': case 'p': case 'Q': case 'q': {
@@ -95,7 +95,7 @@ void read_line(std::string_view text, size_t start, size_t end, Add& add, AddCom
   }
   // M97 Pn and M99 Pn name block n; M98 P.. Qn starts the program it calls at block n.
   const Named& named = jump_m ? p : call_m ? q : Named{};
-  if (named.kind == Named::Number) add(named.number, start);
+  if (named.kind == Named::Number) add(named.number, start, jump_m != '9');
   if (named.kind == Named::Computed) add_computed(start);
 }
 
@@ -111,10 +111,12 @@ void JumpTargets::read(std::string_view text, uint32_t first_line, const PassedN
     counted = pos;
     return counted_line;
   };
-  auto add = [&](uint64_t number, size_t at) {
+  const size_t jumped_before = jumped_.size();
+  auto add = [&](uint64_t number, size_t at, bool call) {
     const uint32_t line = line_at(at);
     if (!late_ && passed && passed->passed(number)) late_ = Late{line, number, false};
     numbers_.push_back(number);
+    if (!call) jumped_.push_back(number);
   };
   auto add_computed = [&](size_t at) {
     const uint32_t line = line_at(at);
@@ -142,19 +144,26 @@ void JumpTargets::read(std::string_view text, uint32_t first_line, const PassedN
     for (int k = 0; k < 4; ++k)
       if (next[k] < from) find(k, from);
   }
-  if (numbers_.size() != before) {
-    std::sort(numbers_.begin(), numbers_.end());
-    numbers_.erase(std::unique(numbers_.begin(), numbers_.end()), numbers_.end());
-  }
+  for (auto [list, size] : {std::pair{&numbers_, before}, std::pair{&jumped_, jumped_before}})
+    if (list->size() != size) {
+      std::sort(list->begin(), list->end());
+      list->erase(std::unique(list->begin(), list->end()), list->end());
+    }
 }
 
 void JumpTargets::merge(const JumpTargets& other) {
   if (!late_) late_ = other.late_;
   computed_ = computed_ || other.computed_;
-  if (other.numbers_.empty()) return;
-  numbers_.insert(numbers_.end(), other.numbers_.begin(), other.numbers_.end());
-  std::sort(numbers_.begin(), numbers_.end());
-  numbers_.erase(std::unique(numbers_.begin(), numbers_.end()), numbers_.end());
+  for (auto [to, from] : {std::pair{&numbers_, &other.numbers_}, std::pair{&jumped_, &other.jumped_}}) {
+    if (from->empty()) continue;
+    to->insert(to->end(), from->begin(), from->end());
+    std::sort(to->begin(), to->end());
+    to->erase(std::unique(to->begin(), to->end()), to->end());
+  }
+}
+
+bool JumpTargets::only_called(double n) const {
+  return !computed_ && enters(n) && !std::binary_search(jumped_.begin(), jumped_.end(), uint64_t(n));
 }
 
 bool JumpTargets::enters(double n) const {

@@ -47,6 +47,8 @@ class JumpTargets {
   bool any() const { return computed_ || !numbers_.empty(); }
   /// Whether a jump may enter the block numbered `n` (the value of its N word).
   bool enters(double n) const;
+  /// Whether only calls enter it (M97 Pn, M98 P.. Qn), which return: no jump (GOTO, M99 P) does.
+  bool only_called(double n) const;
 
   /// The first jump read after the block it names had been read as no target.
   struct Late {
@@ -58,6 +60,7 @@ class JumpTargets {
 
  private:
   std::vector<uint64_t> numbers_;  // sorted, each once
+  std::vector<uint64_t> jumped_;   // ... those a jump names, not only a call
   bool computed_ = false;
   std::optional<Late> late_;
 };

@@ -335,6 +335,7 @@ class Interpreter {
         case 'M': {
           other_words = true;
           const int m = w->code10();
+          if ((m == 970 || m == 980) && (!s_.frame.absolute || s_.distance_unknown)) s_.called_in_g91 = true;
           if (const CodeMeaning* own_m = own_m_[uint32_t(m) % kOwnSlots] ? d_.meaning_of('M', m) : nullptr) {
             own |= own_setting(own_code(*own_m, b, bi, *w, own));
             break;
@@ -345,7 +346,7 @@ class Interpreter {
             forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterControl, bi);
           if (m == 20 || m == 300) end_read_ = true;
           if (m == 20 || m == 300 || m == 990) s_.ended = true;
-          if (m == 990) enter(bi);  // the blocks after a return run only when a call or jump enters them
+          if (m == 990) enter(bi, false);  // the blocks after a return run only when a call or jump enters them
           // A tool change may move the tool (to a tool change position), and
           // the controller goes on from where it left it: LinuxCNC re-reads its position after M6.
           if (m == 60) forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterToolChange, bi);
@@ -375,7 +376,7 @@ class Interpreter {
           s_.spindle = w->value;
           break;
         case 'N':
-          if (p_->jumps && p_->jumps->enters(w->value)) enter(bi);
+          if (p_->jumps && p_->jumps->enters(w->value)) enter(bi, p_->jumps->only_called(w->value));
           break;
         case 'T':
           other_words = true;
@@ -392,7 +393,7 @@ class Interpreter {
           // the dialect's keywords: the lexer reads no others.)
           other_words = true;
           if ((L == 'D' || L == kKeywordLetter) && !d_.codes.empty()) own_word(b, bi, *w, own);
-          if (L == 'O' && s_.ended) enter(bi);  // another program, after one's end: a call enters it
+          if (L == 'O' && s_.ended) enter(bi, true);  // another program, after one's end: a call enters it
           break;
       }
     }
@@ -674,9 +675,15 @@ class Interpreter {
   /// Block `bi` may be entered from elsewhere (JumpTargets, a program number after a program's
   /// end), or the blocks after it only so (M99): the position and whether G90 or G91 is in
   /// force are not known.
-  [[gnu::noinline]] void enter(uint32_t bi) {
+  /// Where only calls enter it (`called`) and none was made in G91, G90 is in force.
+  [[gnu::noinline]] void enter(uint32_t bi, bool called) {
     forget(kAllAxes & ~(1u << kE), Unfit::UnknownAtEntry, bi);
-    s_.distance_unknown = true;
+    s_.distance_unknown = !called || s_.called_in_g91;
+    if (!s_.distance_unknown && !s_.frame.absolute) {
+      Frame f = s_.frame;
+      f.absolute = true;
+      set_frame(f);
+    }
   }
 
   /// After block `bi`, an M2 or M30: RS274's program end (LinuxCNC's, Grbl's) puts G1, G17,

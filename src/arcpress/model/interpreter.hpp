@@ -45,6 +45,10 @@ struct ModalState {
   /// A program's end (M2, M30, M99) has been read: a program number after it (`O2000`) begins
   /// a program that runs when a call enters it (Mach3's and Fanuc's subprograms in one file).
   bool ended = false;
+  /// A call (M97, M98) was made where G91 was in force, or where G90 or G91 was not known: a
+  /// block only calls enter (JumpTargets::only_called(), a program number after an end) may
+  /// then be entered in G91. Else it is entered in G90.
+  bool called_in_g91 = false;
   /// G90.1 or G91.1 has been read, or an arc showed how a controller set by a setting of its
   /// own reads I/J/K (Dialect::start_centres): no more to learn of it. Told, not compared.
   bool centre_told = false;
@@ -76,6 +80,7 @@ struct ModalState {
     }
     return f.same_as(o.frame) && plane == o.plane && known == o.known && spindle == o.spindle && cycle_calls == o.cycle_calls &&
            distance_unknown == o.distance_unknown && ended == o.ended &&
+           called_in_g91 == o.called_in_g91 &&
            feed_known == o.feed_known && (!feed_known || feed_mm == o.feed_mm) && (!with_motion || motion == o.motion);
   }
 };
