@@ -108,12 +108,16 @@ constexpr size_t kFlavorPipeBytes = size_t(1) << 16;
 /// How much of the input is read at once.
 constexpr size_t kReadBytes = size_t(1) << 20;
 
-/// Reads the jumps of the program in regular file `path` into `c` before its blocks are
-/// pushed (Compressor::read_jumps()): a jump back to a block is then known in time.
-void read_jumps_ahead(const std::string& path, Compressor& c) {
-  cli::InputFile in(path);
+/// Reads the jumps of the program in `input`, a regular file (standard input too, where it is
+/// one), into `c` before its blocks are pushed (Compressor::read_jumps()): a jump back to a
+/// block is then known in time. Reading goes on where it was.
+void read_jumps_ahead(const cli::InputFile& input, Compressor& c) {
   std::string text;
-  while (in.read(text, kReadBytes) > 0) {
+  for (size_t at = 0; at < *input.size();) {
+    const std::string more = input.read_at(at, kReadBytes);
+    if (more.empty()) break;
+    at += more.size();
+    text += more;
     const size_t last = text.rfind('\n');
     if (last == std::string::npos) continue;  // (a line longer than a read)
     c.read_jumps(std::string_view(text.data(), last + 1), 0);  // (no line is named: none is late)
@@ -166,7 +170,7 @@ int compress_file(const CompressArgs& a, FileReport& report, std::atomic<size_t>
   opt.block_rate = a.stats;
   DiagnosticSink sink(name);
   Compressor compressor(name, opt, sink);
-  if (size && a.input != "-") read_jumps_ahead(a.input, compressor);  // (standard input is read once)
+  if (size) read_jumps_ahead(input, compressor);
   cli::OutputFile out(out_path);
   report.output = out_path;
   // In a batch, the batch's progress line counts what is read.

@@ -24,9 +24,13 @@ class InputFile {
   size_t read(std::string& into, size_t max);
   /// The bytes left to read where the input is a regular file.
   std::optional<size_t> size() const { return size_; }
-  /// The last `n` bytes of a regular file (empty for anything else), leaving the reading
-  /// where it is.
-  std::string tail(size_t n) const;
+  /// Up to `n` bytes of a regular file from `offset` (counted from where reading began; empty
+  /// for anything else), leaving the reading where it is.
+  std::string read_at(size_t offset, size_t n) const;
+  /// The last `n` bytes of a regular file (empty for anything else), as read_at().
+  std::string tail(size_t n) const {
+    return size_ ? read_at(*size_ - std::min(n, *size_), std::min(n, *size_)) : std::string();
+  }
 
  private:
   std::string name_;

@@ -197,7 +197,13 @@ TEST_CASE("the command reads a file's jumps before its blocks, and fails a jump 
                                                 (dir / "out.nc").string()));
   CHECK(file.exit_code == 0);
   CHECK(read_file(dir / "out.nc").find("\nN100 G1 X") != std::string::npos);
-  const Command pipe = run_arcpress("--dialect fanuc --tolerance 0.01", text);
+  // Standard input that is a regular file is read ahead as the file is.
+  const Command redirected = run_shell(fmt::format("\"$ARCPRESS\" --dialect fanuc --tolerance 0.01 < '{}'",
+                                                   (dir / "back.nc").string()));
+  CHECK(redirected.exit_code == 0);
+  CHECK(redirected.out.find("\nN100 G1 X") != std::string::npos);
+  const Command pipe = run_shell(fmt::format("cat '{}' | \"$ARCPRESS\" --dialect fanuc --tolerance 0.01",
+                                             (dir / "back.nc").string()));
   CHECK(pipe.exit_code == 2);
   CHECK(pipe.err.find(":70035:1: error: E-FLOW-JUMP-BACK: a jump back to N100") != std::string::npos);
 }

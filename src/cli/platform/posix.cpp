@@ -145,13 +145,13 @@ size_t InputFile::read(std::string& into, size_t max) {
   }
 }
 
-std::string InputFile::tail(size_t n) const {
-  if (!size_ || *size_ == 0) return {};
-  const size_t len = std::min(n, *size_);
+std::string InputFile::read_at(size_t offset, size_t n) const {
+  if (!size_ || offset >= *size_) return {};
+  const size_t len = std::min(n, *size_ - offset);
   std::string out(len, '\0');
   size_t got = 0;
   while (got < len) {
-    const ssize_t k = ::pread(int(handle_), out.data() + got, len - got, off_t(start_ + *size_ - len + got));
+    const ssize_t k = ::pread(int(handle_), out.data() + got, len - got, off_t(start_ + offset + got));
     if (k < 0 && errno == EINTR) continue;
     if (k <= 0) break;
     got += size_t(k);

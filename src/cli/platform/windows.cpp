@@ -210,14 +210,14 @@ size_t InputFile::read(std::string& into, size_t max) {
   return n;
 }
 
-std::string InputFile::tail(size_t n) const {
-  if (!size_ || *size_ == 0) return {};
+std::string InputFile::read_at(size_t offset, size_t n) const {
+  if (!size_ || offset >= *size_) return {};
   HANDLE h = as_handle(handle_);
-  const size_t len = std::min(n, *size_);
+  const size_t len = std::min(n, *size_ - offset);
   std::string out(len, '\0');
   const long long was = file_pointer(h);
   size_t got = 0;
-  if (was >= 0 && seek(h, start_ + static_cast<long long>(*size_ - len)))
+  if (was >= 0 && seek(h, start_ + static_cast<long long>(offset)))
     while (got < len) {
       DWORD k = 0;
       if (!::ReadFile(h, out.data() + got, DWORD(len - got), &k, nullptr) || k == 0) break;
