@@ -127,6 +127,21 @@ TEST_CASE("a subprogram after a program's end runs only when a call enters it, f
     t.insert(t.find("O2000\n") + 6, "G90\n");
     CHECK(count_of(compress_as("mach3", t).output, "G3") == 1);
   }
+  // A subprogram that moves in increments (G91, as Autodesk's Fanuc post writes a pattern's):
+  // its moves are placed relative to one another from wherever the call was made, and
+  // fitted so, in increments; after G90, the first absolute move starts where that was.
+  std::string incremental = "G90 G17 G21\nG0 X0 Y0\nG1 F500\nM98 P2000\nG0 X50 Y50\nM98 P2000\nM30\nO2000\nG91\n";
+  double px = 0, py = 0;
+  for (int i = 1; i <= 30; ++i) {
+    const double x = 20 * std::cos(M_PI * i / 60) - 20, y = 20 * std::sin(M_PI * i / 60);
+    incremental += fmt::format("G1 X{:.4f} Y{:.4f}\n", x - px, y - py);
+    px = x, py = y;
+  }
+  incremental += "G90\nG1 X5 Y5\nG1 X6 Y5\nM99\n";
+  const CompressResult inc = compress_as("fanuc", incremental);
+  REQUIRE(inc.ok);
+  CHECK(inc.within_band());
+  CHECK(inc.output.find("G91\nG3 X-20. Y20. I-19.999 J0.001\nG90\nG1 X5 Y5\n") != std::string::npos);
   // Programs written one after another in a file, each ending in M30 (CamBam's operations),
   // are read on: a sender that streams them runs each after the last.
   const CompressResult joined = compress_as("grbl", "G90 G17 G21\nG0 X5 Y5\nM30\nG0 X0 Y0\nG1 F500\n" + quarter() + "M30\n");

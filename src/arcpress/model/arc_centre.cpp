@@ -132,4 +132,23 @@ ArcCentreRead read_arc_centre(const Dialect& d, const Frame& fr, Plane plane, co
   return out;
 }
 
+int read_turn(const Dialect& dialect, int g, uint8_t& turn, Interpretation& out, uint32_t bi, DiagnosticSink& sink,
+              SourceLoc at, std::string_view spelled) {
+  if (const TurnReading* t = dialect.turn_reading(g)) {
+    if (turn == 0) {
+      sink.warning(at, "W-MODEL-ARC-TURN",
+                   fmt::format("{} turns the way the last arc programmed before it turned, and the program has "
+                               "programmed none: not modelled, and the moves before it are fitted with lines only "
+                               "(an arc of arcpress's would decide the way; in a long program, those of the first "
+                               "pieces may already be written: --method keep writes none)",
+                               spelled));
+      out.arcless_moves = uint32_t(out.moves.size());
+    }
+    if (out.turn_reads.empty() || out.turn_reads.back().block != bi) out.turn_reads.push_back({bi, turn});
+    return turn == 0 ? g : turn == 2 ? t->cw10 : t->ccw10;
+  }
+  if (const int way = dialect.turn_set_by(g)) turn = uint8_t(way);
+  return g;
+}
+
 }  // namespace arcpress

@@ -5,6 +5,7 @@
 // to the controller's radius check. The modal interpreter reads input arcs with these.
 #include <algorithm>
 #include <optional>
+#include <string_view>
 
 #include "arcpress/core/diagnostic.hpp"
 #include "arcpress/core/geometry.hpp"
@@ -76,5 +77,13 @@ struct ArcCentreRead {
 ArcCentreRead read_arc_centre(const Dialect& dialect, const Frame& frame, Plane plane, const AxisValues& from,
                               const AxisValues& target, const ArcWords& words, bool ccw, const Vec3& pole,
                               uint32_t pole_known, DiagnosticSink& sink, uint32_t line);
+
+/// Where `dialect` has codes that turn as the last programmed arc did (Dialect::last_turn):
+/// G-code `g` (times ten) of block `bi` sets that way in `turn` (2 clockwise, 3
+/// counter-clockwise, 0 none yet), or reads it (a TurnRead in `out` for the emitter; where no
+/// arc set it, W-MODEL-ARC-TURN at `at`, the code spelled `spelled`) and is read as the code
+/// that turns that way (G05 after a G02 as G02). Returns the code to read.
+int read_turn(const Dialect& dialect, int g, uint8_t& turn, Interpretation& out, uint32_t bi, DiagnosticSink& sink,
+              SourceLoc at, std::string_view spelled);
 
 }  // namespace arcpress

@@ -124,27 +124,6 @@ class Interpreter {
     own |= own_setting(own_code(meaning, b, bi, w, own));
   }
 
-  /// Where the dialect has codes that turn as the last programmed arc did (Dialect::last_turn):
-  /// G-code `g` of block `bi` sets that way, or reads it (a TurnRead for the emitter) and is
-  /// read as the code that turns that way (G05 after a G02 as G02). Returns the code to read.
-  int read_turn(int g, const Block& b, uint32_t bi, const Word& w) {
-    if (const TurnReading* t = d_.turn_reading(g)) {
-      if (s_.turn == 0) {
-        sink_.warning({b.line, w.col}, "W-MODEL-ARC-TURN",
-                      fmt::format("{} turns the way the last arc programmed before it turned, and the program has "
-                                  "programmed none: not modelled, and the moves before it are fitted with lines only "
-                                  "(an arc of arcpress's would decide the way; in a long program, those of the first "
-                                  "pieces may already be written: --method keep writes none)",
-                                  p_->raw(b, w)));
-        o_->arcless_moves = uint32_t(o_->moves.size());
-      }
-      if (o_->turn_reads.empty() || o_->turn_reads.back().block != bi) o_->turn_reads.push_back({bi, s_.turn});
-      return s_.turn == 0 ? g : s_.turn == 2 ? t->cw10 : t->ccw10;
-    }
-    if (const int way = d_.turn_set_by(g)) s_.turn = uint8_t(way);
-    return g;
-  }
-
   /// After a code arcpress does not model in block `bi`: the position is not known, and the
   /// move before it stays as written. Such a block may go on from the path element before
   /// it (Heidenhain's chamfer G24 between two lines and rounding G25, its tangential arcs
@@ -253,7 +232,7 @@ class Interpreter {
           // A code the dialect reads its own way is read as RS274's code of that meaning, one
           // that turns as the last arc did as the code for that way.
           if (own_g_[uint32_t(g) % kOwnSlots]) {
-            if (turns_) g = read_turn(g, b, bi, *w);
+            if (turns_) g = read_turn(d_, g, s_.turn, *o_, bi, sink_, {b.line, w->col}, p_->raw(b, *w));
             if (const CodeMeaning* m = d_.meaning_of('G', g)) {
               g = own_code(*m, b, bi, *w, own);
               if (g < 0) break;
@@ -275,7 +254,10 @@ class Interpreter {
             case 210: F().unit_mm = 1.0, s_.units_told = true; break;
             case 70: F().diameter_mode = true; break;
             case 80: F().diameter_mode = false; break;
-            case 900: F().absolute = true; F().e_relative = false; s_.distance_unknown = false; break;
+            case 900:
+              F().absolute = true, F().e_relative = false, s_.distance_unknown = false;
+              if (s_.floating) forget(s_.floating, Unfit::UnknownAtEntry, bi);
+              break;
             case 910: F().absolute = false; F().e_relative = true; s_.distance_unknown = false; break;
             case 901: F().arc_absolute = true, s_.centre_told = true; break;
             case 911: F().arc_absolute = false, s_.centre_told = true; break;
@@ -506,6 +488,8 @@ class Interpreter {
     }
 
     const Frame& fr = s_.frame;
+    if (!fr.absolute && !s_.distance_unknown && (words_seen & ~s_.known & ~(1u << kE))) [[unlikely]]
+      float_entry();
     AxisValues target = s_.pos;
     uint32_t known_after = s_.known;
     uint32_t written = 0;  // axes this block writes
@@ -690,6 +674,7 @@ class Interpreter {
   /// G90, G94 and G54 in force; a sender that streams on runs what follows so.
   [[gnu::noinline]] void program_end(uint32_t bi) {
     end_read_ = false;
+    if (s_.floating) forget(s_.floating, Unfit::UnknownAtEntry, bi);  // (G90 from here)
     Frame f = s_.frame;
     f.absolute = true;
     f.inverse_time = false;
@@ -703,8 +688,21 @@ class Interpreter {
     s_.motion = 10;
   }
 
+  /// A G91 move where an entry left axes unknown: they float (ModalState::floating), unless
+  /// arc centres are absolute (G90.1, a pole), which a shifted place would misread.
+  [[gnu::noinline]] void float_entry() {
+    if (s_.frame.arc_absolute || s_.frame.polar || d_.centre_modal) return;
+    for (int ax = 0; ax < kAxisCount; ++ax)
+      if (ax != kE && !((s_.known >> ax) & 1u) && s_.why[ax].reason == Unfit::UnknownAtEntry) {
+        s_.known |= 1u << ax;
+        s_.floating |= 1u << ax;
+        s_.why[ax] = {Unfit::None, 0};
+      }
+  }
+
   /// Axes in `mask` become unknown, `why`, from block `bi` on (the latest reason is kept).
   void forget(uint32_t mask, Unfit why, uint32_t bi) {
+    s_.floating &= ~mask;
     for (int ax = 0; ax < kAxisCount; ++ax)
       if ((mask >> ax) & 1u) s_.why[ax] = {why, p_->blocks[bi].line};
     s_.known &= ~mask;

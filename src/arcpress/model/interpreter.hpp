@@ -49,6 +49,10 @@ struct ModalState {
   /// block only calls enter (JumpTargets::only_called(), a program number after an end) may
   /// then be entered in G91. Else it is entered in G90.
   bool called_in_g91 = false;
+  /// Bit per axis: known only up to a shift the program never states. Where an entry left the
+  /// position unknown, G91 moves are read from the place it stands in for: placed relative to
+  /// one another, as their increments are. G90 makes such an axis unknown again.
+  uint32_t floating = 0;
   /// G90.1 or G91.1 has been read, or an arc showed how a controller set by a setting of its
   /// own reads I/J/K (Dialect::start_centres): no more to learn of it. Told, not compared.
   bool centre_told = false;
@@ -80,7 +84,7 @@ struct ModalState {
     }
     return f.same_as(o.frame) && plane == o.plane && known == o.known && spindle == o.spindle && cycle_calls == o.cycle_calls &&
            distance_unknown == o.distance_unknown && ended == o.ended &&
-           called_in_g91 == o.called_in_g91 &&
+           called_in_g91 == o.called_in_g91 && floating == o.floating &&
            feed_known == o.feed_known && (!feed_known || feed_mm == o.feed_mm) && (!with_motion || motion == o.motion);
   }
 };
