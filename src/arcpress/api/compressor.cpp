@@ -218,7 +218,8 @@ struct Compressor::Impl {
     p.text.append(text);
     lex_line(p, begin, p.text.size(), ++line, sink);
     const uint32_t bi = uint32_t(p.blocks.size() - 1);
-    if (const Block& b = p.blocks[bi]; b.word_count > 0 && p.words[b.first_word].letter == 'N')
+    // (Where the jumps were read ahead, none can come late: nothing to note.)
+    if (const Block& b = p.blocks[bi]; !jumps_ahead && b.word_count > 0 && p.words[b.first_word].letter == 'N')
       if (const double n = p.words[b.first_word].value; !jumps || !jumps->enters(n)) passed.pass(n);
     reader.step(bi);
     if (sink.error_count() > 0) {  // strict mode: nothing more is written

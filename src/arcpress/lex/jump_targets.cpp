@@ -5,13 +5,13 @@
 #include <cmath>
 #include <cstring>
 
+#include "arcpress/lex/characters.hpp"
+
 namespace arcpress {
 
 namespace {
 
-bool is_letter(char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || c == '_'; }
-bool is_digit(char c) { return c >= '0' && c <= '9'; }
-char upper(char c) { return c >= 'a' && c <= 'z' ? char(c - 'a' + 'A') : c; }
+bool is_letter(char c) { return is_alpha(c) || c == '_'; }
 
 /// What a jump names, read from `i` on: a block number (N100, or 100), a number the program
 /// computes (#1, [#1+10]), or neither (a label's name, nothing).

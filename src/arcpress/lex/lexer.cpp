@@ -8,14 +8,12 @@
 #include <string>
 
 #include "arcpress/core/decimal.hpp"
+#include "arcpress/lex/characters.hpp"
 
 namespace arcpress {
 namespace {
 
 inline bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
-inline bool is_digit(char c) { return c >= '0' && c <= '9'; }
-inline bool is_alpha(char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); }
-inline char upper(char c) { return (c >= 'a' && c <= 'z') ? char(c - 32) : c; }
 
 /// M-codes whose argument is free text (firmware messages and SD-card file names).
 bool is_text_mcode(double v) {
