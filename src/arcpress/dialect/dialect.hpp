@@ -154,6 +154,9 @@ struct Dialect {
   /// recovers it; neither moves the programmed position (a Z hop is undone on recovery).
   /// Elsewhere G10 sets offsets or tables and G11 is not read.
   bool firmware_retraction = false;
+  /// A line's leading blanks open and close blocks ([lines] indented_blocks): RepRapFirmware
+  /// 3 runs the lines indented below an `if`, `else` or `while` as its block (BlockNesting).
+  bool indented_blocks = false;
   /// Extended commands (Klipper's `NAME ARG=...` lines, by their name in capitals) that move
   /// nothing ([printer] position_keeping_commands): the position stays known across them.
   /// Any other such command, a user's macro among them, may move anything.

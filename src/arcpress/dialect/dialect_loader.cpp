@@ -338,6 +338,7 @@ Dialect parse_dialect(const std::string& text, const std::string& path) {
       d.semicolon_comments = std::count(comments.begin(), comments.end(), "semicolon") > 0;
     }
     r.strings("refused", d.refused);
+    r.boolean("indented_blocks", d.indented_blocks);
     r.finish();
   }
   if (const toml::table* t = top.table("throughput")) {

@@ -31,27 +31,13 @@ int own_decimals(double v, int most) {
   return dec;
 }
 
-/// How the input writes its blocks, so new blocks look like their neighbours.
-struct BlockStyle {
-  bool lower = false;
-  bool spaced = true;
-  bool padded = false;  ///< G01 rather than G1
-  bool keep_point = false;
-  bool plus = false;  ///< positive numbers with a '+'
-
-  std::string letter(char c) const { return std::string(1, lower ? char(c + 32) : c); }
-  std::string motion(int g) const { return fmt::format("{}{}{}", letter('G'), padded ? "0" : "", g); }
-};
-
 class Emitter {
  public:
   Emitter(const Program& p, const Interpretation& in, const EmitOptions& opt, EmitStats* stats)
       : p_(p), in_(in), stats_(stats), opt_(opt) {
     out_.reserve(p.text.size());
     const OutputHabits h = opt.start.habits ? *opt.start.habits : output_habits(p);
-    padded_ = h.padded;
-    keep_point_ = h.keep_point;
-    plus_sign_ = h.plus_sign;
+    habits_ = h;
     pole_moved_ = opt.start.pole_maybe_moved ? 0b111u : 0u;
     turn_moved_ = opt.start.turn_maybe_moved;
     for (const CodeReading& c : d().codes)
@@ -170,29 +156,14 @@ class Emitter {
     out_.append(p_.eol(b));
   }
 
-  BlockStyle style_of(const Block& b) const {
-    BlockStyle s;
-    s.padded = padded_;
-    std::string_view raw = p_.raw(b);
-    for (char c : raw) {
-      if (c >= 'a' && c <= 'z') {
-        s.lower = true;
-        break;
-      }
-      if (c >= 'A' && c <= 'Z') break;
-    }
-    s.spaced = b.word_count < 2 || p_.words_begin(b)[1].col - 1 > p_.words_begin(b)[0].col - 1 + p_.words_begin(b)[0].length;
-    s.keep_point = keep_point_;
-    s.plus = plus_sign_;
-    for (auto* w = p_.words_begin(b); w != p_.words_end(b); ++w) {
-      if (w->letter == 'G' && !w->is_expr && is_motion_gcode(w->value)) {
-        auto t = p_.raw(b, *w);
-        s.padded = t.size() >= 3 && t[1] == '0';
-        break;
-      }
-    }
-    return s;
+  /// The blanks block `b` begins with, which a block written in place of moves from it takes
+  /// (so it stays in the `if` or `while` they were in: Dialect::indented_blocks).
+  std::string_view indent_of(const Block& b) const {
+    const std::string_view raw = p_.raw(b);
+    return raw.substr(0, std::min(raw.find_first_not_of(" \t"), raw.size()));
   }
+
+  BlockStyle style_of(const Block& b) const { return block_style(p_, b, habits_); }
 
   /// A new block for one primitive, composed apart from the modal state of the output
   /// before it: its text with the motion word, which is left out where no covered block
@@ -278,6 +249,7 @@ class Emitter {
       if (text) {
         if (arc) state_centres(fr.arc_absolute, in_.moves[run.first_move + a].block);
         if (arc && !header_done_ && !d().arc_header.empty()) {
+          out_ += indent_of(p_.blocks[in_.moves[run.first_move + a].block]);
           out_ += d().arc_header;
           end_block(out_);
           out_.append(p_.eol(p_.blocks[in_.moves[run.first_move + a].block]));
@@ -313,6 +285,7 @@ class Emitter {
   /// block of move k.
   void write_plane(const Run& run, uint32_t k, Plane plane) {
     const Block& b = p_.blocks[in_.moves[run.first_move + k].block];
+    out_ += indent_of(b);
     out_ += style_of(b).letter('G');
     out_ += std::to_string(plane_gcode(plane));
     end_block(out_);
@@ -374,9 +347,11 @@ class Emitter {
     // Modal motion is not repeated where the input does not repeat it (see Composed).
     out.motion_written = motion_written;
     std::string& s = out.text;
+    const std::string_view indent = indent_of(p_.blocks[in_.moves[run.first_move + a].block]);
+    s = indent;
     if (const Word* n = p_.find(last, 'N'); n && n == p_.words_begin(last)) s += p_.raw(last, *n);
     out.motion_at = uint32_t(s.size());
-    if (!s.empty()) s += sep;
+    if (out.motion_at > indent.size()) s += sep;
     s += st.motion(out.g);
     out.motion_length = uint32_t(s.size()) - out.motion_at;
     const AxisValues& from = run.vertex(in_, a);
@@ -423,7 +398,8 @@ class Emitter {
     s += axis_words;
     // A block that starts with its motion word leaves it out with the separator after it,
     // so a modal continuation starts with its first word (" X1" would not be the input's style).
-    if (out.motion_at == 0 && s.size() > out.motion_length && s.compare(out.motion_length, sep.size(), sep) == 0)
+    if (out.motion_at == indent.size() && s.size() > out.motion_at + out.motion_length &&
+        s.compare(out.motion_at + out.motion_length, sep.size(), sep) == 0)
       out.motion_length += uint32_t(sep.size());
     if (arc) {
       PrintedArc c = print_centre(run, fr, a, pr, end, st, sep, scratch);
@@ -645,6 +621,7 @@ class Emitter {
     if (out_centres_ == CentresOut::Fixed) return;
     const CentresOut need = absolute ? CentresOut::Absolute : CentresOut::Incremental;
     if (out_centres_ == need) return;
+    out_ += indent_of(p_.blocks[block]);
     out_ += absolute ? "G90.1" : "G91.1";
     end_block(out_);
     out_.append(p_.eol(p_.blocks[block]));
@@ -668,9 +645,9 @@ class Emitter {
   /// Where I/J/K set a centre that holds (Dialect::centre_modal) and arcs arcpress wrote have
   /// moved it: before a copied block that turns about it, the program's centre stated again.
   /// An arc without centre words takes them itself (returned, for copy_block() to put after
-  /// its last word: the block then says what it did, and no block is added); before a polar
-  /// move, or a line not read (which may be one), they go in a block of their own. After a copied block that sets the centre, it is
-  /// the program's again.
+  /// its last word: the block then says what it did); before a polar move, or a line not read
+  /// (which may be one), they go in a block of their own. A copied block that sets the centre
+  /// makes it the program's again.
   std::string restate_pole_for_copy(const Block& b) {
     const uint32_t bi = uint32_t(&b - p_.blocks.data());
     const auto& reads = in_.pole_reads;
@@ -692,6 +669,7 @@ class Emitter {
         pole_moved_ &= ~bits;
         if (stats_) ++stats_->poles_restated;
         if (!r.arc) {
+          out_ += indent_of(b);
           out_ += words;
           end_block(out_);
           out_.append(p_.eol(b));
@@ -755,9 +733,7 @@ class Emitter {
     return false;
   }
   std::string out_;
-  bool padded_ = false;
-  bool keep_point_ = false;
-  bool plus_sign_ = false;
+  OutputHabits habits_;
   uint32_t pole_moved_ = 0;  ///< axes (X/Y/Z bits) of the centre in force that arcpress's own arcs moved (centre_modal)
   size_t pole_next_ = 0;     ///< the next of in_.pole_reads to reach
   /// arcpress's own arcs may have turned the other way since the program last set the way

@@ -39,4 +39,27 @@ OutputHabits output_habits(const Program& p) {
   return h;
 }
 
+BlockStyle block_style(const Program& p, const Block& b, const OutputHabits& habits) {
+  BlockStyle s;
+  s.padded = habits.padded;
+  for (char c : p.raw(b)) {
+    if (c >= 'a' && c <= 'z') {
+      s.lower = true;
+      break;
+    }
+    if (c >= 'A' && c <= 'Z') break;
+  }
+  s.spaced = b.word_count < 2 || p.words_begin(b)[1].col - 1 > p.words_begin(b)[0].col - 1 + p.words_begin(b)[0].length;
+  s.keep_point = habits.keep_point;
+  s.plus = habits.plus_sign;
+  for (auto* w = p.words_begin(b); w != p.words_end(b); ++w) {
+    if (w->letter == 'G' && !w->is_expr && is_motion_gcode(w->value)) {
+      auto t = p.raw(b, *w);
+      s.padded = t.size() >= 3 && t[1] == '0';
+      break;
+    }
+  }
+  return s;
+}
+
 }  // namespace arcpress

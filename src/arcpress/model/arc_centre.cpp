@@ -151,4 +151,28 @@ int read_turn(const Dialect& dialect, int g, uint8_t& turn, Interpretation& out,
   return g;
 }
 
+void set_pole(ModalState& s, const double* ijk, const bool* ijk_seen, bool pole_here) {
+  for (int k = 0; k < 3; ++k) {
+    const bool from_words = ijk_seen[k] && !pole_here;
+    if (!from_words && !(pole_here && k != axes_of(s.plane).normal)) continue;
+    const bool absolute = from_words && s.frame.absolute;
+    s.pole[k] = !from_words ? s.pos[k] : absolute ? s.frame.to_mm(k, ijk[k]) : s.pos[k] + ijk[k] * s.frame.unit_mm;
+    const bool known = absolute || ((s.known >> k) & 1u);
+    s.pole_known = known ? s.pole_known | 1u << k : s.pole_known & ~(1u << k);
+  }
+}
+
+PoleRead pole_read(const ModalState& s, uint32_t block, bool arc) {
+  PoleRead r;
+  r.block = block;
+  r.arc = arc;
+  r.plane = s.plane;
+  const auto a = axes_of(s.plane);
+  const uint32_t plane_bits = (1u << a.first) | (1u << a.second);
+  r.known = (s.pole_known & plane_bits) == plane_bits && (s.frame.absolute || (s.known & plane_bits) == plane_bits);
+  for (int k = 0; k < 3; ++k)
+    r.words[k] = s.frame.absolute ? s.frame.to_program(k, s.pole[k]) : (s.pole[k] - s.pos[k]) / s.frame.unit_mm;
+  return r;
+}
+
 }  // namespace arcpress

@@ -10,6 +10,7 @@
 #include "arcpress/core/diagnostic.hpp"
 #include "arcpress/core/geometry.hpp"
 #include "arcpress/dialect/dialect.hpp"
+#include "arcpress/model/modal_state.hpp"
 #include "arcpress/model/move.hpp"
 
 namespace arcpress {
@@ -77,6 +78,16 @@ struct ArcCentreRead {
 ArcCentreRead read_arc_centre(const Dialect& dialect, const Frame& frame, Plane plane, const AxisValues& from,
                               const AxisValues& target, const ArcWords& words, bool ccw, const Vec3& pole,
                               uint32_t pole_known, DiagnosticSink& sink, uint32_t line);
+
+/// Where I/J/K set a centre that holds (Dialect::centre_modal, Heidenhain's pole): sets it in
+/// `s` from a block's words (`ijk` where `ijk_seen`): the centre itself, or under G91 an
+/// offset from the present point; where the block's own code sets it (`pole_here`, G29), the
+/// present point.
+void set_pole(ModalState& s, const double* ijk, const bool* ijk_seen, bool pole_here);
+
+/// What block `block` of a program in state `s`, which reads the centre left in force (an
+/// arc without centre words where `arc`, else a polar move), needs to state it again.
+PoleRead pole_read(const ModalState& s, uint32_t block, bool arc);
 
 /// Where `dialect` has codes that turn as the last programmed arc did (Dialect::last_turn):
 /// G-code `g` (times ten) of block `bi` sets that way in `turn` (2 clockwise, 3

@@ -49,6 +49,7 @@ class Interpreter {
 
   void step(uint32_t bi) {
     while (o_->move_of_block.size() <= bi) o_->move_of_block.push_back(-1);
+    if (d_.indented_blocks) [[unlikely]] return nested_step(bi);
     block(bi, p_->blocks[bi]);
     if (end_read_) [[unlikely]] program_end(bi);
   }
@@ -449,19 +450,8 @@ class Interpreter {
     }
     if (fedit) set_frame(*fedit);
     if (motion >= 0) s_.motion = motion;
-    // Where I/J/K set a centre that holds (Heidenhain's pole): from this block's words, the
-    // centre itself, or under G91 an offset from the present point; G29 takes the present point.
-    const bool pole_here = own & kOwnPole;
-    if (d_.centre_modal && (ijk_seen[0] || ijk_seen[1] || ijk_seen[2] || pole_here)) {
-      for (int k = 0; k < 3; ++k) {
-        const bool from_words = ijk_seen[k] && !pole_here;
-        if (!from_words && !(pole_here && k != axes_of(s_.plane).normal)) continue;
-        const bool absolute = from_words && s_.frame.absolute;
-        s_.pole[k] = !from_words ? s_.pos[k] : absolute ? s_.frame.to_mm(k, ijk[k]) : s_.pos[k] + ijk[k] * s_.frame.unit_mm;
-        const bool known = absolute || ((s_.known >> k) & 1u);
-        s_.pole_known = known ? s_.pole_known | 1u << k : s_.pole_known & ~(1u << k);
-      }
-    }
+    if (d_.centre_modal && (ijk_seen[0] || ijk_seen[1] || ijk_seen[2] || (own & kOwnPole)))
+      set_pole(s_, ijk, ijk_seen, own & kOwnPole);
 
     const bool any_axis = words_seen != 0;
     if (homing) {
@@ -670,6 +660,21 @@ class Interpreter {
     }
   }
 
+  /// Block `bi` where leading blanks open and close blocks: where it closes some, what they
+  /// may have changed is not known (BlockNesting); what it changes, the blocks around it did.
+  [[gnu::noinline]] void nested_step(uint32_t bi) {
+    const BlockNesting::Join j = s_.nesting.line(p_->raw(p_->blocks[bi]));
+    if (j.position) forget(kAllAxes & ~(1u << kE), Unfit::UnknownAtEntry, bi);
+    if (j.distance) s_.distance_unknown = true;
+    const uint32_t known = s_.known;
+    const size_t frames = o_->frames.size();
+    const bool absolute = s_.frame.absolute, distance_unknown = s_.distance_unknown;
+    block(bi, p_->blocks[bi]);
+    if (end_read_) program_end(bi);
+    s_.nesting.changed(o_->move_of_block[bi] >= 0 || s_.known != known || o_->frames.size() != frames,
+                       s_.frame.absolute != absolute || s_.distance_unknown != distance_unknown);
+  }
+
   /// After block `bi`, an M2 or M30: RS274's program end (LinuxCNC's, Grbl's) puts G1, G17,
   /// G90, G94 and G54 in force; a sender that streams on runs what follows so.
   [[gnu::noinline]] void program_end(uint32_t bi) {
@@ -717,19 +722,9 @@ class Interpreter {
     return r.centre;
   }
 
-  /// Block `bi` reads the centre the dialect's I/J/K left in force: noted, with the words that
-  /// state it again there (Interpretation::pole_reads).
+  /// Block `bi` reads the centre the dialect's I/J/K left in force (Interpretation::pole_reads).
   void note_pole_read(uint32_t bi, bool arc = false) {
-    PoleRead r;
-    r.block = bi;
-    r.arc = arc;
-    r.plane = s_.plane;
-    const auto a = axes_of(s_.plane);
-    const uint32_t plane_bits = (1u << a.first) | (1u << a.second);
-    r.known = (s_.pole_known & plane_bits) == plane_bits && (s_.frame.absolute || (s_.known & plane_bits) == plane_bits);
-    for (int k = 0; k < 3; ++k)
-      r.words[k] = s_.frame.absolute ? s_.frame.to_program(k, s_.pole[k]) : (s_.pole[k] - s_.pos[k]) / s_.frame.unit_mm;
-    if (o_->pole_reads.empty() || o_->pole_reads.back().block != bi) o_->pole_reads.push_back(r);
+    if (o_->pole_reads.empty() || o_->pole_reads.back().block != bi) o_->pole_reads.push_back(pole_read(s_, bi, arc));
   }
 
   Move& add_move(uint32_t bi, MoveKind kind, const AxisValues& to, bool known, int turns) {

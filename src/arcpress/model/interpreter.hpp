@@ -12,82 +12,10 @@
 #include "arcpress/core/diagnostic.hpp"
 #include "arcpress/dialect/dialect.hpp"
 #include "arcpress/lex/block.hpp"
+#include "arcpress/model/modal_state.hpp"
 #include "arcpress/model/move.hpp"
 
 namespace arcpress {
-
-/// What the interpreter knows between two blocks: every modal setting, the position and
-/// which axes of it are known and why not. A program read in pieces (a stream) is read on
-/// from the state the previous piece ended in, exactly as if it were read whole.
-struct ModalState {
-  Frame frame;
-  Plane plane = Plane::XY;
-  AxisValues pos{};                 ///< mm (degrees for A/B/C); stand-ins where not known
-  uint32_t known = 1u << kE;        ///< bit per axis: position known; E is a counter from 0
-  /// Per axis whose position is not known: why, and the line that made it so (0: never set).
-  struct Why {
-    Unfit reason = Unfit::UnknownAtStart;
-    uint32_t line = 0;
-  };
-  std::array<Why, kAxisCount> why{};
-  uint32_t cause_line = 0;          ///< of the last unplaced move
-  double spindle = 0;               ///< S in force
-  int motion = 0;                   ///< modal motion G-code x10; G0 at power-up
-  double feed_mm = 0;               ///< F in force, mm/min (or inverse time)
-  bool feed_known = false;
-  /// G20 or G21 has been read, or lengths were read in the dialect's start units and a
-  /// warning said so (once): either way, nothing more to say of the units. It changes no
-  /// reading, so reads_as() does not compare it.
-  bool units_told = false;
-  /// Whether G90 or G91 is in force is not known: the blocks from here on may be entered from
-  /// elsewhere (after M2, M30 or M99, at a jump's target), until the program states one.
-  bool distance_unknown = false;
-  /// A program's end (M2, M30, M99) has been read: a program number after it (`O2000`) begins
-  /// a program that runs when a call enters it (Mach3's and Fanuc's subprograms in one file).
-  bool ended = false;
-  /// A call (M97, M98) was made where G91 was in force, or where G90 or G91 was not known: a
-  /// block only calls enter (JumpTargets::only_called(), a program number after an end) may
-  /// then be entered in G91. Else it is entered in G90.
-  bool called_in_g91 = false;
-  /// Bit per axis: known only up to a shift the program never states. Where an entry left the
-  /// position unknown, G91 moves are read from the place it stands in for: placed relative to
-  /// one another, as their increments are. G90 makes such an axis unknown again.
-  uint32_t floating = 0;
-  /// G90.1 or G91.1 has been read, or an arc showed how a controller set by a setting of its
-  /// own reads I/J/K (Dialect::start_centres): no more to learn of it. Told, not compared.
-  bool centre_told = false;
-  /// Where the dialect's I/J/K set a centre that holds (Dialect::centre_modal): that centre,
-  /// mm, absolute, by axis X/Y/Z, and the axes of it known (bit per axis). Arcs arcpress
-  /// writes move it, and the emitter states the program's again before a block that reads it,
-  /// so it is told, not compared.
-  Vec3 pole{0, 0, 0};
-  uint32_t pole_known = 0;
-  /// Every move calls the cycle last defined at its end (a dialect's "cycle-calls" code,
-  /// Heidenhain's M89), until a "cycle-call" code (M99, G79).
-  bool cycle_calls = false;
-  /// The way the program's last arc code turned, for the codes that turn as it did
-  /// (Dialect::last_turn): 2 clockwise, 3 counter-clockwise, 0 none yet. Arcs arcpress writes
-  /// change it, and the emitter spells the program's out where it is read, so it is told,
-  /// not compared.
-  uint8_t turn = 0;
-
-  /// Whether a reader in state `o` reads every following block as one in this state does:
-  /// the same position, known axes, frame, plane, feed and spindle, and (where
-  /// `with_motion`) modal motion. The reasons axes are unknown, and their lines, are only told.
-  /// Positions agree to the floating noise of summing relative moves (same_place()).
-  /// (So are the G92 offsets, taken from such positions.)
-  bool reads_as(const ModalState& o, bool with_motion) const {
-    Frame f = frame;
-    for (int ax = 0; ax < kAxisCount; ++ax) {
-      if (!same_place(pos[ax], o.pos[ax]) || !same_place(frame.offset[ax], o.frame.offset[ax])) return false;
-      f.offset[ax] = o.frame.offset[ax];
-    }
-    return f.same_as(o.frame) && plane == o.plane && known == o.known && spindle == o.spindle && cycle_calls == o.cycle_calls &&
-           distance_unknown == o.distance_unknown && ended == o.ended &&
-           called_in_g91 == o.called_in_g91 && floating == o.floating &&
-           feed_known == o.feed_known && (!feed_known || feed_mm == o.feed_mm) && (!with_motion || motion == o.motion);
-  }
-};
 
 /// The state at the start of a program read by `dialect`'s controller.
 ModalState initial_state(const Dialect& dialect);

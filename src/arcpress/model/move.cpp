@@ -19,7 +19,8 @@ const char* describe(Unfit why) {
     case Unfit::UnknownAfterCodeMove: return "position unknown after a code the dialect says may move the tool";
     case Unfit::UnknownAtEntry:
       return "position unknown at a block the program may enter from elsewhere (the target of a GOTO, M99 P, M97 P or "
-             "M98 Q, a block after M99, a program number after a program's end)";
+             "M98 Q, a block after M99, a program number after a program's end, a line that ends an indented if, else or "
+             "while block)";
     case Unfit::UnknownDistanceMode:
       return "position unknown: moved after such an entry before the program stated G90 or G91";
     case Unfit::UnknownAfterUnmodelled: return "position unknown after a G-code arcpress does not model";

@@ -101,7 +101,7 @@ enum class Unfit : uint8_t {
   UnknownInPolar,          ///< polar coordinates (G16): the plane's words are a radius and an angle
   UnknownAfterToolChange,  ///< a tool change (M6, a tool call): the controller may move the tool, and goes on from where it is
   UnknownAfterCodeMove,    ///< a code the dialect says may move the tool where the program does not say (Heidenhain's M140)
-  UnknownAtEntry,          ///< a block a jump or a call may enter (JumpTargets; after M99; an O number after a program end)
+  UnknownAtEntry,          ///< a block a jump or a call may enter (JumpTargets; after M99; an O number after a program end; BlockNesting)
   UnknownDistanceMode,     ///< moved where G90 or G91 was not known (after an entry, until the program states it)
   UnknownAfterUnmodelled,  ///< a G-code arcpress does not model
   // The block cannot be read as a path: no controller runs it as written.

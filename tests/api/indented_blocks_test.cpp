@@ -1,0 +1,161 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Where a line's leading blanks open and close blocks (RepRapFirmware 3: the lines indented
+// below `if`, `else` or `while` are its block), a block written in place of moves stays in
+// the block they were in, and a line that ends a block is entered both from the block's end
+// and from where it began: nothing after it is fitted from inside the block.
+#include <catch2/catch.hpp>
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "arcpress/arcpress.hpp"
+#include "arcpress/dialect/dialect_loader.hpp"
+#include "arcpress/model/block_nesting.hpp"
+#include "support.hpp"
+
+using namespace arcpress;
+using namespace arcpress::test;
+
+namespace {
+
+Dialect shipped(const std::string& name) { return find_dialect(name, {ARCPRESS_SOURCE_DIR "/dialects"}); }
+
+/// Moves `from` .. `to` (of 0 .. 30) along a quarter circle of radius 20 mm about (-20, 0),
+/// each line beginning with `indent`, extruding (M83).
+std::string quarter(int from, int to, const std::string& indent) {
+  std::string t;
+  for (int i = from; i <= to; ++i) {
+    const double a = M_PI * i / 60;
+    t += fmt::format("{}G1 X{:.4f} Y{:.4f} E0.05\n", indent, 20 * std::cos(a) - 20, 20 * std::sin(a));
+  }
+  return t;
+}
+
+CompressResult compress_as(const std::string& dialect, const std::string& text) {
+  DiagnosticSink sink;
+  CompressOptions opt;
+  opt.dialect = shipped(dialect);
+  opt.fit.tolerance_mm = 0.01;
+  return compress("part.gcode", text, opt, sink);
+}
+
+size_t count_of(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+const std::string kHead = "G90\nM83\nG1 X0 Y0 F1200\n";
+
+}  // namespace
+
+TEST_CASE("a line indented less than the one before it closes blocks, and what they changed is not known there",
+          "[nesting]") {
+  BlockNesting n;
+  CHECK_FALSE(n.line("if move.axes[0].homed").position);
+  CHECK_FALSE(n.line("  G1 X10").position);
+  n.changed(true, false);
+  // Blank lines and indented comments close nothing; a tab counts to the next multiple of 4.
+  CHECK_FALSE(n.line("").position);
+  CHECK_FALSE(n.line("   ").position);
+  BlockNesting m = n;
+  CHECK_FALSE(m.line(" ; indented comment").position);
+  CHECK_FALSE(m.line("\tG1 X11").position);  // deeper: a block of its own
+  CHECK(m.depth == 2);
+  const BlockNesting::Join closed = m.line("G1 X12");
+  CHECK(closed.position);
+  CHECK_FALSE(closed.distance);
+  CHECK(m.depth == 0);
+  // A comment at the left margin closes the block too, as the firmware reads it.
+  BlockNesting c = n;
+  CHECK(c.line("; comment").position);
+  // A block in which nothing changed closes with nothing unknown; a G91 in it is.
+  BlockNesting q;
+  q.line("if true");
+  q.line("  M117 hello");
+  q.changed(false, false);
+  CHECK_FALSE(q.line("G1 X1").position);
+  q.line("if true");
+  q.line("  G91");
+  q.changed(false, true);
+  const BlockNesting::Join j = q.line("G1 X1");
+  CHECK(j.distance);
+  CHECK_FALSE(j.position);
+  // Closing two blocks at once tells what either changed.
+  BlockNesting deep;
+  deep.line("while true");
+  deep.line("  if x");
+  deep.line("    G1 X1");
+  deep.changed(true, false);
+  deep.line("    G91");
+  deep.changed(false, true);
+  const BlockNesting::Join both = deep.line("G1 X2");
+  CHECK(both.position);
+  CHECK(both.distance);
+}
+
+TEST_CASE("a block written in place of a loop's moves stays in the loop", "[nesting]") {
+  const std::string text = kHead + "G1 X0 Y0 E0.05\nwhile iterations < 3\n" + quarter(0, 30, "  ") + "  G1 X0 Y0 E0.05\n" +
+                           "M400\n";
+  const CompressResult r = compress_as("reprapfirmware", text);
+  REQUIRE(r.ok);
+  CHECK(r.within_band());
+  REQUIRE(count_of(r.output, "G3") == 1);
+  // Every line between `while` and the line after the loop is indented as the loop's lines are.
+  const size_t body = r.output.find("while iterations < 3\n") + 21, after = r.output.find("M400\n");
+  REQUIRE(body < after);
+  for (size_t at = body; at < after; at = r.output.find('\n', at) + 1) {
+    INFO(r.output.substr(at, r.output.find('\n', at) - at));
+    CHECK(r.output.compare(at, 2, "  ") == 0);
+  }
+  // The controllers without such blocks write the arc as the input's lines begin; unindented
+  // input stays unindented.
+  CHECK(compress_as("marlin", text).output.find("\n  G3 X") != std::string::npos);
+  CHECK(compress_as("reprapfirmware", kHead + quarter(0, 30, "")).output.find("\nG3 X") != std::string::npos);
+}
+
+TEST_CASE("the moves after an if block are not fitted from inside it", "[nesting]") {
+  // The path goes on past the block, but where the condition fails the block's moves are not
+  // made: the line after it starts from before the `if`.
+  const std::string text = kHead + "if move.axes[2].homed\n" + quarter(0, 15, "  ") + quarter(16, 30, "") + "M400\n";
+  // Read without such blocks, one arc replaces moves of both.
+  const CompressResult flat = compress_as("marlin", text);
+  REQUIRE(flat.ok);
+  CHECK(count_of(flat.output, "G3") == 1);
+  CHECK(flat.output.find(quarter(16, 16, "")) == std::string::npos);
+  const CompressResult nested = compress_as("reprapfirmware", text);
+  REQUIRE(nested.ok);
+  CHECK(nested.within_band());
+  // The first move after the block is written as it was, and the rest fitted from it.
+  CHECK(nested.output.find("\n" + quarter(16, 16, "")) != std::string::npos);
+  CHECK(count_of(nested.output, "  G3") == 1);
+  CHECK(count_of(nested.output, "\nG3") == 1);
+  // A G91 in the block leaves the distance mode after it unknown: nothing is fitted until the
+  // program states one.
+  const std::string g91 = kHead + "if move.axes[2].homed\n" + quarter(0, 15, "  ") + "  G91\n";
+  const CompressResult unknown = compress_as("reprapfirmware", g91 + quarter(16, 30, ""));
+  REQUIRE(unknown.ok);
+  CHECK(count_of(unknown.output, "\nG3") == 0);
+  CHECK(unknown.output.find(quarter(16, 30, "")) != std::string::npos);
+  const CompressResult stated = compress_as("reprapfirmware", g91 + "G90\n" + quarter(16, 30, ""));
+  REQUIRE(stated.ok);
+  CHECK(count_of(stated.output, "\nG3") == 1);
+}
+
+TEST_CASE("arcpress diff reads the blocks of indented programs as the compressor does", "[nesting]") {
+  const std::string text = kHead + "if move.axes[2].homed\n" + quarter(0, 15, "  ") + quarter(16, 30, "") + "M400\n";
+  const CompressResult r = compress_as("reprapfirmware", text);
+  REQUIRE(r.ok);
+  DiffOptions opt;
+  opt.tolerance_mm = 0.01;
+  const Dialect rrf = shipped("reprapfirmware");
+  CHECK(diff_texts(text, r.output, opt, rrf).same(opt.tolerance_mm));
+  // The arc of the first block moved out of it (its indent taken away) is another program:
+  // where the `if` fails, it is made from another place.
+  std::string moved = r.output;
+  const size_t at = moved.find("  G3");
+  REQUIRE(at != std::string::npos);
+  moved.erase(at, 2);
+  CHECK_FALSE(diff_texts(text, moved, opt, rrf).same(opt.tolerance_mm));
+  CHECK(diff_texts(text, moved, opt, shipped("marlin")).same(opt.tolerance_mm));
+}
