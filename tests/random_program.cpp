@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <utility>
 #include <vector>
 
 #include "arcpress/core/error.hpp"
@@ -56,6 +57,8 @@ RandomCase random_case(std::span<const uint8_t> bytes) {
   double last_x = 0, last_y = 0;  // the last printed point, for the extrusion of a move
   bool rotary = false;             // moves carry an A word
   long numbered = 0;               // the number of the last move written with one (0: none)
+  std::string indent;              // of the moves in an `if` block
+  long sub_label = 0;              // of the subroutine being defined (0: none)
   for (size_t i = 3; i + 2 < bytes.size(); i += 3) {
     const auto a = static_cast<int8_t>(bytes[i]), b = static_cast<int8_t>(bytes[i + 1]),
                h = static_cast<int8_t>(bytes[i + 2]);
@@ -108,9 +111,18 @@ RandomCase random_case(std::span<const uint8_t> bytes) {
     if (!tnc && (h & 0x3f) == 0x31 && numbered > 0)
       s += a < 0 ? fmt::format("IF [#1 LT 2] GOTO {}\n", numbered) : fmt::format("M99 P{}\n", numbered);
     if (!tnc && (h & 0x3f) == 0x32) s += extrudes ? "G90 M83\n" : "G90\n";  // (G90 alone makes E absolute)
+    // An `if` whose moves are indented below it (RepRapFirmware's blocks) and the line that
+    // ends it; a LinuxCNC subroutine's definition around some moves, and its call.
+    if (!tnc && (h & 0x3f) == 0x33) {
+      if (indent.empty()) s += "if true\n";
+      indent = indent.empty() ? "  " : "";
+    }
+    if (!tnc && (h & 0x3f) == 0x34 && !sub_label) s += fmt::format("o{} sub\n", sub_label = long(i));
+    if (!tnc && (h & 0x3f) == 0x35 && sub_label) s += fmt::format("o{0} endsub\no{0} call\n", std::exchange(sub_label, 0));
     const bool number_it = !tnc && (h & 0x3f) == 0x30;
     if (number_it) numbered = long(i);
     const double px = std::stod(fmt::format("{:.{}f}", x, decimals)), py = std::stod(fmt::format("{:.{}f}", y, decimals));
+    s += indent;
     if (number_it) s += fmt::format("N{} ", i);
     if (tnc)
       s += fmt::format("N{} G01 X{:+.{}f} Y{:+.{}f} Z{:+.{}f}", i + 1, x, decimals, y, decimals, z, decimals);
@@ -125,6 +137,7 @@ RandomCase random_case(std::span<const uint8_t> bytes) {
     last_x = px;
     last_y = py;
   }
+  if (sub_label) s += fmt::format("o{} endsub\n", sub_label);
   s += tnc ? fmt::format("N{} M2 *\nN99999999 %RANDOM G71 *\n", bytes.size() + 3) : "M2\n";
   return c;
 }

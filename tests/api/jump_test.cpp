@@ -149,6 +149,47 @@ TEST_CASE("a subprogram after a program's end runs only when a call enters it, f
   CHECK(count_of(joined.output, "G3") == 1);
 }
 
+TEST_CASE("a LinuxCNC subroutine's body runs in its caller's modes, and its caller goes on in those it leaves", "[jumps][subroutines]") {
+  // o100's body moves in the caller's distance mode: not fitted until it states one.
+  const std::string body = "G1 X0 Y0\n" + quarter();
+  const std::string head = "G21 G17 G90\nG1 F500\n";
+  const std::string calls = "G0 X0 Y0\no100 call\nG0 X50 Y0\n";
+  const CompressResult unstated = compress_as("linuxcnc", head + "o100 sub\n" + body + "o100 endsub\n" + calls + "M2\n");
+  REQUIRE(unstated.ok);
+  CHECK(count_of(unstated.output, "G3") == 0);
+  const CompressResult stated = compress_as("linuxcnc", head + "o100 sub\nG90\n" + body + "o100 endsub\n" + calls + "M2\n");
+  REQUIRE(stated.ok);
+  CHECK(count_of(stated.output, "G3") == 1);
+  // The definition runs nothing: the moves after it are read in the modes before it, not in
+  // the G91 and G18 its body states.
+  const std::string after = "G1 X0 Y0\n" + quarter() + "M2\n";
+  const CompressResult defined =
+      compress_as("linuxcnc", head + "o100 sub\nG91 G18\nG1 X1\no100 endsub\n" + after);
+  REQUIRE(defined.ok);
+  CHECK(count_of(defined.output, "G3") == 1);
+  // After its call they hold (rs274 reads so: tests/oracle/linuxcnc_test.cpp): the same
+  // words are read as increments in XZ, and the arc of the absolute reading is not written.
+  const CompressResult called =
+      compress_as("linuxcnc", head + "o100 sub\nG91 G18\nG1 X1\no100 endsub\no100 call\n" + after);
+  REQUIRE(called.ok);
+  const std::string arc = defined.output.substr(defined.output.find("G3"));
+  CHECK(called.output.find(arc.substr(0, arc.find('\n'))) == std::string::npos);
+  // A subroutine in another file (or further on) may leave any mode: after its call, nothing
+  // is fitted until the program states the distance mode, plane and units.
+  const CompressResult other = compress_as("linuxcnc", head + "o<probe> call\nG90\n" + after);
+  REQUIRE(other.ok);
+  CHECK(count_of(other.output, "G3") == 0);
+  CHECK(count_of(compress_as("linuxcnc", head + "o<probe> call\nG90 G17 G21\n" + after).output, "G3") == 1);
+  // A body read in G17 and called in G18 would run another path than the one fitted: refused.
+  DiagnosticSink sink;
+  CompressOptions opt;
+  opt.dialect = shipped("linuxcnc");
+  const CompressResult refused =
+      compress("part.ngc", head + "o100 sub\nG90\n" + body + "o100 endsub\nG18\no100 call\nM2\n", opt, sink);
+  CHECK_FALSE(refused.ok);
+  CHECK(std::any_of(sink.all().begin(), sink.all().end(), [](const Diagnostic& d) { return d.code == "E-FLOW-SUB-MODES"; }));
+}
+
 TEST_CASE("a jump back read after its target was read fails a program pushed as it comes, not one whose jumps were read ahead", "[jumps]") {
   const std::string text = "G90 G17 G21\nG0 X0 Y0\nG1 F500\n" + quarter(15) + "G1 X1 Y30\nIF [#1 LT 3] GOTO 100\nM30\n";
   auto run = [&](bool ahead) {

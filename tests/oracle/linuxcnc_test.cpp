@@ -62,6 +62,7 @@ std::string canon_to_gcode(const std::string& canon) {
   std::istringstream in(canon);
   const char* plane_axes[3][3] = {{"X", "Y", "Z"}, {"Z", "X", "Y"}, {"Y", "Z", "X"}};
   int plane = 0;
+  std::string at;  // where the last move ended
   for (std::string line; std::getline(in, line);) {
     auto has = [&](const char* name) { return line.find(name); };
     if (size_t p = has("USE_LENGTH_UNITS("); p != std::string::npos) {
@@ -71,16 +72,24 @@ std::string canon_to_gcode(const std::string& canon) {
       g += plane == 0 ? "G17\n" : plane == 1 ? "G18\n" : "G19\n";
     } else if (size_t t = has("STRAIGHT_TRAVERSE("); t != std::string::npos) {
       auto v = args_of(line, line.find('(', t));
-      g += fmt::format("G0 X{:.4f} Y{:.4f} Z{:.4f}\n", v[0], v[1], v[2]);
+      at = fmt::format("X{:.4f} Y{:.4f} Z{:.4f}", v[0], v[1], v[2]);
+      g += "G0 " + at + "\n";
     } else if (size_t f = has("STRAIGHT_FEED("); f != std::string::npos) {
       auto v = args_of(line, line.find('(', f));
-      g += fmt::format("G1 X{:.4f} Y{:.4f} Z{:.4f}\n", v[0], v[1], v[2]);
+      // (A lone G1, which arcpress writes where flow control follows an arc, feeds to where
+      // the tool is: no path.)
+      const std::string to = fmt::format("X{:.4f} Y{:.4f} Z{:.4f}", v[0], v[1], v[2]);
+      if (to != at) g += "G1 " + to + "\n";
+      at = to;
     } else if (size_t a = has("ARC_FEED("); a != std::string::npos) {
       auto v = args_of(line, line.find('(', a));
       const char** ax = plane_axes[plane];
       const char* centre[3] = {"I", "J", "K"};
       auto centre_of = [&](const char* axis) { return centre[axis[0] - 'X']; };
       int rotation = int(v[4]);
+      double end[3];
+      end[ax[0][0] - 'X'] = v[0], end[ax[1][0] - 'X'] = v[1], end[ax[2][0] - 'X'] = v[5];
+      at = fmt::format("X{:.4f} Y{:.4f} Z{:.4f}", end[0], end[1], end[2]);
       g += fmt::format("{} {}{:.4f} {}{:.4f} {}{:.4f} {}{:.4f} {}{:.4f}{}\n", rotation > 0 ? "G3" : "G2", ax[0], v[0],
                        ax[1], v[1], centre_of(ax[0]), v[2], centre_of(ax[1]), v[3], ax[2], v[5],
                        std::abs(rotation) > 1 ? fmt::format(" P{}", std::abs(rotation)) : "");
@@ -334,4 +343,32 @@ TEST_CASE("LinuxCNC's rs274 reads a compressed 2-D laser program that never writ
   CHECK(r.stats.arcs_out == 4);
   CHECK(r.stats.lines_out == 4);
   CHECK(r.output.find('Z') == std::string::npos);
+}
+
+TEST_CASE("LinuxCNC's rs274 reads a program's subroutines, called in G91 and leaving G91 and G18, within the band",
+          "[oracle][linuxcnc][subroutines]") {
+  RS274_OR_SKIP();
+  // A quarter circle of radius 10 mm in 30 moves, as increments (`relative`) or absolute
+  // from (x0, y0).
+  auto quarter = [](bool relative, double x0, double y0, const char* axes = "XY") {
+    std::string t;
+    for (int k = 1; k <= 30; ++k) {
+      const double a = deg_to_rad(3 * k), b = deg_to_rad(3 * (k - 1));
+      const double u = relative ? 10 * (std::sin(a) - std::sin(b)) : x0 + 10 * std::sin(a);
+      const double v = relative ? 10 * (std::cos(a) - std::cos(b)) : y0 + 10 * std::cos(a) - 10;
+      t += fmt::format("G1 {}{:.4f} {}{:.4f}\n", axes[0], u, axes[1], v);
+    }
+    return t;
+  };
+  // o100's increments run in the G91 of its call; o200 states G91 itself and leaves G91 and
+  // G18 in force after its call (rs274 -g), so the program's next moves are increments in XZ.
+  std::string g = "G21 G17 G90\nG1 F300\n";
+  g += "o100 sub\n" + quarter(true, 0, 0) + "o100 endsub\n";
+  g += "o200 sub\nG91\n" + quarter(true, 0, 0) + "G18\no200 endsub\n";
+  g += "G0 X0 Y0 Z0\nG91\no100 call\nG90\nG0 X40 Y0\no200 call\n" + quarter(true, 0, 0, "XZ");
+  g += "G90 G17\nG0 X0 Y40\n" + quarter(false, 0, 40) + "M2\n";
+  const CompressResult r = check_read_alike(g, "rs274-subroutines");
+  // Every quarter becomes one arc but o100's, whose mode is its caller's.
+  CHECK(r.stats.arcs_out == 3);
+  CHECK(r.output.find("o100 sub\n" + quarter(true, 0, 0) + "o100 endsub\n") != std::string::npos);
 }

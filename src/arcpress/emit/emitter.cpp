@@ -151,6 +151,18 @@ class Emitter {
         return;
       }
     }
+    // Where flow control may take the program elsewhere (a subroutine's return, a loop's
+    // end), the output's modal motion is the input's again: the blocks it goes on to may
+    // read it.
+    if ((b.kind == BlockKind::Control || b.kind == BlockKind::Macro) && in_motion_ >= 0 && in_motion_ != out_motion_) {
+      const Block& before = &b > p_.blocks.data() && (&b - 1)->kind == BlockKind::Code ? *(&b - 1) : b;
+      out_ += indent_of(b);
+      out_ += style_of(before).motion(in_motion_ / 10);  // (styled as the move before, not as `o100 endsub`)
+      end_block(out_);
+      out_.append(p_.eol(b));
+      out_motion_ = in_motion_;
+      if (stats_) ++stats_->motion_words_added;
+    }
     if (stats_) stats_->copied.push_back({out_.size(), uint32_t(&b - p_.blocks.data())});
     out_.append(raw);
     out_.append(p_.eol(b));

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <optional>
 
+#include "arcpress/lex/o_word.hpp"
 #include "arcpress/model/arc_centre.hpp"
 
 namespace arcpress {
@@ -165,6 +166,7 @@ class Interpreter {
         if (d_.centre_modal) note_pole_read(bi);
         if (b.kind == BlockKind::Opaque) keep_last_move();
         forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterControl, bi);
+        if (b.kind == BlockKind::Control) subroutine_line(bi, b);
         return;
     }
     bool other_words = false;   // words a fitted block could not carry along
@@ -248,11 +250,11 @@ class Interpreter {
               break;
             case 800: motion = 800; break;
             case 40: break;  // dwell
-            case 170: s_.plane = Plane::XY; break;
-            case 180: s_.plane = Plane::ZX; break;
-            case 190: s_.plane = Plane::YZ; break;
-            case 200: F().unit_mm = 25.4, s_.units_told = true; break;
-            case 210: F().unit_mm = 1.0, s_.units_told = true; break;
+            case 170: s_.plane = Plane::XY, stated(kStatesPlane); break;
+            case 180: s_.plane = Plane::ZX, stated(kStatesPlane); break;
+            case 190: s_.plane = Plane::YZ, stated(kStatesPlane); break;
+            case 200: F().unit_mm = 25.4, s_.units_told = true, stated(kStatesUnits); break;
+            case 210: F().unit_mm = 1.0, s_.units_told = true, stated(kStatesUnits); break;
             case 70: F().diameter_mode = true; break;
             case 80: F().diameter_mode = false; break;
             case 900:
@@ -382,7 +384,7 @@ class Interpreter {
     }
     if (own & kOwnArcRadius) r_seen = true, r_value = own_radius_, other_words = true;
     if (own & (kOwnInch | kOwnMm | kOwnDiameter | kOwnRadius)) {  // codes that are no G-code, read as G20, G21, G7, G8
-      if (own & (kOwnInch | kOwnMm)) F().unit_mm = (own & kOwnInch) ? 25.4 : 1.0, s_.units_told = true;
+      if (own & (kOwnInch | kOwnMm)) F().unit_mm = (own & kOwnInch) ? 25.4 : 1.0, s_.units_told = true, stated(kStatesUnits);
       if (own & (kOwnDiameter | kOwnRadius)) F().diameter_mode = (own & kOwnDiameter) != 0;
     }
     if (length_col > 0 && !s_.units_told) {
@@ -517,7 +519,7 @@ class Interpreter {
         known_after |= (1u << ax);
       }
     }
-    if (s_.distance_unknown) [[unlikely]]  // each word an absolute place or an increment
+    if (s_.distance_unknown || s_.unstated) [[unlikely]]  // each word an absolute place or an increment, ...
       for (uint32_t axes = words_seen & ~(1u << kE); axes != 0; axes &= axes - 1) {
         known_after &= ~(1u << std::countr_zero(axes));
         set_why(std::countr_zero(axes), Unfit::UnknownDistanceMode);
@@ -673,6 +675,28 @@ class Interpreter {
     if (end_read_) program_end(bi);
     s_.nesting.changed(o_->move_of_block[bi] >= 0 || s_.known != known || o_->frames.size() != frames,
                        s_.frame.absolute != absolute || s_.distance_unknown != distance_unknown);
+  }
+
+  void stated(uint8_t mode) { s_.stated |= mode, s_.unstated &= uint8_t(~mode); }  // G17..G19, G20/G21
+
+  /// LinuxCNC's O-word line `b` (block `bi`), where it defines, ends or calls a subroutine
+  /// (model/subroutines.hpp): a body begins in its caller's position, distance mode and
+  /// motion; after its definition the modes before it hold; after a call, those it left.
+  [[gnu::noinline]] void subroutine_line(uint32_t bi, const Block& b) {
+    const OWord w = read_o_word(p_->raw(b));
+    if (w.kind == OWord::Kind::Other) return;
+    Frame f = s_.frame;
+    if (w.kind == OWord::Kind::Sub) {
+      begin_definition(s_, w.label);
+      enter(bi, false);
+      s_.motion = -1;
+    } else if (w.kind == OWord::Kind::Call) {
+      forget(kAllAxes & ~(1u << kE), Unfit::UnknownAtEntry, bi);  // where the body ends: one place (G91 floats)
+      if (const std::string e = after_call(s_, w.label, f); !e.empty()) sink_.error({b.line, 1}, "E-FLOW-SUB-MODES", e);
+    } else {
+      end_of_body(s_, w.kind == OWord::Kind::EndSub, f);
+    }
+    set_frame(f);
   }
 
   /// After block `bi`, an M2 or M30: RS274's program end (LinuxCNC's, Grbl's) puts G1, G17,

@@ -3,9 +3,11 @@
 // The modal interpreter's state between two blocks.
 #include <array>
 #include <cstdint>
+#include <memory>
 
 #include "arcpress/model/block_nesting.hpp"
 #include "arcpress/model/move.hpp"
+#include "arcpress/model/subroutines.hpp"
 
 namespace arcpress {
 
@@ -66,6 +68,13 @@ struct ModalState {
   /// The blocks the leading blanks have opened, where they open blocks
   /// (Dialect::indented_blocks).
   BlockNesting nesting;
+  /// The subroutines read so far and the definition being read (null: none).
+  std::shared_ptr<const Subroutines> subs;
+  /// The plane or units (kStatesPlane, kStatesUnits) stated since the definition being read began.
+  uint8_t stated = 0;
+  /// The plane or units (kStatesPlane, kStatesUnits) not known since a call of a subroutine that
+  /// may change them (one not read), until the program states them: moves are not placed.
+  uint8_t unstated = 0;
 
   /// Whether a reader in state `o` reads every following block as one in this state does:
   /// the same position, known axes, frame, plane, feed and spindle, and (where
@@ -81,6 +90,7 @@ struct ModalState {
     return f.same_as(o.frame) && plane == o.plane && known == o.known && spindle == o.spindle && cycle_calls == o.cycle_calls &&
            distance_unknown == o.distance_unknown && ended == o.ended &&
            called_in_g91 == o.called_in_g91 && floating == o.floating && nesting == o.nesting &&
+           stated == o.stated && unstated == o.unstated && (subs == o.subs || (subs && o.subs && *subs == *o.subs)) &&
            feed_known == o.feed_known && (!feed_known || feed_mm == o.feed_mm) && (!with_motion || motion == o.motion);
   }
 };

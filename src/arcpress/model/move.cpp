@@ -18,11 +18,12 @@ const char* describe(Unfit why) {
     case Unfit::UnknownAfterToolChange: return "position unknown after a tool change (M6, or the dialect's tool call), which may move the tool";
     case Unfit::UnknownAfterCodeMove: return "position unknown after a code the dialect says may move the tool";
     case Unfit::UnknownAtEntry:
-      return "position unknown at a block the program may enter from elsewhere (the target of a GOTO, M99 P, M97 P or "
-             "M98 Q, a block after M99, a program number after a program's end, a line that ends an indented if, else or "
-             "while block)";
+      return "position unknown where the program may arrive from elsewhere (the target of a GOTO, M99 P, M97 P or "
+             "M98 Q, after M99 or a subroutine call, a program number after a program's end, a subroutine's start, a "
+             "line that ends an indented if, else or while block)";
     case Unfit::UnknownDistanceMode:
-      return "position unknown: moved after such an entry before the program stated G90 or G91";
+      return "position unknown: moved after such an entry before the program stated G90 or G91 (after a call of a "
+             "subroutine not read, also G17/G18/G19 and G20/G21)";
     case Unfit::UnknownAfterUnmodelled: return "position unknown after a G-code arcpress does not model";
     case Unfit::UnreadableArc: return "an arc the controller cannot run: no centre, or R too short for its chord";
     case Unfit::RepeatedWord: return "a word repeated in the block";

@@ -1,0 +1,21 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// LinuxCNC's O-words: the flow-control line `o100 sub`, `o<name> call [1]`, `O100 endsub`,
+// `o101 if [...]`, read for what it does and the label it names.
+#include <cstdint>
+#include <string_view>
+
+namespace arcpress {
+
+struct OWord {
+  enum class Kind : uint8_t { Other, Sub, EndSub, Return, Call };
+  Kind kind = Kind::Other;
+  /// The label (`100`, `<name>` in any case), hashed: two lines name one subroutine where
+  /// these agree. 0 where the line has none.
+  uint32_t label = 0;
+};
+
+/// The O-word line `line` (a block of kind Control): its keyword and label.
+OWord read_o_word(std::string_view line);
+
+}  // namespace arcpress
