@@ -175,4 +175,24 @@ PoleRead pole_read(const ModalState& s, uint32_t block, bool arc) {
   return r;
 }
 
+void read_centre_mode(const Dialect& d, ModalState& s, Frame& frame, const AxisValues& target, const double* ijk,
+                      const bool* ijk_seen, DiagnosticSink& sink, uint32_t line) {
+  const auto a = axes_of(s.plane);
+  if (!ijk_seen[a.first] && !ijk_seen[a.second]) return;
+  const bool now = s.frame.arc_absolute;
+  auto gap_when = [&](bool absolute) {
+    return radius_gap(d, s.plane, s.pos, ijk_centre(s.frame, s.plane, s.pos, ijk, ijk_seen, absolute), target);
+  };
+  if (readable_arc(gap_when(now))) {
+    s.centre_told = true;
+  } else if (whole_arc(gap_when(!now), d)) {
+    frame.arc_absolute = !now;
+    s.centre_told = true;
+    sink.warning({line, 1}, "W-MODEL-ARC-MODE",
+                 fmt::format("this arc is whole only with I/J/K read as {}, as the controller's own setting must have "
+                             "it: read so from here on (G{} at the program's start says so)",
+                             now ? "offsets from its start" : "the absolute centre", now ? "91.1" : "90.1"));
+  }
+}
+
 }  // namespace arcpress

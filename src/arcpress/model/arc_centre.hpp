@@ -79,6 +79,14 @@ ArcCentreRead read_arc_centre(const Dialect& dialect, const Frame& frame, Plane 
                               const AxisValues& target, const ArcWords& words, bool ccw, const Vec3& pole,
                               uint32_t pole_known, DiagnosticSink& sink, uint32_t line);
 
+/// Where the controller's own setting decides how I/J/K read (CentreReading::Incremental, the
+/// setting not yet told), the program's first arc whose centre words name a point (one in
+/// `plane` from `s.pos` to `target` with `ijk` where `ijk_seen`, its ends known) tells it:
+/// read whole as they are, the setting is so; whole only the other way, it is the other way
+/// from here on (`frame`'s arc_absolute, for the interpreter to set; W-MODEL-ARC-MODE at `line`).
+void read_centre_mode(const Dialect& dialect, ModalState& s, Frame& frame, const AxisValues& target, const double* ijk,
+                      const bool* ijk_seen, DiagnosticSink& sink, uint32_t line);
+
 /// Where I/J/K set a centre that holds (Dialect::centre_modal, Heidenhain's pole): sets it in
 /// `s` from a block's words (`ijk` where `ijk_seen`): the centre itself, or under G91 an
 /// offset from the present point; where the block's own code sets it (`pole_here`, G29), the

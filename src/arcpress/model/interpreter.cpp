@@ -580,29 +580,10 @@ class Interpreter {
         if ((known_after >> ax) & 1u) set_why(ax, Unfit::UnknownAfterCycle);
       known_after &= ~kXyzMask;
     }
-    // Where the controller's own setting decides how I/J/K read, the program's first arc
-    // whose centre words name a point tells it: read whole as they are, the setting is so;
-    // whole only the other way, it is the other way, from here on.
-    if (is_arc(kind) && !r_seen && !s_.centre_told && d_.centre == CentreReading::Incremental) {
-      const auto a = axes_of(s_.plane);
-      if ((ijk_seen[a.first] || ijk_seen[a.second]) && known) {
-        const bool now = s_.frame.arc_absolute;
-        auto gap_when = [&](bool absolute) {
-          return radius_gap(d_, s_.plane, s_.pos, ijk_centre(s_.frame, s_.plane, s_.pos, ijk, ijk_seen, absolute), target);
-        };
-        if (readable_arc(gap_when(now))) {
-          s_.centre_told = true;
-        } else if (whole_arc(gap_when(!now), d_)) {
-          Frame f = s_.frame;
-          f.arc_absolute = !now;
-          set_frame(f);
-          s_.centre_told = true;
-          sink_.warning({b.line, 1}, "W-MODEL-ARC-MODE",
-                        fmt::format("this arc is whole only with I/J/K read as {}, as the controller's own setting "
-                                    "must have it: read so from here on (G{} at the program's start says so)",
-                                    now ? "offsets from its start" : "the absolute centre", now ? "91.1" : "90.1"));
-        }
-      }
+    if (is_arc(kind) && !r_seen && !s_.centre_told && d_.centre == CentreReading::Incremental && known) {
+      Frame f = s_.frame;
+      read_centre_mode(d_, s_, f, target, ijk, ijk_seen, sink_, b.line);
+      set_frame(f);
     }
     Move& m = add_move(bi, kind, target, known, turns);
     m.unknown_axes = uint16_t(kAllAxes & ~(s_.known & known_after));
