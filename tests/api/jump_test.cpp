@@ -190,6 +190,24 @@ TEST_CASE("a LinuxCNC subroutine's body runs in its caller's modes, and its call
   CHECK(std::any_of(sink.all().begin(), sink.all().end(), [](const Diagnostic& d) { return d.code == "E-FLOW-SUB-MODES"; }));
 }
 
+TEST_CASE("Marlin's repeat marker is a loop: the moves after M808 L are entered from its end", "[jumps]") {
+  // The loop goes back from M808 to the block after M808 L: where the tool is there, and
+  // whether G90 or G91 is in force, the loop's end decides.
+  const std::string head = "G90\nM83\nG1 X0 Y0 F1200\n";
+  const std::string loop = "M808 L3\n" + quarter() + "G1 X0 Y0\nM808\n";
+  CHECK(count_of(compress_as("marlin", head + quarter() + "M808 L3\n").output, "G3") == 1);  // (as a mark alone)
+  const CompressResult looped = compress_as("marlin", head + loop);
+  REQUIRE(looped.ok);
+  CHECK(count_of(looped.output, "G3") == 0);
+  CHECK(looped.output.find(quarter()) != std::string::npos);
+  std::string stated = loop;
+  stated.insert(stated.find('\n') + 1, "G90\n");
+  const CompressResult fitted = compress_as("marlin", head + stated);
+  REQUIRE(fitted.ok);
+  CHECK(count_of(fitted.output, "G3") == 1);
+  CHECK(fitted.output.find("M808 L3\nG90\nG1 X0.0000 Y0.0000\n") != std::string::npos);  // its first move as written
+}
+
 TEST_CASE("a jump back read after its target was read fails a program pushed as it comes, not one whose jumps were read ahead", "[jumps]") {
   const std::string text = "G90 G17 G21\nG0 X0 Y0\nG1 F500\n" + quarter(15) + "G1 X1 Y30\nIF [#1 LT 3] GOTO 100\nM30\n";
   auto run = [&](bool ahead) {

@@ -73,6 +73,8 @@ enum class CodeMeaning : uint8_t {
                ///< arguments, not a place (Fanuc's G66)
   Unmodelled,  ///< not read: the block is kept, not fitted, and the position is known again as after Frame
   ArcRadius,   ///< a keyword whose value is the arc's radius, as RS274's R word (Sinumerik's CR=5)
+  Loop,        ///< with an L word, the blocks after it may be entered again from a later block (a repeat
+               ///< marker: Marlin's M808 L3); without one, the loop's end, from which the program goes on
 };
 
 /// One code the dialect reads its own way: a G- or M-code, every word of a letter (T, D, L),

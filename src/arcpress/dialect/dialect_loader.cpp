@@ -310,7 +310,7 @@ Dialect parse_dialect(const std::string& text, const std::string& path) {
         r.fail(key.source(), k,
                "expected a G- or M-code as the key (\"G70\", \"G54.1\", \"M91\"), \"T\", \"D\" or \"L\", or a keyword (\"SOFT\")");
       const int meaning = r.choice(k, {"inch", "mm", "diameter", "radius", "settings", "mode", "frame", "machine", "moves", "pole", "polar", "cycle-calls", "cycle-call",
-                                      "macro-calls", "unmodelled", "arc-radius"});
+                                      "macro-calls", "unmodelled", "arc-radius", "loop"});
       if (CodeMeaning(meaning) == CodeMeaning::ArcRadius && (code || letter))
         r.fail(key.source(), k, "\"arc-radius\" is a keyword's meaning (CR = \"arc-radius\"): its value is the radius");
       if (code) d.codes.push_back({code->first, code->second, CodeMeaning(meaning), {}});

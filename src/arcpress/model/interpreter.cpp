@@ -91,6 +91,10 @@ class Interpreter {
       case CodeMeaning::MacroCalls: own |= kOwnCycleCalls | kOwnSettings; return -1;
       case CodeMeaning::CycleCall: own |= kOwnCycleCall; return -1;
       case CodeMeaning::ArcRadius: own |= kOwnArcRadius; return -1;
+      case CodeMeaning::Loop:  // (an L word marks the loop's start: the blocks after it are entered from its end)
+        if (p_->find(b, 'L')) enter(bi, false);
+        own |= kOwnSettings;
+        return -1;
       case CodeMeaning::Unmodelled: break;
     }
     sink_.problem({b.line, w.col}, "E-MODEL-GCODE",

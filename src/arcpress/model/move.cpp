@@ -19,7 +19,7 @@ const char* describe(Unfit why) {
     case Unfit::UnknownAfterCodeMove: return "position unknown after a code the dialect says may move the tool";
     case Unfit::UnknownAtEntry:
       return "position unknown where the program may arrive from elsewhere (the target of a GOTO, M99 P, M97 P or "
-             "M98 Q, after M99 or a subroutine call, a program number after a program's end, a subroutine's start, a "
+             "M98 Q, a loop's start (M808 L), after M99 or a subroutine call, a program number after a program's end, a subroutine's start, a "
              "line that ends an indented if, else or while block)";
     case Unfit::UnknownDistanceMode:
       return "position unknown: moved after such an entry before the program stated G90 or G91 (after a call of a "
