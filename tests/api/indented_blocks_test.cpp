@@ -159,3 +159,27 @@ TEST_CASE("arcpress diff reads the blocks of indented programs as the compressor
   CHECK_FALSE(diff_texts(text, moved, opt, rrf).same(opt.tolerance_mm));
   CHECK(diff_texts(text, moved, opt, shipped("marlin")).same(opt.tolerance_mm));
 }
+
+TEST_CASE("an O-word block closes at its end line, and what its lines changed is not known after it", "[nesting]") {
+  BlockNesting n;
+  n.open(101, false);  // o101 if
+  n.changed(false, true);
+  n.open(102, true);  // o102 do
+  CHECK(n.in_do(102));
+  CHECK_FALSE(n.in_do(101));
+  n.changed(true, false);
+  const BlockNesting::Join loop = n.close(102);  // o102 while [...]
+  CHECK(loop.position);
+  CHECK_FALSE(loop.distance);
+  CHECK(n.depth == 1);
+  const BlockNesting::Join branch = n.close(101);  // o101 endif
+  CHECK(branch.position);
+  CHECK(branch.distance);
+  CHECK(n.depth == 0);
+  // A block in which nothing changed; an end with no block open.
+  n.open(7, false);
+  const BlockNesting::Join quiet = n.close(7);
+  CHECK_FALSE(quiet.position);
+  CHECK_FALSE(quiet.distance);
+  CHECK_FALSE(n.close(7).position);
+}

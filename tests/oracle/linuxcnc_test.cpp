@@ -372,3 +372,24 @@ TEST_CASE("LinuxCNC's rs274 reads a program's subroutines, called in G91 and lea
   CHECK(r.stats.arcs_out == 3);
   CHECK(r.output.find("o100 sub\n" + quarter(true, 0, 0) + "o100 endsub\n") != std::string::npos);
 }
+
+TEST_CASE("LinuxCNC's rs274 reads the moves after an O-word if or loop whose branch changed G90 or G91 within the band",
+          "[oracle][linuxcnc][subroutines]") {
+  RS274_OR_SKIP();
+  std::string quarter;
+  for (int k = 1; k <= 30; ++k)
+    quarter += fmt::format("G1 X{:.4f} Y{:.4f}\n", 10 * std::sin(deg_to_rad(3 * k)), 10 * std::cos(deg_to_rad(3 * k)) - 10);
+  // The branch is not taken (rs274 evaluates #1): the moves after it are increments, though the
+  // branch's G90 is the last distance word before them in the text.
+  const std::string head = "G21 G17 G90\n#1 = 1\nG0 X0 Y0\nG1 F300\nG91\n";
+  for (const std::string block : {"o1 if [#1 GT 2]\n  G90\no1 endif\n",
+                                  "o1 if [#1 GT 2]\n  G90\no1 else\n  M3 S100\no1 endif\n",
+                                  "o2 while [#1 GT 2]\n  G90\n  #1 = [#1 - 1]\no2 endwhile\n",
+                                  "o3 repeat [0]\n  G90\no3 endrepeat\n"}) {
+    INFO(block);
+    const CompressResult r = check_read_alike(head + block + quarter + "M2\n", "rs274-o-blocks");
+    CHECK(r.stats.arcs_out == 0);
+    // Once the program states G90, its moves are fitted.
+    CHECK(check_read_alike(head + block + "G90\n" + quarter + "M2\n", "rs274-o-blocks").stats.arcs_out == 1);
+  }
+}

@@ -48,6 +48,15 @@ OWord read_o_word(std::string_view line) {
   else if (is("ENDSUB")) w.kind = OWord::Kind::EndSub;
   else if (is("RETURN")) w.kind = OWord::Kind::Return;
   else if (is("CALL")) w.kind = OWord::Kind::Call;
+  else if (is("IF")) w.kind = OWord::Kind::If;
+  else if (is("ELSEIF")) w.kind = OWord::Kind::ElseIf;
+  else if (is("ELSE")) w.kind = OWord::Kind::Else;
+  else if (is("ENDIF")) w.kind = OWord::Kind::EndIf;
+  else if (is("WHILE")) w.kind = OWord::Kind::While;
+  else if (is("ENDWHILE")) w.kind = OWord::Kind::EndWhile;
+  else if (is("DO")) w.kind = OWord::Kind::Do;
+  else if (is("REPEAT")) w.kind = OWord::Kind::Repeat;
+  else if (is("ENDREPEAT")) w.kind = OWord::Kind::EndRepeat;
   return w;
 }
 

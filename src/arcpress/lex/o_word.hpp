@@ -8,7 +8,10 @@
 namespace arcpress {
 
 struct OWord {
-  enum class Kind : uint8_t { Other, Sub, EndSub, Return, Call };
+  enum class Kind : uint8_t {
+    Other, Sub, EndSub, Return, Call,
+    If, ElseIf, Else, EndIf, While, EndWhile, Do, Repeat, EndRepeat  ///< (a While may end a Do)
+  };
   Kind kind = Kind::Other;
   /// The label (`100`, `<name>` in any case), hashed: two lines name one subroutine where
   /// these agree. 0 where the line has none.

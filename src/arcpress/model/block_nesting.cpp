@@ -25,12 +25,32 @@ BlockNesting::Join BlockNesting::line(std::string_view line) {
   }
   if (d > (depth > 0 ? levels[depth - 1].indent : 0)) {
     if (depth < kMostLevels)
-      levels[depth++] = Level{d, 0};
+      levels[depth++] = Level{d, 0, false, 0};
     else
       levels[depth - 1].indent = d;  // merged: it keeps what changed since the outer block began
   }
   last_indent = d;
   return j;
+}
+
+void BlockNesting::open(uint32_t label, bool do_loop) {
+  if (depth < kMostLevels)
+    levels[depth++] = Level{0, 0, do_loop, label};
+  else
+    levels[depth - 1].label = label, levels[depth - 1].do_loop = do_loop;  // merged, as in line()
+}
+
+BlockNesting::Join BlockNesting::close(uint32_t label) {
+  uint32_t k = depth;
+  while (k > 0 && levels[k - 1].label != label) --k;
+  if (k == 0) {
+    // Not open (a block past kMostLevels, merged): whatever the innermost block changed.
+    if (depth == 0) return {};
+    k = depth;
+  }
+  const uint8_t closed = levels[k - 1].changed;  // (the outer level's holds the inner's)
+  while (depth >= k) levels[--depth] = Level{};
+  return {(closed & kMoved) != 0, (closed & kDistance) != 0};
 }
 
 }  // namespace arcpress

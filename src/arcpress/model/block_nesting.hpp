@@ -5,7 +5,9 @@
 // `else` and `while` run the lines indented below them). A line indented less than the
 // line before it ends those blocks, and is entered both from where they end and from where
 // they began: an `if` not taken, an `else` skipped, a `while` run no more or not at all, a
-// `break`. What any line between may have changed is not known there.
+// `break`. What any line between may have changed is not known there. LinuxCNC's O-word
+// blocks (`o101 if` .. `o101 endif`, `while`, `do`, `repeat`) are such blocks too, opened and
+// closed by their lines instead of by blanks.
 #include <array>
 #include <cstdint>
 #include <string_view>
@@ -24,6 +26,13 @@ struct BlockNesting {
   /// open and close nothing (the firmware skips them); a line's tab moves its indent to the
   /// next multiple of 4, as the firmware counts.
   Join line(std::string_view line);
+  /// An O-word block labelled `label` opens (`do_loop`: a `do`, which a `while` ends).
+  void open(uint32_t label, bool do_loop);
+  /// The O-word block labelled `label` ends (and those opened in it): what may differ after it.
+  /// Where none is open with that label, nothing is known to end.
+  Join close(uint32_t label);
+  /// Whether the innermost open block is a `do` labelled `label`.
+  bool in_do(uint32_t label) const { return depth > 0 && levels[depth - 1].label == label && levels[depth - 1].do_loop; }
   /// After a block: what it changed, for every block open around it.
   void changed(bool position, bool distance) {
     const uint8_t bits = uint8_t((position ? kMoved : 0) | (distance ? kDistance : 0));
@@ -39,6 +48,8 @@ struct BlockNesting {
   struct Level {
     uint16_t indent = 0;
     uint8_t changed = 0;  ///< kMoved | kDistance since the level's first line
+    bool do_loop = false;
+    uint32_t label = 0;   ///< an O-word block's (OWord::label); 0 for a block of blanks
     bool operator==(const Level&) const = default;
   };
   std::array<Level, kMostLevels> levels{};

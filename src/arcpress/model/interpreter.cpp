@@ -12,6 +12,7 @@
 
 #include "arcpress/lex/o_word.hpp"
 #include "arcpress/model/arc_centre.hpp"
+#include "arcpress/model/o_word_flow.hpp"
 
 namespace arcpress {
 namespace {
@@ -50,7 +51,7 @@ class Interpreter {
 
   void step(uint32_t bi) {
     while (o_->move_of_block.size() <= bi) o_->move_of_block.push_back(-1);
-    if (d_.indented_blocks) [[unlikely]] return nested_step(bi);
+    if (d_.indented_blocks || s_.nesting.depth) [[unlikely]] return nested_step(bi);
     block(bi, p_->blocks[bi]);
     if (end_read_) [[unlikely]] program_end(bi);
   }
@@ -170,7 +171,7 @@ class Interpreter {
         if (d_.centre_modal) note_pole_read(bi);
         if (b.kind == BlockKind::Opaque) keep_last_move();
         forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterControl, bi);
-        if (b.kind == BlockKind::Control) subroutine_line(bi, b);
+        if (b.kind == BlockKind::Control) o_word_line(bi, b);
         return;
     }
     bool other_words = false;   // words a fitted block could not carry along
@@ -647,12 +648,16 @@ class Interpreter {
     }
   }
 
+  /// Block `bi` is entered both from where a block ended and from where it began (BlockNesting).
+  void join(BlockNesting::Join j, uint32_t bi) {
+    if (j.position) forget(kAllAxes & ~(1u << kE), Unfit::UnknownAtEntry, bi);
+    if (j.distance) s_.distance_unknown = true;
+  }
+
   /// Block `bi` where leading blanks open and close blocks: where it closes some, what they
   /// may have changed is not known (BlockNesting); what it changes, the blocks around it did.
   [[gnu::noinline]] void nested_step(uint32_t bi) {
-    const BlockNesting::Join j = s_.nesting.line(p_->raw(p_->blocks[bi]));
-    if (j.position) forget(kAllAxes & ~(1u << kE), Unfit::UnknownAtEntry, bi);
-    if (j.distance) s_.distance_unknown = true;
+    if (d_.indented_blocks) join(s_.nesting.line(p_->raw(p_->blocks[bi])), bi);
     const uint32_t known = s_.known;
     const size_t frames = o_->frames.size();
     const bool absolute = s_.frame.absolute, distance_unknown = s_.distance_unknown;
@@ -664,23 +669,14 @@ class Interpreter {
 
   void stated(uint8_t mode) { s_.stated |= mode, s_.unstated &= uint8_t(~mode); }  // G17..G19, G20/G21
 
-  /// LinuxCNC's O-word line `b` (block `bi`), where it defines, ends or calls a subroutine
-  /// (model/subroutines.hpp): a body begins in its caller's position, distance mode and
-  /// motion; after its definition the modes before it hold; after a call, those it left.
-  [[gnu::noinline]] void subroutine_line(uint32_t bi, const Block& b) {
-    const OWord w = read_o_word(p_->raw(b));
-    if (w.kind == OWord::Kind::Other) return;
+  /// LinuxCNC's O-word line `b` (block `bi`), followed as model/o_word_flow.hpp says.
+  [[gnu::noinline]] void o_word_line(uint32_t bi, const Block& b) {
     Frame f = s_.frame;
-    if (w.kind == OWord::Kind::Sub) {
-      begin_definition(s_, w.label);
-      enter(bi, false);
-      s_.motion = -1;
-    } else if (w.kind == OWord::Kind::Call) {
-      forget(kAllAxes & ~(1u << kE), Unfit::UnknownAtEntry, bi);  // where the body ends: one place (G91 floats)
-      if (const std::string e = after_call(s_, w.label, f); !e.empty()) sink_.error({b.line, 1}, "E-FLOW-SUB-MODES", e);
-    } else {
-      end_of_body(s_, w.kind == OWord::Kind::EndSub, f);
-    }
+    const OWordFlow flow = follow_o_word(s_, read_o_word(p_->raw(b)), f);
+    if (flow.enters_body) enter(bi, false), s_.motion = -1;
+    if (flow.after_call) forget(kAllAxes & ~(1u << kE), Unfit::UnknownAtEntry, bi);  // one place: G91 floats
+    join(flow.join, bi);
+    if (!flow.problem.empty()) sink_.error({b.line, 1}, "E-FLOW-SUB-MODES", flow.problem);
     set_frame(f);
   }
 

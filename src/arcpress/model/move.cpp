@@ -20,7 +20,7 @@ const char* describe(Unfit why) {
     case Unfit::UnknownAtEntry:
       return "position unknown where the program may arrive from elsewhere (the target of a GOTO, M99 P, M97 P or "
              "M98 Q, a loop's start (M808 L), after M99 or a subroutine call, a program number after a program's end, a subroutine's start, a "
-             "line that ends an indented if, else or while block)";
+             "line that ends an if, else or loop block)";
     case Unfit::UnknownDistanceMode:
       return "position unknown: moved after such an entry before the program stated G90 or G91 (after a call of a "
              "subroutine not read, also G17/G18/G19 and G20/G21)";
