@@ -127,6 +127,13 @@ TEST_CASE("a subprogram after a program's end runs only when a call enters it, f
     t.insert(t.find("O2000\n") + 6, "G90\n");
     CHECK(count_of(compress_as("mach3", t).output, "G3") == 1);
   }
+  // Fanuc's macro call G65 P2000 enters its program so too.
+  const std::string fanuc = "G90 G17 G21\nG0 X0 Y0\nG1 F500\nG65 P2000 A1.\nG0 X50 Y50\nM30\nO2000\nG1 X0 Y0\n" +
+                            quarter() + "M99\n";
+  CHECK(count_of(compress_as("fanuc", fanuc).output, "G3") == 1);
+  std::string fanuc_g91 = fanuc;
+  fanuc_g91.insert(fanuc_g91.find("G65"), "G91\n");
+  CHECK(count_of(compress_as("fanuc", fanuc_g91).output, "G3") == 0);
   // A subprogram that moves in increments (G91, as Autodesk's Fanuc post writes a pattern's):
   // its moves are placed relative to one another from wherever the call was made, and
   // fitted so, in increments; after G90, the first absolute move starts where that was.

@@ -312,7 +312,8 @@ class Interpreter {
                 break;
               }
               [[fallthrough]];
-            default:
+            default:  // (Fanuc's G65 macro call enters its program in this distance mode)
+              if (g == 650 && (!s_.frame.absolute || s_.distance_unknown)) s_.called_in_g91 = true;
               sink_.problem({b.line, w->col}, "E-MODEL-GCODE",
                             fmt::format("{} is not modelled; the block is kept and not fitted",
                                         p_->raw(b, *w)));
