@@ -215,6 +215,21 @@ TEST_CASE("Marlin's repeat marker is a loop: the moves after M808 L are entered 
   CHECK(fitted.output.find("M808 L3\nG90\nG1 X0.0000 Y0.0000\n") != std::string::npos);  // its first move as written
 }
 
+TEST_CASE("a macro file RepRapFirmware's M98 runs may move the tool: the moves after it start anew", "[jumps]") {
+  std::string text = "G90\nG1 X0 Y0 F1200\n" + quarter();
+  const size_t mid = text.find("G1 X", text.find("G1 X", 20) + 300);
+  text.insert(mid, "M98 P\"park.g\"\n");
+  const CompressResult r = compress_as("reprapfirmware", text);
+  REQUIRE(r.ok);
+  // The move after the call is written as it was (from where the macro left the tool).
+  const std::string after = text.substr(mid + 14, text.find('\n', mid + 14) - mid - 13);
+  CHECK(r.output.find("M98 P\"park.g\"\n" + after) != std::string::npos);
+  // A message (M117 "...") moves nothing: one arc goes on across it.
+  std::string message = text;
+  message.replace(mid, 14, "M117 \"hello\"\n");
+  CHECK(compress_as("reprapfirmware", message).output.find("M117 \"hello\"\n" + after) == std::string::npos);
+}
+
 TEST_CASE("a jump back read after its target was read fails a program pushed as it comes, not one whose jumps were read ahead", "[jumps]") {
   const std::string text = "G90 G17 G21\nG0 X0 Y0\nG1 F500\n" + quarter(15) + "G1 X1 Y30\nIF [#1 LT 3] GOTO 100\nM30\n";
   auto run = [&](bool ahead) {
