@@ -215,7 +215,7 @@ TEST_CASE("Marlin's repeat marker is a loop: the moves after M808 L are entered 
   CHECK(fitted.output.find("M808 L3\nG90\nG1 X0.0000 Y0.0000\n") != std::string::npos);  // its first move as written
 }
 
-TEST_CASE("a macro file RepRapFirmware's M98 runs may move the tool: the moves after it start anew", "[jumps]") {
+TEST_CASE("a macro file RepRapFirmware's M98 runs, or a jog M291 allows, may move the tool: the moves after it start anew", "[jumps]") {
   std::string text = "G90\nG1 X0 Y0 F1200\n" + quarter();
   const size_t mid = text.find("G1 X", text.find("G1 X", 20) + 300);
   text.insert(mid, "M98 P\"park.g\"\n");
@@ -224,6 +224,10 @@ TEST_CASE("a macro file RepRapFirmware's M98 runs may move the tool: the moves a
   // The move after the call is written as it was (from where the macro left the tool).
   const std::string after = text.substr(mid + 14, text.find('\n', mid + 14) - mid - 13);
   CHECK(r.output.find("M98 P\"park.g\"\n" + after) != std::string::npos);
+  // So may the user, where M291's message box lets them jog (Z1).
+  std::string jog = text;
+  jog.replace(mid, 14, "M291 P\"Set Z\" S3 Z1\n");
+  CHECK(compress_as("reprapfirmware", jog).output.find("M291 P\"Set Z\" S3 Z1\n" + after) != std::string::npos);
   // A message (M117 "...") moves nothing: one arc goes on across it.
   std::string message = text;
   message.replace(mid, 14, "M117 \"hello\"\n");

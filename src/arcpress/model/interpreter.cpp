@@ -155,10 +155,11 @@ class Interpreter {
         // Firmware M-codes with a text argument (a message, an object label, a printer check,
         // a file name) move nothing, nor do the extended commands the dialect names
         // (Klipper's EXCLUDE_OBJECT_START, SET_VELOCITY_LIMIT, ...); M32 starts another
-        // program, M98 P"file.g" runs a macro file (RepRapFirmware), and other host commands
-        // (`$H` homing, `$J=` jogging, firmware macros) may move anything.
-        if (b.word_count > 0 && p_->words_begin(b)->letter == 'M' && !p_->words_begin(b)->is_expr &&
-            p_->words_begin(b)->code10() != 320 && p_->words_begin(b)->code10() != 980)
+        // program, M98 P"file.g" runs a macro file and M291's message box may let the user jog
+        // (RepRapFirmware), and other host commands (`$H` homing, `$J=` jogging, firmware
+        // macros) may move anything.
+        if (const Word* w = b.word_count > 0 ? p_->words_begin(b) : nullptr; w && w->letter == 'M' && !w->is_expr &&
+            w->code10() != 320 && w->code10() != 980 && w->code10() != 2910)
           return;
         if (d_.keeps_position(p_->raw(b))) return;
         forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterControl, bi);
