@@ -44,7 +44,7 @@ struct BlockNesting {
   static constexpr uint8_t kMoved = 1, kDistance = 2;
   /// Blocks open more deeply than this are merged into the deepest one kept, which
   /// joins at least where they would.
-  static constexpr uint32_t kMostLevels = 24;
+  static constexpr uint32_t kMostLevels = 8;
   struct Level {
     uint16_t indent = 0;
     uint8_t changed = 0;  ///< kMoved | kDistance since the level's first line
