@@ -526,7 +526,8 @@ class Interpreter {
         known_after |= (1u << ax);
       }
     }
-    if (s_.distance_unknown || s_.unstated) [[unlikely]]  // each word an absolute place or an increment, ...
+    // Each word an absolute place or an increment; or in a plane or units not known.
+    if (s_.distance_unknown || s_.unstated) [[unlikely]]
       for (uint32_t axes = words_seen & ~(1u << kE); axes != 0; axes &= axes - 1) {
         known_after &= ~(1u << std::countr_zero(axes));
         set_why(std::countr_zero(axes), Unfit::UnknownDistanceMode);
