@@ -52,44 +52,53 @@ const std::string kHead = "G90\nM83\nG1 X0 Y0 F1200\n";
 TEST_CASE("a line indented less than the one before it closes blocks, and what they changed is not known there",
           "[nesting]") {
   BlockNesting n;
-  CHECK_FALSE(n.line("if move.axes[0].homed").position);
-  CHECK_FALSE(n.line("  G1 X10").position);
+  CHECK_FALSE(n.line("if move.axes[0].homed", true).position);
+  CHECK_FALSE(n.line("  G1 X10", false).position);
   n.changed(true, false);
   // Blank lines and indented comments close nothing; a tab counts to the next multiple of 4.
-  CHECK_FALSE(n.line("").position);
-  CHECK_FALSE(n.line("   ").position);
+  CHECK_FALSE(n.line("", false).position);
+  CHECK_FALSE(n.line("   ", false).position);
   BlockNesting m = n;
-  CHECK_FALSE(m.line(" ; indented comment").position);
-  CHECK_FALSE(m.line("\tG1 X11").position);  // deeper: a block of its own
+  CHECK_FALSE(m.line(" ; indented comment", false).position);
+  CHECK_FALSE(m.line("\tG1 X11", false).position);  // deeper: a block of its own
   CHECK(m.depth == 2);
-  const BlockNesting::Join closed = m.line("G1 X12");
+  const BlockNesting::Join closed = m.line("G1 X12", false);
   CHECK(closed.position);
   CHECK_FALSE(closed.distance);
   CHECK(m.depth == 0);
   // A comment at the left margin closes the block too, as the firmware reads it.
   BlockNesting c = n;
-  CHECK(c.line("; comment").position);
+  CHECK(c.line("; comment", false).position);
   // A block in which nothing changed closes with nothing unknown; a G91 in it is.
   BlockNesting q;
-  q.line("if true");
-  q.line("  M117 hello");
+  q.line("if true", true);
+  q.line("  M117 hello", false);
   q.changed(false, false);
-  CHECK_FALSE(q.line("G1 X1").position);
-  q.line("if true");
-  q.line("  G91");
+  CHECK_FALSE(q.line("G1 X1", false).position);
+  q.line("if true", true);
+  q.line("  G91", false);
   q.changed(false, true);
-  const BlockNesting::Join j = q.line("G1 X1");
+  const BlockNesting::Join j = q.line("G1 X1", false);
   CHECK(j.distance);
   CHECK_FALSE(j.position);
+  // Lines indented deeper after a line that is no flow control are a plain block: it runs
+  // once, in order, and its end joins nothing.
+  BlockNesting plain;
+  plain.line("G1 X0 Y0", false);
+  plain.line(" X1 Y1", false);
+  plain.changed(true, true);
+  const BlockNesting::Join none = plain.line("G1 X2", false);
+  CHECK_FALSE(none.position);
+  CHECK_FALSE(none.distance);
   // Closing two blocks at once tells what either changed.
   BlockNesting deep;
-  deep.line("while true");
-  deep.line("  if x");
-  deep.line("    G1 X1");
+  deep.line("while true", true);
+  deep.line("  if x", true);
+  deep.line("    G1 X1", false);
   deep.changed(true, false);
-  deep.line("    G91");
+  deep.line("    G91", false);
   deep.changed(false, true);
-  const BlockNesting::Join both = deep.line("G1 X2");
+  const BlockNesting::Join both = deep.line("G1 X2", false);
   CHECK(both.position);
   CHECK(both.distance);
 }

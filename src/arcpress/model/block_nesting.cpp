@@ -5,7 +5,7 @@
 
 namespace arcpress {
 
-BlockNesting::Join BlockNesting::line(std::string_view line) {
+BlockNesting::Join BlockNesting::line(std::string_view line, bool opens) {
   // RepRapFirmware's StringParser::Put(): a space adds 1, a tab moves on to the next multiple
   // of 4; a line with nothing after its blanks is skipped, so is an indented `;` comment.
   uint32_t indent = 0;
@@ -17,7 +17,7 @@ BlockNesting::Join BlockNesting::line(std::string_view line) {
   if (d < last_indent) {
     uint8_t closed = 0;
     while (depth > 0 && levels[depth - 1].indent > d) {
-      closed |= levels[depth - 1].changed;  // (the outer level's holds the inner's)
+      if (!levels[depth - 1].plain) closed |= levels[depth - 1].changed;  // (an outer level's holds the inner's)
       levels[--depth] = Level{};
     }
     j.position = (closed & kMoved) != 0;
@@ -25,11 +25,12 @@ BlockNesting::Join BlockNesting::line(std::string_view line) {
   }
   if (d > (depth > 0 ? levels[depth - 1].indent : 0)) {
     if (depth < kMostLevels)
-      levels[depth++] = Level{d, 0, false, 0};
-    else
-      levels[depth - 1].indent = d;  // merged: it keeps what changed since the outer block began
+      levels[depth++] = Level{d, 0, false, 0, !last_opens};
+    else  // merged: it keeps what changed since the outer block began, and is a block where either is
+      levels[depth - 1].indent = d, levels[depth - 1].plain = levels[depth - 1].plain && !last_opens;
   }
   last_indent = d;
+  last_opens = opens;
   return j;
 }
 

@@ -24,8 +24,11 @@ struct BlockNesting {
   /// Reads the leading blanks of `line` (a block's raw text) before the block is read:
   /// what may differ at it where it closes blocks. Blank lines and indented comment lines
   /// open and close nothing (the firmware skips them); a line's tab moves its indent to the
-  /// next multiple of 4, as the firmware counts.
-  Join line(std::string_view line);
+  /// next multiple of 4, as the firmware counts. `opens`: the line is flow control (`if`,
+  /// `else`, `while`, or any line the interpreter does not read as code), whose deeper lines
+  /// are its block; lines indented deeper after any other line are a plain block, which runs
+  /// once, in order, and whose end joins nothing.
+  Join line(std::string_view line, bool opens);
   /// An O-word block labelled `label` opens (`do_loop`: a `do`, which a `while` ends).
   void open(uint32_t label, bool do_loop);
   /// The O-word block labelled `label` ends (and those opened in it): what may differ after it.
@@ -50,11 +53,13 @@ struct BlockNesting {
     uint8_t changed = 0;  ///< kMoved | kDistance since the level's first line
     bool do_loop = false;
     uint32_t label = 0;   ///< an O-word block's (OWord::label); 0 for a block of blanks
+    bool plain = false;   ///< deeper blanks after a line that is no flow control (line())
     bool operator==(const Level&) const = default;
   };
   std::array<Level, kMostLevels> levels{};
   uint32_t depth = 0;        ///< levels open (indented past 0)
   uint16_t last_indent = 0;  ///< of the last line read that counts
+  bool last_opens = false;   ///< that line is flow control
 };
 
 }  // namespace arcpress

@@ -660,11 +660,12 @@ class Interpreter {
   /// Block `bi` where leading blanks open and close blocks: where it closes some, what they
   /// may have changed is not known (BlockNesting); what it changes, the blocks around it did.
   [[gnu::noinline]] void nested_step(uint32_t bi) {
-    if (d_.indented_blocks) join(s_.nesting.line(p_->raw(p_->blocks[bi])), bi);
+    const Block& b = p_->blocks[bi];
+    if (d_.indented_blocks) join(s_.nesting.line(p_->raw(b), b.kind != BlockKind::Code && b.kind != BlockKind::Empty), bi);
     const uint32_t known = s_.known;
     const size_t frames = o_->frames.size();
     const bool absolute = s_.frame.absolute, distance_unknown = s_.distance_unknown;
-    block(bi, p_->blocks[bi]);
+    block(bi, b);
     if (end_read_) program_end(bi);
     s_.nesting.changed(o_->move_of_block[bi] >= 0 || s_.known != known || o_->frames.size() != frames,
                        s_.frame.absolute != absolute || s_.distance_unknown != distance_unknown);
