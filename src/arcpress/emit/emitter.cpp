@@ -153,8 +153,10 @@ class Emitter {
     }
     // Where flow control may take the program elsewhere (a subroutine's return, a loop's
     // end), the output's modal motion is the input's again: the blocks it goes on to may
-    // read it.
-    if ((b.kind == BlockKind::Control || b.kind == BlockKind::Macro) && in_motion_ >= 0 && in_motion_ != out_motion_) {
+    // read it. (Not in inverse time, where a G1 needs its own F: the check then refuses the
+    // run whose arc would leave another motion in force.)
+    if ((b.kind == BlockKind::Control || b.kind == BlockKind::Macro) && in_motion_ >= 0 && in_motion_ != out_motion_ &&
+        !in_.frames[frame_at(uint32_t(&b - p_.blocks.data()))].inverse_time) {
       const Block& before = &b > p_.blocks.data() && (&b - 1)->kind == BlockKind::Code ? *(&b - 1) : b;
       out_ += indent_of(b);
       out_ += style_of(before).motion(in_motion_ / 10);  // (styled as the move before, not as `o100 endsub`)
