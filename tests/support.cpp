@@ -9,12 +9,29 @@
 #include <iterator>
 #include <random>
 
+#include "arcpress/dialect/dialect_loader.hpp"
 #include "arcpress/lex/lexer.hpp"
 #include "arcpress/model/interpreter.hpp"
 
 namespace fs = std::filesystem;
 
 namespace arcpress::test {
+
+Dialect shipped_dialect(const std::string& name) { return find_dialect(name, {ARCPRESS_SOURCE_DIR "/dialects"}); }
+
+CompressResult compress_as(const std::string& dialect, const std::string& text, double tolerance_mm) {
+  DiagnosticSink sink;
+  CompressOptions opt;
+  opt.dialect = shipped_dialect(dialect);
+  opt.fit.tolerance_mm = tolerance_mm;
+  return compress("part.nc", text, opt, sink);
+}
+
+size_t count_of(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
 
 ProgramDiff diff_texts(const std::string& a, const std::string& b, const DiffOptions& opt, const Dialect& dialect) {
   DiagnosticSink sa("a.nc"), sb("b.nc");

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "arcpress/api/arcpress.hpp"
 #include "arcpress/dialect/dialect.hpp"
 #include "arcpress/verify/program_diff.hpp"
 
@@ -17,6 +18,13 @@ std::string read_file(const std::filesystem::path& p);
 ProgramDiff diff_texts(const std::string& a, const std::string& b, const DiffOptions& opt,
                        const Dialect& dialect = Dialect{});
 void write_file(const std::filesystem::path& p, const std::string& data);
+
+/// The dialect `name` as shipped (the source tree's dialects/).
+Dialect shipped_dialect(const std::string& name);
+/// `text` compressed for the shipped dialect `dialect` at ±`tolerance_mm`.
+CompressResult compress_as(const std::string& dialect, const std::string& text, double tolerance_mm = 0.01);
+/// How many times `what` occurs in `text`.
+size_t count_of(const std::string& text, const std::string& what);
 
 struct Command {
   int exit_code = -1;

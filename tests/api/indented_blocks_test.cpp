@@ -18,8 +18,6 @@ using namespace arcpress::test;
 
 namespace {
 
-Dialect shipped(const std::string& name) { return find_dialect(name, {ARCPRESS_SOURCE_DIR "/dialects"}); }
-
 /// Moves `from` .. `to` (of 0 .. 30) along a quarter circle of radius 20 mm about (-20, 0),
 /// each line beginning with `indent`, extruding (M83).
 std::string quarter(int from, int to, const std::string& indent) {
@@ -29,20 +27,6 @@ std::string quarter(int from, int to, const std::string& indent) {
     t += fmt::format("{}G1 X{:.4f} Y{:.4f} E0.05\n", indent, 20 * std::cos(a) - 20, 20 * std::sin(a));
   }
   return t;
-}
-
-CompressResult compress_as(const std::string& dialect, const std::string& text) {
-  DiagnosticSink sink;
-  CompressOptions opt;
-  opt.dialect = shipped(dialect);
-  opt.fit.tolerance_mm = 0.01;
-  return compress("part.gcode", text, opt, sink);
-}
-
-size_t count_of(const std::string& text, const std::string& what) {
-  size_t n = 0;
-  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
-  return n;
 }
 
 const std::string kHead = "G90\nM83\nG1 X0 Y0 F1200\n";
@@ -157,7 +141,7 @@ TEST_CASE("arcpress diff reads the blocks of indented programs as the compressor
   REQUIRE(r.ok);
   DiffOptions opt;
   opt.tolerance_mm = 0.01;
-  const Dialect rrf = shipped("reprapfirmware");
+  const Dialect rrf = shipped_dialect("reprapfirmware");
   CHECK(diff_texts(text, r.output, opt, rrf).same(opt.tolerance_mm));
   // The arc of the first block moved out of it (its indent taken away) is another program:
   // where the `if` fails, it is made from another place.
@@ -166,7 +150,7 @@ TEST_CASE("arcpress diff reads the blocks of indented programs as the compressor
   REQUIRE(at != std::string::npos);
   moved.erase(at, 2);
   CHECK_FALSE(diff_texts(text, moved, opt, rrf).same(opt.tolerance_mm));
-  CHECK(diff_texts(text, moved, opt, shipped("marlin")).same(opt.tolerance_mm));
+  CHECK(diff_texts(text, moved, opt, shipped_dialect("marlin")).same(opt.tolerance_mm));
 }
 
 TEST_CASE("an O-word block closes at its end line, and what its lines changed is not known after it", "[nesting]") {

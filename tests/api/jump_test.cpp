@@ -21,8 +21,6 @@ using namespace arcpress::test;
 
 namespace {
 
-Dialect shipped(const std::string& name) { return find_dialect(name, {ARCPRESS_SOURCE_DIR "/dialects"}); }
-
 JumpTargets jumps_of(std::string_view text) {
   JumpTargets j;
   j.read(text, 1);
@@ -38,20 +36,6 @@ std::string quarter(int numbered = -1) {
     t += fmt::format("{}G1 X{:.4f} Y{:.4f}\n", i == numbered ? "N100 " : "", 20 * std::cos(a) - 20, 20 * std::sin(a));
   }
   return t;
-}
-
-CompressResult compress_as(const std::string& dialect, const std::string& text) {
-  DiagnosticSink sink;
-  CompressOptions opt;
-  opt.dialect = shipped(dialect);
-  opt.fit.tolerance_mm = 0.01;
-  return compress("part.nc", text, opt, sink);
-}
-
-size_t count_of(const std::string& text, const std::string& what) {
-  size_t n = 0;
-  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
-  return n;
 }
 
 }  // namespace
@@ -190,7 +174,7 @@ TEST_CASE("a LinuxCNC subroutine's body runs in its caller's modes, and its call
   // A body read in G17 and called in G18 would run another path than the one fitted: refused.
   DiagnosticSink sink;
   CompressOptions opt;
-  opt.dialect = shipped("linuxcnc");
+  opt.dialect = shipped_dialect("linuxcnc");
   const CompressResult refused =
       compress("part.ngc", head + "o100 sub\nG90\n" + body + "o100 endsub\nG18\no100 call\nM2\n", opt, sink);
   CHECK_FALSE(refused.ok);
@@ -239,7 +223,7 @@ TEST_CASE("a jump back read after its target was read fails a program pushed as 
   auto run = [&](bool ahead) {
     DiagnosticSink sink;
     CompressOptions opt;
-    opt.dialect = shipped("fanuc");
+    opt.dialect = shipped_dialect("fanuc");
     opt.fit.tolerance_mm = 0.01;
     Compressor c("part.nc", opt, sink);
     if (ahead) c.read_jumps(text, 1);
@@ -281,7 +265,7 @@ TEST_CASE("compress_stream() reads the jumps of a stream it can read again befor
   std::ostringstream out;
   DiagnosticSink sink;
   CompressOptions opt;
-  opt.dialect = shipped("fanuc");
+  opt.dialect = shipped_dialect("fanuc");
   opt.fit.tolerance_mm = 0.01;
   const CompressResult r = compress_stream(in, out, "part.nc", opt, sink);
   CHECK(r.ok);

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "arcpress/lex/o_word.hpp"
 
+#include <utility>
+
 #include "arcpress/lex/characters.hpp"
 
 namespace arcpress {
@@ -44,19 +46,14 @@ OWord read_o_word(std::string_view line) {
       if (upper(k[j]) != name[j]) return false;
     return true;
   };
-  if (is("SUB")) w.kind = OWord::Kind::Sub;
-  else if (is("ENDSUB")) w.kind = OWord::Kind::EndSub;
-  else if (is("RETURN")) w.kind = OWord::Kind::Return;
-  else if (is("CALL")) w.kind = OWord::Kind::Call;
-  else if (is("IF")) w.kind = OWord::Kind::If;
-  else if (is("ELSEIF")) w.kind = OWord::Kind::ElseIf;
-  else if (is("ELSE")) w.kind = OWord::Kind::Else;
-  else if (is("ENDIF")) w.kind = OWord::Kind::EndIf;
-  else if (is("WHILE")) w.kind = OWord::Kind::While;
-  else if (is("ENDWHILE")) w.kind = OWord::Kind::EndWhile;
-  else if (is("DO")) w.kind = OWord::Kind::Do;
-  else if (is("REPEAT")) w.kind = OWord::Kind::Repeat;
-  else if (is("ENDREPEAT")) w.kind = OWord::Kind::EndRepeat;
+  using K = OWord::Kind;
+  static constexpr std::pair<std::string_view, K> kKeywords[] = {
+      {"SUB", K::Sub},        {"ENDSUB", K::EndSub}, {"RETURN", K::Return}, {"CALL", K::Call},
+      {"IF", K::If},          {"ELSEIF", K::ElseIf}, {"ELSE", K::Else},     {"ENDIF", K::EndIf},
+      {"WHILE", K::While},    {"ENDWHILE", K::EndWhile}, {"DO", K::Do},     {"REPEAT", K::Repeat},
+      {"ENDREPEAT", K::EndRepeat}};
+  for (const auto& [name, kind] : kKeywords)
+    if (is(name)) w.kind = kind;
   return w;
 }
 
