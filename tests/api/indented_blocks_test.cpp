@@ -107,6 +107,20 @@ TEST_CASE("a block written in place of a loop's moves stays in the loop", "[nest
   CHECK(compress_as("reprapfirmware", kHead + quarter(0, 30, "")).output.find("\nG3 X") != std::string::npos);
 }
 
+TEST_CASE("a loop whose last move became an arc ends in the input's motion again, inside the loop", "[nesting]") {
+  // The loop's first line has no motion word: each time round it reads the motion its last
+  // line left, a G1 in the input.
+  const std::string text = kHead + "while iterations < 3\n  X0 Y0 E0.05\n" + quarter(1, 30, "  ") + "M400\n";
+  const CompressResult r = compress_as("reprapfirmware", text);
+  REQUIRE(r.ok);
+  REQUIRE(count_of(r.output, "  G3") == 1);
+  CHECK(r.output.find("\n  G1\nM400\n") != std::string::npos);
+  // Where the loop's last line is the input's own G1, nothing is added.
+  const CompressResult kept = compress_as("reprapfirmware", text.substr(0, text.size() - 5) + "  G1 X0 Y0 E0.05\nM400\n");
+  REQUIRE(kept.ok);
+  CHECK(kept.output.find("\n  G1\n") == std::string::npos);
+}
+
 TEST_CASE("the moves after an if block are not fitted from inside it", "[nesting]") {
   // The path goes on past the block, but where the condition fails the block's moves are not
   // made: the line after it starts from before the `if`.

@@ -97,6 +97,21 @@ class Emitter {
   /// last programmed arc did, the program's way in its stead after arcpress's own arcs
   /// (spell_turn_for_copy()).
   void copy_block(const Block& b) {
+    // Where flow control may take the program elsewhere (a subroutine's return, a loop's
+    // end, the end of an indented block), the output's modal motion is the input's again:
+    // the blocks it goes on to may read it. (Not in inverse time, where a G1 needs its own F:
+    // the check then refuses the run whose arc would leave another motion in force.)
+    const Block* in_block = closes_indented(b);
+    if ((b.kind == BlockKind::Control || b.kind == BlockKind::Macro || in_block) && in_motion_ >= 0 &&
+        in_motion_ != out_motion_ && !in_.frames[frame_at(uint32_t(&b - p_.blocks.data()))].inverse_time) {
+      const Block& before = &b > p_.blocks.data() && (&b - 1)->kind == BlockKind::Code ? *(&b - 1) : b;
+      out_ += indent_of(in_block ? *in_block : b);  // (inside the block that ends: a loop runs it each time)
+      out_ += style_of(before).motion(in_motion_ / 10);  // (styled as the move before, not as `o100 endsub`)
+      end_block(out_);
+      out_.append(p_.eol(b));
+      out_motion_ = in_motion_;
+      if (stats_) ++stats_->motion_words_added;
+    }
     std::string_view raw = p_.raw(b);
     const std::string centre = d().centre_modal ? restate_pole_for_copy(b) : std::string();
     int shift_at = 0, shift = 0;  // columns past shift_at move by shift in the spelled text
@@ -151,20 +166,6 @@ class Emitter {
         return;
       }
     }
-    // Where flow control may take the program elsewhere (a subroutine's return, a loop's
-    // end), the output's modal motion is the input's again: the blocks it goes on to may
-    // read it. (Not in inverse time, where a G1 needs its own F: the check then refuses the
-    // run whose arc would leave another motion in force.)
-    if ((b.kind == BlockKind::Control || b.kind == BlockKind::Macro) && in_motion_ >= 0 && in_motion_ != out_motion_ &&
-        !in_.frames[frame_at(uint32_t(&b - p_.blocks.data()))].inverse_time) {
-      const Block& before = &b > p_.blocks.data() && (&b - 1)->kind == BlockKind::Code ? *(&b - 1) : b;
-      out_ += indent_of(b);
-      out_ += style_of(before).motion(in_motion_ / 10);  // (styled as the move before, not as `o100 endsub`)
-      end_block(out_);
-      out_.append(p_.eol(b));
-      out_motion_ = in_motion_;
-      if (stats_) ++stats_->motion_words_added;
-    }
     if (stats_) stats_->copied.push_back({out_.size(), uint32_t(&b - p_.blocks.data())});
     out_.append(raw);
     out_.append(p_.eol(b));
@@ -178,6 +179,20 @@ class Emitter {
   }
 
   BlockStyle style_of(const Block& b) const { return block_style(p_, b, habits_); }
+
+  /// Where `b` ends blocks of blanks (Dialect::indented_blocks), the last line before it,
+  /// which is in them; else null.
+  const Block* closes_indented(const Block& b) const {
+    if (!d().indented_blocks) return nullptr;
+    auto width = [&](const Block& x) {
+      uint32_t w = 0;
+      for (char c : indent_of(x)) w = c == ' ' ? w + 1 : (w + 4) & ~3u;
+      return w;
+    };
+    for (const Block* k = &b; k-- > p_.blocks.data();)
+      if (p_.raw(*k).find_first_not_of(" \t\r") != std::string_view::npos) return width(*k) > width(b) ? k : nullptr;
+    return nullptr;
+  }
 
   /// A new block for one primitive, composed apart from the modal state of the output
   /// before it: its text with the motion word, which is left out where no covered block
