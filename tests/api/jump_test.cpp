@@ -80,6 +80,15 @@ TEST_CASE("a jump's target stays a block of its own, and the moves after it are 
   }
 }
 
+TEST_CASE("a jump after a run that became an arc states the input's motion first: the target reads it", "[jumps]") {
+  // N100 has no motion word: it reads the motion in force where the jump is made, G1 in the input.
+  const std::string text = "G90 G17 G21\nG0 X0 Y0\nG1 F500\nN100 G90 X0 Y0\n" + quarter() + "M99 P100\n";
+  const CompressResult r = compress_as("fanuc", text);
+  REQUIRE(r.ok);
+  REQUIRE(count_of(r.output, "G3") == 1);
+  CHECK(r.output.find("\nG1\nM99 P100\n") != std::string::npos);
+}
+
 TEST_CASE("a subprogram after a program's end runs only when a call enters it, from where the call was made", "[jumps]") {
   // Haas's M97 P1000 calls block N1000 of the same program, placed after M30: its moves go on
   // from the caller's position, in the caller's distance mode, G90 where every call is made in G90.

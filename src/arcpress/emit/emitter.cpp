@@ -11,6 +11,7 @@
 
 #include "arcpress/core/deviation.hpp"
 #include "arcpress/core/workers.hpp"
+#include "arcpress/emit/flow_point.hpp"
 #include "arcpress/emit/number_format.hpp"
 #include "arcpress/emit/output_habits.hpp"
 
@@ -97,21 +98,7 @@ class Emitter {
   /// last programmed arc did, the program's way in its stead after arcpress's own arcs
   /// (spell_turn_for_copy()).
   void copy_block(const Block& b) {
-    // Where flow control may take the program elsewhere (a subroutine's return, a loop's
-    // end, the end of an indented block), the output's modal motion is the input's again:
-    // the blocks it goes on to may read it. (Not in inverse time, where a G1 needs its own F:
-    // the check then refuses the run whose arc would leave another motion in force.)
-    const Block* in_block = closes_indented(b);
-    if ((b.kind == BlockKind::Control || b.kind == BlockKind::Macro || in_block) && in_motion_ >= 0 &&
-        in_motion_ != out_motion_ && !in_.frames[frame_at(uint32_t(&b - p_.blocks.data()))].inverse_time) {
-      const Block& before = &b > p_.blocks.data() && (&b - 1)->kind == BlockKind::Code ? *(&b - 1) : b;
-      out_ += indent_of(in_block ? *in_block : b);  // (inside the block that ends: a loop runs it each time)
-      out_ += style_of(before).motion(in_motion_ / 10);  // (styled as the move before, not as `o100 endsub`)
-      end_block(out_);
-      out_.append(p_.eol(b));
-      out_motion_ = in_motion_;
-      if (stats_) ++stats_->motion_words_added;
-    }
+    if (in_motion_ >= 0 && in_motion_ != out_motion_) [[unlikely]] restate_before_flow(b);
     std::string_view raw = p_.raw(b);
     const std::string centre = d().centre_modal ? restate_pole_for_copy(b) : std::string();
     int shift_at = 0, shift = 0;  // columns past shift_at move by shift in the spelled text
@@ -171,27 +158,25 @@ class Emitter {
     out_.append(p_.eol(b));
   }
 
-  /// The blanks block `b` begins with, which a block written in place of moves from it takes
-  /// (so it stays in the `if` or `while` they were in: Dialect::indented_blocks).
-  std::string_view indent_of(const Block& b) const {
-    const std::string_view raw = p_.raw(b);
-    return raw.substr(0, std::min(raw.find_first_not_of(" \t"), raw.size()));
-  }
-
+  std::string_view indent_of(const Block& b) const { return block_indent(p_, b); }
   BlockStyle style_of(const Block& b) const { return block_style(p_, b, habits_); }
 
-  /// Where `b` ends blocks of blanks (Dialect::indented_blocks), the last line before it,
-  /// which is in them; else null.
-  const Block* closes_indented(const Block& b) const {
-    if (!d().indented_blocks) return nullptr;
-    auto width = [&](const Block& x) {
-      uint32_t w = 0;
-      for (char c : indent_of(x)) w = c == ' ' ? w + 1 : (w + 4) & ~3u;
-      return w;
-    };
-    for (const Block* k = &b; k-- > p_.blocks.data();)
-      if (p_.raw(*k).find_first_not_of(" \t\r") != std::string_view::npos) return width(*k) > width(b) ? k : nullptr;
-    return nullptr;
+  /// Where flow control may take the program elsewhere (a call, a return, a jump, a loop's end,
+  /// the end of an indented block), the input's modal motion, which the output's arcs left
+  /// otherwise, is written before block `b`: the blocks the program goes on to read it. (Not
+  /// in inverse time, where a G1 needs its own F: the check refuses such runs instead.)
+  [[gnu::noinline]] void restate_before_flow(const Block& b) {
+    const Block* in_block = d().indented_blocks ? closes_indented(p_, b) : nullptr;
+    if (!(b.kind == BlockKind::Control || b.kind == BlockKind::Macro || in_block || jumps_elsewhere(p_, b, d())) ||
+        in_.frames[frame_at(uint32_t(&b - p_.blocks.data()))].inverse_time)
+      return;
+    const Block& before = &b > p_.blocks.data() && (&b - 1)->kind == BlockKind::Code ? *(&b - 1) : b;
+    out_ += indent_of(in_block ? *in_block : b);  // (inside the block that ends: a loop runs it each time)
+    out_ += style_of(before).motion(in_motion_ / 10);  // (styled as the move before, not as `o100 endsub`)
+    end_block(out_);
+    out_.append(p_.eol(b));
+    out_motion_ = in_motion_;
+    if (stats_) ++stats_->motion_words_added;
   }
 
   /// A new block for one primitive, composed apart from the modal state of the output

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "arcpress/emit/output_habits.hpp"
 
+#include <algorithm>
+
 namespace arcpress {
 
 bool is_motion_gcode(double v) {
@@ -60,6 +62,11 @@ BlockStyle block_style(const Program& p, const Block& b, const OutputHabits& hab
     }
   }
   return s;
+}
+
+std::string_view block_indent(const Program& p, const Block& b) {
+  const std::string_view raw = p.raw(b);
+  return raw.substr(0, std::min(raw.find_first_not_of(" \t"), raw.size()));
 }
 
 }  // namespace arcpress

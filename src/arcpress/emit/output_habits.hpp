@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <string>
+#include <string_view>
 
 #include "arcpress/lex/block.hpp"
 #include "arcpress/model/move.hpp"
@@ -38,6 +39,10 @@ struct BlockStyle {
 /// The style of block `b` of `program`: its letters' case, spaces between its first words and
 /// its motion word's G01 or G1, else the program's `habits`.
 BlockStyle block_style(const Program& program, const Block& b, const OutputHabits& habits);
+
+/// The blanks block `b` of `program` begins with, which a block written in place of moves
+/// from it takes (so it stays in the `if` or `while` they were in: Dialect::indented_blocks).
+std::string_view block_indent(const Program& program, const Block& b);
 
 /// Whether G-code `v` is one RS274 reads as a motion (G0..G3, G5.x, G33, G38.x, G73, G76,
 /// G80..G89): modal, and stated again where the output's modal motion differs.
