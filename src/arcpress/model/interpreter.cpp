@@ -203,7 +203,6 @@ class Interpreter {
     // What the codes the dialect reads its own way ([codes]) did in this block (own_code()).
     uint32_t own = 0;
 
-
     bool repeated = false;  // a word the controller refuses to see twice
     uint32_t letters_seen = 0;
     for (const Word *w = p_->words_begin(b), *end = p_->words_end(b); w != end; ++w) {
@@ -654,11 +653,11 @@ class Interpreter {
   /// Block `bi` is entered both from where a block ended and from where it began (BlockNesting).
   void join(BlockNesting::Join j, uint32_t bi) {
     if (j.position) forget(kAllAxes & ~(1u << kE), Unfit::UnknownAtEntry, bi);
-    if (j.distance) s_.distance_unknown = true;
+    s_.distance_unknown |= j.distance;
   }
 
-  /// Block `bi` where leading blanks open and close blocks: where it closes some, what they
-  /// may have changed is not known (BlockNesting); what it changes, the blocks around it did.
+  /// Block `bi` inside blocks (BlockNesting), or where blanks open and close them: what it
+  /// changes, the blocks around it did; where it closes some, what they changed is not known.
   [[gnu::noinline]] void nested_step(uint32_t bi) {
     const Block& b = p_->blocks[bi];
     if (d_.indented_blocks) join(s_.nesting.line(p_->raw(b), b.kind != BlockKind::Code && b.kind != BlockKind::Empty), bi);
