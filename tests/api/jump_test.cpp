@@ -80,7 +80,7 @@ TEST_CASE("a jump's target stays a block of its own, and the moves after it are 
   }
 }
 
-TEST_CASE("a jump after a run that became an arc states the input's motion first: the target reads it", "[jumps]") {
+TEST_CASE("a jump after a run that became an arc states the input's motion first, which the target reads", "[jumps]") {
   // N100 has no motion word: it reads the motion in force where the jump is made, G1 in the input.
   const std::string text = "G90 G17 G21\nG0 X0 Y0\nG1 F500\nN100 G90 X0 Y0\n" + quarter() + "M99 P100\n";
   const CompressResult r = compress_as("fanuc", text);
@@ -190,7 +190,7 @@ TEST_CASE("a LinuxCNC subroutine's body runs in its caller's modes, and its call
   CHECK(std::any_of(sink.all().begin(), sink.all().end(), [](const Diagnostic& d) { return d.code == "E-FLOW-SUB-MODES"; }));
 }
 
-TEST_CASE("Marlin's repeat marker is a loop: the moves after M808 L are entered from its end", "[jumps]") {
+TEST_CASE("Marlin's repeat marker is a loop, and the moves after M808 L are entered from its end", "[jumps]") {
   // The loop goes back from M808 to the block after M808 L: where the tool is there, and
   // whether G90 or G91 is in force, the loop's end decides.
   const std::string head = "G90\nM83\nG1 X0 Y0 F1200\n";
@@ -208,7 +208,7 @@ TEST_CASE("Marlin's repeat marker is a loop: the moves after M808 L are entered 
   CHECK(fitted.output.find("M808 L3\nG90\nG1 X0.0000 Y0.0000\n") != std::string::npos);  // its first move as written
 }
 
-TEST_CASE("a macro file RepRapFirmware's M98 runs, or a jog M291 allows, may move the tool: the moves after it start anew", "[jumps]") {
+TEST_CASE("a macro file RepRapFirmware's M98 runs, or a jog M291 allows, may move the tool, and the moves after it start anew", "[jumps]") {
   std::string text = "G90\nG1 X0 Y0 F1200\n" + quarter();
   const size_t mid = text.find("G1 X", text.find("G1 X", 20) + 300);
   text.insert(mid, "M98 P\"park.g\"\n");
