@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "arcpress/emit/flow_point.hpp"
 
-#include "arcpress/emit/output_habits.hpp"
+#include "arcpress/model/block_nesting.hpp"
 
 namespace arcpress {
 
@@ -16,13 +16,10 @@ bool jumps_elsewhere(const Program& p, const Block& b, const Dialect& dialect) {
 }
 
 const Block* closes_indented(const Program& p, const Block& b) {
-  auto width = [&](const Block& x) {  // (as RepRapFirmware counts: a tab to the next multiple of 4)
-    uint32_t w = 0;
-    for (char c : block_indent(p, x)) w = c == ' ' ? w + 1 : (w + 4) & ~3u;
-    return w;
-  };
+  const int32_t indent = BlockNesting::indent_of(p.raw(b));
+  if (indent < 0) return nullptr;
   for (const Block* k = &b; k-- > p.blocks.data();)
-    if (p.raw(*k).find_first_not_of(" \t\r") != std::string_view::npos) return width(*k) > width(b) ? k : nullptr;
+    if (const int32_t before = BlockNesting::indent_of(p.raw(*k)); before >= 0) return before > indent ? k : nullptr;
   return nullptr;
 }
 

@@ -12,7 +12,8 @@ namespace arcpress {
 bool jumps_elsewhere(const Program& program, const Block& b, const Dialect& dialect);
 
 /// Where block `b` of `program` ends blocks of blanks (Dialect::indented_blocks: it is indented
-/// less than the last line before it that is not blank), that line, which is in them; else null.
+/// less than the last line before it that counts, BlockNesting::indent_of()), that line, which
+/// is in them; else null.
 const Block* closes_indented(const Program& program, const Block& b);
 
 }  // namespace arcpress

@@ -5,14 +5,20 @@
 
 namespace arcpress {
 
-BlockNesting::Join BlockNesting::line(std::string_view line, bool opens) {
+int32_t BlockNesting::indent_of(std::string_view line) {
   // RepRapFirmware's StringParser::Put(): a space adds 1, a tab moves on to the next multiple
   // of 4; a line with nothing after its blanks is skipped, so is an indented `;` comment.
   uint32_t indent = 0;
   size_t i = 0;
   for (; i < line.size() && (line[i] == ' ' || line[i] == '\t'); ++i) indent = line[i] == ' ' ? indent + 1 : (indent + 4) & ~3u;
-  if (i == line.size() || line[i] == '\r' || (indent > 0 && line[i] == ';')) return {};
-  const uint16_t d = uint16_t(std::min<uint32_t>(indent, UINT16_MAX));
+  if (i == line.size() || line[i] == '\r' || (indent > 0 && line[i] == ';')) return -1;
+  return int32_t(std::min<uint32_t>(indent, UINT16_MAX));
+}
+
+BlockNesting::Join BlockNesting::line(std::string_view line, bool opens) {
+  const int32_t indent = indent_of(line);
+  if (indent < 0) return {};
+  const uint16_t d = uint16_t(indent);
   Join j;
   if (d < last_indent) {
     uint8_t closed = 0;

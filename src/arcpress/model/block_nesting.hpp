@@ -36,6 +36,9 @@ struct BlockNesting {
   Join close(uint32_t label);
   /// Whether the innermost open block is a `do` labelled `label`.
   bool in_do(uint32_t label) const { return depth > 0 && levels[depth - 1].label == label && levels[depth - 1].do_loop; }
+  /// The indent of `line` as the firmware counts it (a space 1, a tab to the next multiple of
+  /// 4), or -1 where the line counts for nothing (blank, or an indented `;` comment).
+  static int32_t indent_of(std::string_view line);
   /// After a block: what it changed, for every block open around it.
   void changed(bool position, bool distance) {
     const uint8_t bits = uint8_t((position ? kMoved : 0) | (distance ? kDistance : 0));

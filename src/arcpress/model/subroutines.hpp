@@ -8,6 +8,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <utility>
 
 #include "arcpress/model/move.hpp"
 
@@ -54,10 +55,11 @@ struct Subroutines {
       if (bodies[k].label == label) return &bodies[k];
     return nullptr;
   }
+  Body* find(uint32_t label) { return const_cast<Body*>(std::as_const(*this).find(label)); }
   /// Notes what the body being read leaves at a return: `states` stated, with these values.
   /// (`unknown`: kStates* it leaves not known, after a call of a body not read.)
   void leaves(uint8_t states, uint8_t unknown, Plane plane, double unit_mm, bool absolute, int motion) {
-    Body* b = const_cast<Body*>(find(before.label));
+    Body* b = find(before.label);
     if (!b) {
       if (count == kMostBodies) {
         overflow = true;
