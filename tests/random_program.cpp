@@ -119,6 +119,9 @@ RandomCase random_case(std::span<const uint8_t> bytes) {
     }
     if (!tnc && (h & 0x3f) == 0x34 && !sub_label) s += fmt::format("o{} sub\n", sub_label = long(i));
     if (!tnc && (h & 0x3f) == 0x35 && sub_label) s += fmt::format("o{0} endsub\no{0} call\n", std::exchange(sub_label, 0));
+    // A call of a subprogram written after the program's end (or stored in the control): the
+    // moves after it are read in the modes it leaves.
+    if (!tnc && (h & 0x3f) == 0x36) s += a < 0 ? "M98 P9000 L2\n" : "M98 P9000\n";
     const bool number_it = !tnc && (h & 0x3f) == 0x30;
     if (number_it) numbered = long(i);
     const double px = std::stod(fmt::format("{:.{}f}", x, decimals)), py = std::stod(fmt::format("{:.{}f}", y, decimals));
@@ -139,6 +142,9 @@ RandomCase random_case(std::span<const uint8_t> bytes) {
   }
   if (sub_label) s += fmt::format("o{} endsub\n", sub_label);
   s += tnc ? fmt::format("N{} M2 *\nN99999999 %RANDOM G71 *\n", bytes.size() + 3) : "M2\n";
+  // O9000 leaves G90, G91 or G18 where it returns, or is not in the file.
+  const char* bodies[] = {"O9000\nG91 G1 X0.5\nG90\nM99\n", "O9000\nG91 G1 X0.5\nM99\n", "O9000\nG18 G1 Z0.5\nM99\n", ""};
+  if (!tnc) s += bodies[uint8_t(o + form) % 4];
   return c;
 }
 

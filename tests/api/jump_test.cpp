@@ -318,3 +318,66 @@ TEST_CASE("arcpress diff holds B to the blocks A's jumps enter", "[jumps][cli]")
   CHECK(differs.exit_code == 1);
   CHECK(differs.out.find("block N100 (A line 19), which a jump enters, is not in B") != std::string::npos);
 }
+
+TEST_CASE("a subprogram's caller goes on in the modes its body leaves, and the body runs in those of its calls", "[jumps][subprograms]") {
+  const Dialect fanuc = shipped_dialect("fanuc");
+  const std::string head = "G90 G17 G21\nG0 X0 Y0\nG1 F500\n";
+  // O2000 states G91 and returns: the caller's words after M98 are increments (Fanuc,
+  // Haas), not the quarter circle they would be in G90.
+  auto leaving = [&](const std::string& body) { return head + "M98 P2000\n" + quarter() + "G90 G0 Z5\nM30\nO2000\n" + body + "M99\n"; };
+  const std::string g91 = leaving("G91 G1 X1.\n");
+  const CompressResult kept = compress_as("fanuc", g91);
+  REQUIRE(kept.ok);
+  CHECK(count_of(kept.output, "G3") == 0);
+  CHECK(kept.output == g91);
+  // A body that states G90 again before it returns leaves G90.
+  CHECK(count_of(compress_as("fanuc", leaving("G91 G1 X1.\nG90\n")).output, "G3") == 1);
+  // The check reads them so too: one arc through the quarter's places is another path.
+  auto as_arc = [](std::string t) {  // (from the quarter's first place on)
+    const size_t from = t.find("G1 X0.0000 Y0.0000\n") + 19;
+    return t.replace(from, t.find("G90 G0 Z5") - from, "G3 X-20. Y20. I-20. J0.\n");
+  };
+  DiffOptions opt;
+  opt.tolerance_mm = 0.01;
+  CHECK_FALSE(diff_texts(g91, as_arc(g91), opt, fanuc).same(opt.tolerance_mm));
+  const std::string g90 = leaving("G91 G1 X1.\nG90\n");
+  CHECK(diff_texts(g90, as_arc(g90), opt, fanuc).same(opt.tolerance_mm));
+
+  // A program not in the file (stored in the control) may leave any plane, units, distance
+  // mode and motion: nothing after its call is fitted until the program states them again.
+  const std::string external = head + "M98 P3000\n" + quarter() + "M30\n";
+  CHECK(count_of(compress_as("fanuc", external).output, "G3") == 0);
+  std::string restated = external;
+  restated.insert(restated.find("G1 X0.0000"), "G90 G17 G21\n");
+  CHECK(count_of(compress_as("fanuc", restated).output, "G3") == 1);
+
+  // The body runs in the motion, plane and units of its calls: a call made in G0 runs its
+  // bare words as rapids; calls in two planes leave its plane unknown until it states one.
+  std::string bare;
+  for (size_t at = 0, nl; (nl = quarter().find('\n', at)) != std::string::npos; at = nl + 1)
+    bare += quarter().substr(at + 3, nl + 1 - at - 3);  // (without "G1 ")
+  auto entered = [&](const std::string& calls) { return head + calls + "M30\nO2000\n" + bare + "M99\n"; };
+  CHECK(count_of(compress_as("fanuc", entered("M98 P2000\nG0 Z5\nG1 M98 P2000\n")).output, "G3") == 1);
+  CHECK(count_of(compress_as("fanuc", entered("G0 Z5\nM98 P2000\n")).output, "G3") == 0);
+  CHECK(count_of(compress_as("fanuc", entered("G1 M98 P2000\nG18\nG1 M98 P2000\n")).output, "G3") == 0);
+  // Run three times (L3), the body is entered again in the G91 it leaves.
+  const std::string once = head + "M98 P2000\nG90 G0 Z5\nM30\nO2000\nG1 X0 Y0\n" + quarter() + "G91 G1 X1.\nM99\n";
+  CHECK(count_of(compress_as("fanuc", once).output, "G3") == 1);
+  std::string thrice = once;
+  thrice.replace(thrice.find("M98 P2000"), 9, "M98 P2000 L3");
+  CHECK(count_of(compress_as("fanuc", thrice).output, "G3") == 0);
+  // A body's first increment starts where its call left the tool, not where the move before it
+  // in the text ends: no joint of the path, tangent or not.
+  const CompressResult floated = compress_as("rs274", "G21 G90 G18\nG0 X0 Y0 Z0\nG1 F1000\nG1 X0.077 Y0.003\n"
+                                                      "G1 X0.141 Y0.022\nG1 X0.184 Y0.044\nM2\nO9000\nG91 G1 X0.5\nM99\n");
+  REQUIRE(floated.ok);
+  CHECK(count_of(floated.output, "G3") == 1);
+  CHECK(floated.comparison.smooth_joints == 0);
+  // A body another body calls is entered in modes not read before it (here O2000's G18, read
+  // after it): not fitted until it states them.
+  const std::string nested = head + "M98 P2000\nM30\nO3000\n" + bare + "M99\nO2000\nG18 G1 Z-1.\nM98 P3000\nM99\n";
+  CHECK(count_of(compress_as("fanuc", nested).output, "G3") == 0);
+  std::string nested_stated = nested;
+  nested_stated.insert(nested_stated.find("O3000\n") + 6, "G90 G17 G21 G1\n");
+  CHECK(count_of(compress_as("fanuc", nested_stated).output, "G3") == 1);
+}

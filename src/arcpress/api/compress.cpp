@@ -9,6 +9,7 @@
 #include "arcpress/api/compressor.hpp"
 #include "arcpress/api/piece.hpp"
 #include "arcpress/core/error.hpp"
+#include "arcpress/model/called_programs.hpp"
 
 namespace arcpress {
 
@@ -32,7 +33,9 @@ FitOptions fit_options_for(const FitOptions& user, const Dialect& d, const Frame
 
 void verify_output(const Program& input, const Interpretation& in, const CompressOptions& opt, CompressResult& r,
                    std::span<const Run> runs) {
-  verify_piece_output(input, in, opt, r, runs, initial_state(opt.dialect), nullptr, false);
+  ModalState start = initial_state(opt.dialect);
+  start.called = called_programs_of(input, opt.dialect);  // (as the input was read, where it was read whole)
+  verify_piece_output(input, in, opt, r, runs, start, nullptr, false);
 }
 
 void check_options(const FitOptions& o) {
@@ -54,6 +57,7 @@ void check_options(const FitOptions& o) {
 CompressResult compress(const std::string& name, std::string text, const CompressOptions& opt,
                         DiagnosticSink& sink) {
   Compressor c(name, opt, sink);
+  c.read_jumps(text, 1);  // (the whole program is at hand: its jumps and subprograms are read first)
   c.push(text);
   text = {};
   c.finish();

@@ -20,6 +20,7 @@
 #include "arcpress/lex/foreign_content.hpp"
 #include "arcpress/lex/lexer.hpp"
 #include "arcpress/lex/refusal_scan.hpp"
+#include "arcpress/model/called_programs.hpp"
 #include "arcpress/model/interpreter.hpp"
 
 namespace arcpress {
@@ -92,6 +93,7 @@ struct Compressor::Impl {
     rethrow();
     if (finished) throw std::logic_error("Compressor::push() after finish()");
     if (failed) return;
+    if (after_end_found) called_ahead();
     bytes_read += bytes.size();
     // Whole lines go from `bytes` to their piece; only a line cut by the push waits in
     // `pending` for its end.
@@ -119,6 +121,7 @@ struct Compressor::Impl {
   void finish() {
     rethrow();
     if (finished) return;
+    if (after_end_found) called_ahead();
     finished = true;
     if (!failed && !pending.empty() && !jumps_ahead) read_jumps(pending, line + 1, false);
     if (!failed && !pending.empty()) add_line(pending);
@@ -178,7 +181,14 @@ struct Compressor::Impl {
   void read_jumps(std::string_view lines, uint32_t first_line, bool ahead) {
     jumps_ahead = jumps_ahead || ahead;
     JumpTargets found;
-    found.read(lines, first_line, ahead ? nullptr : &passed);
+    const size_t ended = found.read(lines, first_line, ahead ? nullptr : &passed);
+    if (ahead) {
+      // The text after the program's first end, where the subprograms its calls run are
+      // written: read before the blocks (called_ahead()).
+      if (after_end.size() > kAfterEndBytes) after_end_whole = false;
+      else if (after_end_found) after_end += lines;
+      else if (ended != std::string_view::npos) after_end_found = true, after_end = lines.substr(ended);
+    }
     if (!found.any()) return;
     auto next = jumps ? std::make_shared<JumpTargets>(*jumps) : std::make_shared<JumpTargets>();
     next->merge(found);
@@ -198,6 +208,18 @@ struct Compressor::Impl {
       total.ok = false;
       ready.clear();
     }
+  }
+
+  /// What the subprograms in the text after the program's end leave (CalledPrograms), read
+  /// before its first block: the reader goes on with it. (Over kAfterEndBytes, none is read:
+  /// after a call, the modes a body may change are then not known.)
+  void called_ahead() {
+    after_end_found = false;
+    ModalState s = reader.state();
+    DiagnosticSink quiet(name);  // (the blocks are read again in their turn, and told then)
+    if (after_end_whole) s.called = read_called_programs(lex(name, std::move(after_end), quiet, keywords), 0, opt.dialect);
+    after_end = std::string();
+    reader.reset(s);
   }
 
   /// One whole line (with its end of line, or the program's last without).
@@ -461,6 +483,9 @@ struct Compressor::Impl {
   std::shared_ptr<const JumpTargets> jumps;      // the blocks the program's jumps read so far enter
   PassedNumbers passed;                          // block numbers read as no jump's target
   bool jumps_ahead = false;                      // the jumps were read before the program was pushed
+  static constexpr size_t kAfterEndBytes = size_t(8) << 20;
+  std::string after_end;                         // the text after the program's first end, read ahead
+  bool after_end_found = false, after_end_whole = true;
   std::string pending;          // bytes after the last whole line
   std::unique_ptr<Piece> cur;   // the piece being read
   std::unique_ptr<Piece> spare; // the last piece released, whose buffers the next one reads into

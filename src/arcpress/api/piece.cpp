@@ -44,7 +44,7 @@ void piece_ends(const Program& input, const Interpretation& in, const Interpreta
   head = tail = PieceEnd{};
   if (in.moves.empty() || out.moves.empty()) return;
   const Move& first = out.moves.front();
-  head.feed = is_feed(first.kind) && first.known && is_feed(in.moves.front().kind);
+  head.feed = is_feed(first.kind) && first.known && is_feed(in.moves.front().kind) && !in.moves.front().entered;
   head.fitted = fitted_move(in, 0, out, 0);
   head.plane = first.plane;
   head.tangent = move_start_tangent(out, 0);

@@ -38,12 +38,25 @@ Named named_at(std::string_view s, size_t i, bool n_allowed) {
   return {Named::Number, n};
 }
 
+/// Whether M-code text[j, end) is `code` (M2, M02, M2.0; not M20).
+bool m_code_is(std::string_view text, size_t j, size_t end, unsigned code) {
+  while (j < end && text[j] == '0') ++j;
+  unsigned v = 0;
+  for (; j < end && is_digit(text[j]) && v < 1000; ++j) v = v * 10 + unsigned(text[j] - '0');
+  if (j < end && text[j] == '.')
+    for (++j; j < end && is_digit(text[j]); ++j)
+      if (text[j] != '0') return false;
+  return v == code && (j >= end || !is_digit(text[j]));
+}
+
 /// The jumps in the line text[start, end): `add(number, at, call)` for a block number named
-/// (`call`: by a call, which returns), `add_computed(at)` for a computed one.
+/// (`call`: by a call, which returns), `add_computed(at)` for a computed one. Returns whether
+/// the line ends a program (M2, M30, M99).
 template <class Add, class AddComputed>
-void read_line(std::string_view text, size_t start, size_t end, Add& add, AddComputed& add_computed) {
+bool read_line(std::string_view text, size_t start, size_t end, Add& add, AddComputed& add_computed) {
   char jump_m = 0;      // M97 ('7') or M99 ('9')
   bool call_m = false;  // M98
+  bool ends = false;
   Named p, q;           // the line's P and Q words
   for (size_t i = start; i < end; ++i) {
     const char c = text[i];
@@ -75,6 +88,7 @@ void read_line(std::string_view text, size_t start, size_t end, Add& add, AddCom
         if (!starts) break;
         size_t j = i + 1;
         while (j < end && (text[j] == ' ' || text[j] == '\t')) ++j;
+        ends = ends || m_code_is(text, j, end, 2) || m_code_is(text, j, end, 30) || m_code_is(text, j, end, 99);
         while (j + 2 < end && text[j] == '0' && is_digit(text[j + 1]) && is_digit(text[j + 2])) ++j;
         if (j + 1 < end && text[j] == '9' && (text[j + 1] == '7' || text[j + 1] == '8' || text[j + 1] == '9') &&
             (j + 2 >= end || (!is_digit(text[j + 2]) && text[j + 2] != '.')))
@@ -97,11 +111,13 @@ void read_line(std::string_view text, size_t start, size_t end, Add& add, AddCom
   const Named& named = jump_m ? p : call_m ? q : Named{};
   if (named.kind == Named::Number) add(named.number, start, jump_m != '9');
   if (named.kind == Named::Computed) add_computed(start);
+  return ends;
 }
 
 }  // namespace
 
-void JumpTargets::read(std::string_view text, uint32_t first_line, const PassedNumbers* passed) {
+size_t JumpTargets::read(std::string_view text, uint32_t first_line, const PassedNumbers* passed) {
+  size_t ended = std::string_view::npos;
   const size_t before = numbers_.size();
   // The line of a jump, counted only where one is found (most programs have none).
   size_t counted = 0;
@@ -139,7 +155,8 @@ void JumpTargets::read(std::string_view text, uint32_t first_line, const PassedN
     const size_t start = at == 0 ? 0 : text.rfind('\n', at - 1) + 1;  // (npos + 1 is 0)
     size_t end = text.find('\n', at);
     if (end == std::string_view::npos) end = n;
-    if (start >= from) read_line(text, start, end, add, add_computed);
+    if (start >= from && read_line(text, start, end, add, add_computed) && ended == std::string_view::npos)
+      ended = std::min(end + 1, n);
     from = end + 1;
     for (int k = 0; k < 4; ++k)
       if (next[k] < from) find(k, from);
@@ -149,6 +166,7 @@ void JumpTargets::read(std::string_view text, uint32_t first_line, const PassedN
       std::sort(list->begin(), list->end());
       list->erase(std::unique(list->begin(), list->end()), list->end());
     }
+  return ended;
 }
 
 void JumpTargets::merge(const JumpTargets& other) {

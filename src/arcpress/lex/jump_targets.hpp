@@ -38,8 +38,9 @@ class JumpTargets {
   /// number computed by the program (`GOTO #1`, `M99 P#5`) may be any block's. A jump to a
   /// label (`GOTOB LOOP1`) names no number: a label's line is one arcpress does not read.
   /// Comments and quoted text are skipped. With `passed`, a jump to a block among them is
-  /// noted as late().
-  void read(std::string_view text, uint32_t first_line, const PassedNumbers* passed = nullptr);
+  /// noted as late(). Returns where in `text` the first line holding a program end (M2, M30,
+  /// M99) ends, after which a file holds the subprograms its calls run, else npos.
+  size_t read(std::string_view text, uint32_t first_line, const PassedNumbers* passed = nullptr);
   /// Adds the targets of `other` (and its late jump, if this has none).
   void merge(const JumpTargets& other);
 

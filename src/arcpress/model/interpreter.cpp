@@ -12,6 +12,7 @@
 
 #include "arcpress/lex/o_word.hpp"
 #include "arcpress/model/arc_centre.hpp"
+#include "arcpress/model/called_programs.hpp"
 #include "arcpress/model/o_word_flow.hpp"
 
 namespace arcpress {
@@ -53,7 +54,7 @@ class Interpreter {
     while (o_->move_of_block.size() <= bi) o_->move_of_block.push_back(-1);
     if (d_.indented_blocks || s_.nesting.depth) [[unlikely]] return nested_step(bi);
     block(bi, p_->blocks[bi]);
-    if (end_read_) [[unlikely]] program_end(bi);
+    if (end_read_ || call_read_) [[unlikely]] after_block(bi);
   }
 
   const ModalState& state() const { return s_; }
@@ -131,11 +132,10 @@ class Interpreter {
     own |= own_setting(own_code(meaning, b, bi, w, own));
   }
 
-  /// After a code arcpress does not model in block `bi`: the position is not known, and the
-  /// move before it stays as written. Such a block may go on from the path element before
-  /// it (Heidenhain's chamfer G24 between two lines and rounding G25, its tangential arcs
-  /// G06 and G16, its departure G27): a primitive of arcpress's ending there, an arc where
-  /// the program had a line, or a line along another chord, would change what it makes.
+  /// After a code arcpress does not model in block `bi`: the position is not known, and the move
+  /// before it stays as written. Such a block may go on from the path element before it
+  /// (Heidenhain's chamfer G24 between two lines and rounding G25, its tangential arcs G06 and
+  /// G16, its departure G27): a primitive of arcpress's ending there would change what it makes.
   void not_modelled(uint32_t bi) {
     forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterUnmodelled, bi);
     keep_last_move();
@@ -312,8 +312,8 @@ class Interpreter {
                 break;
               }
               [[fallthrough]];
-            default:  // (Fanuc's G65 macro call enters its program in this distance mode)
-              if (g == 650 && (!s_.frame.absolute || s_.distance_unknown)) s_.called_in_g91 = true;
+            default:
+              if (g == 650) call_read_ = g;  // Fanuc's macro call
               sink_.problem({b.line, w->col}, "E-MODEL-GCODE",
                             fmt::format("{} is not modelled; the block is kept and not fitted",
                                         p_->raw(b, *w)));
@@ -326,15 +326,12 @@ class Interpreter {
         case 'M': {
           other_words = true;
           const int m = w->code10();
-          if ((m == 970 || m == 980) && (!s_.frame.absolute || s_.distance_unknown)) s_.called_in_g91 = true;
+          if (m == 970 || m == 980) call_read_ = m;  // a subprogram's call (after_block())
           if (const CodeMeaning* own_m = own_m_[uint32_t(m) % kOwnSlots] ? d_.meaning_of('M', m) : nullptr) {
             own |= own_setting(own_code(*own_m, b, bi, *w, own));
             break;
           }
-          if (m == 820) F().e_relative = false;
-          if (m == 830) F().e_relative = true;
-          if (m == 980 || m == 990)  // subprogram call / return
-            forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterControl, bi);
+          if (m == 820 || m == 830) F().e_relative = m == 830;
           if (m == 20 || m == 300) end_read_ = true;
           if (m == 20 || m == 300 || m == 990) s_.ended = true;
           if (m == 990) enter(bi, false);  // the blocks after a return run only when a call or jump enters them
@@ -367,7 +364,7 @@ class Interpreter {
           s_.spindle = w->value;
           break;
         case 'N':
-          if (p_->jumps && p_->jumps->enters(w->value)) enter(bi, p_->jumps->only_called(w->value));
+          if (p_->jumps && p_->jumps->enters(w->value)) enter(bi, p_->jumps->only_called(w->value), CalledPrograms::key_of(*w));
           break;
         case 'T':
           other_words = true;
@@ -384,7 +381,7 @@ class Interpreter {
           // the dialect's keywords: the lexer reads no others.)
           other_words = true;
           if ((L == 'D' || L == kKeywordLetter) && !d_.codes.empty()) own_word(b, bi, *w, own);
-          if (L == 'O' && s_.ended) enter(bi, true);  // another program, after one's end: a call enters it
+          if (L == 'O' && s_.ended) enter(bi, true, CalledPrograms::key_of(*w));  // another program: a call enters it
           break;
       }
     }
@@ -393,16 +390,8 @@ class Interpreter {
       if (own & (kOwnInch | kOwnMm)) F().unit_mm = (own & kOwnInch) ? 25.4 : 1.0, s_.units_told = true, stated(kStatesUnits);
       if (own & (kOwnDiameter | kOwnRadius)) F().diameter_mode = (own & kOwnDiameter) != 0;
     }
-    if (length_col > 0 && !s_.units_told) {
-      auto g_name = [](int c10) { return c10 % 10 ? fmt::format("G{}.{}", c10 / 10, c10 % 10) : fmt::format("G{}", c10 / 10); };
-      // Read as the frame says (millimetres, unless the dialect starts in inches); said once.
-      sink_.warning({b.line, length_col}, "W-MODEL-UNITS",
-                    fmt::format("a length before any {} or {}: read in millimetres until the program states its units; a "
-                                "controller set to start in inches reads it 25.4 times larger (--units inch; --units mm, "
-                                "or a printer's --dialect, says it starts in millimetres)",
-                                g_name(d_.code_for(CodeMeaning::Inch, 200)), g_name(d_.code_for(CodeMeaning::Mm, 210))));
-      s_.units_told = true;
-    }
+    if (length_col > 0 && !s_.units_told)  // (said once)
+      sink_.warning({b.line, length_col}, "W-MODEL-UNITS", start_units_warning(d_)), s_.units_told = true;
     // Where the firmware retracts (d_.firmware_retraction), G10 without L and without axis
     // words retracts (or sets a tool's temperatures) and G11 recovers: the programmed position
     // stays. Any other G10 sets offsets or tables the program's coordinates may depend on.
@@ -486,8 +475,7 @@ class Interpreter {
     }
 
     const Frame& fr = s_.frame;
-    if (!fr.absolute && !s_.distance_unknown && (words_seen & ~s_.known & ~(1u << kE))) [[unlikely]]
-      float_entry();
+    const bool entered = !fr.absolute && !s_.distance_unknown && (words_seen & ~s_.known & ~(1u << kE)) && float_entry();
     AxisValues target = s_.pos;
     uint32_t known_after = s_.known;
     uint32_t written = 0;  // axes this block writes
@@ -593,6 +581,7 @@ class Interpreter {
       set_frame(f);
     }
     Move& m = add_move(bi, kind, target, known, turns);
+    m.entered = entered;
     m.unknown_axes = uint16_t(kAllAxes & ~(s_.known & known_after));
     m.end_known = known || (moved & ~known_after) == 0;
     if (repeated && m.known) {
@@ -636,18 +625,26 @@ class Interpreter {
     if (cycle_here && words_seen != 0) forget(kXyzMask, Unfit::UnknownAfterCycle, bi);
   }
 
-  /// Block `bi` may be entered from elsewhere (JumpTargets, a program number after a program's
-  /// end), or the blocks after it only so (M99): the position and whether G90 or G91 is in
-  /// force are not known.
-  /// Where only calls enter it (`called`) and none was made in G91, G90 is in force.
-  [[gnu::noinline]] void enter(uint32_t bi, bool called) {
+  /// Block `bi` may be entered from elsewhere (JumpTargets, a program number after an end), or
+  /// the blocks after it only so (M99): the position and G90 or G91 are not known; where only
+  /// calls enter it (`called`, at label `key`), the modes of the calls (enter_called()).
+  [[gnu::noinline]] void enter(uint32_t bi, bool called, uint64_t key = CalledPrograms::kNoLabel) {
     forget(kAllAxes & ~(1u << kE), Unfit::UnknownAtEntry, bi);
-    s_.distance_unknown = !called || s_.called_in_g91;
-    if (!s_.distance_unknown && !s_.frame.absolute) {
+    s_.distance_unknown = true;
+    Frame f = s_.frame;
+    if (called) enter_called(s_, key, f);
+    set_frame(f);
+  }
+
+  /// After block `bi`: a call it made has returned (model/called_programs.hpp), or the program ended.
+  [[gnu::noinline]] void after_block(uint32_t bi) {
+    if (call_read_) {
+      forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterControl, bi);
       Frame f = s_.frame;
-      f.absolute = true;
+      return_from_call(s_, read_call(*p_, p_->blocks[bi], std::exchange(call_read_, 0)), f);
       set_frame(f);
     }
+    if (end_read_) program_end(bi);
   }
 
   /// Block `bi` is entered both from where a block ended and from where it began (BlockNesting).
@@ -665,7 +662,7 @@ class Interpreter {
     const size_t frames = o_->frames.size();
     const bool absolute = s_.frame.absolute, distance_unknown = s_.distance_unknown;
     block(bi, b);
-    if (end_read_) program_end(bi);
+    if (end_read_ || call_read_) after_block(bi);
     s_.nesting.changed(o_->move_of_block[bi] >= 0 || s_.known != known || o_->frames.size() != frames,
                        s_.frame.absolute != absolute || s_.distance_unknown != distance_unknown);
   }
@@ -701,16 +698,18 @@ class Interpreter {
     s_.motion = 10;
   }
 
-  /// A G91 move where an entry left axes unknown: they float (ModalState::floating), unless
-  /// arc centres are absolute (G90.1, a pole), which a shifted place would misread.
-  [[gnu::noinline]] void float_entry() {
-    if (s_.frame.arc_absolute || s_.frame.polar || d_.centre_modal) return;
+  /// A G91 move where an entry left axes unknown: they float (ModalState::floating), unless arc
+  /// centres are absolute (G90.1, a pole), which a shifted place would misread. Whether any does.
+  [[gnu::noinline]] bool float_entry() {
+    if (s_.frame.arc_absolute || s_.frame.polar || d_.centre_modal) return false;
+    const uint32_t floating = s_.floating;
     for (int ax = 0; ax < kAxisCount; ++ax)
       if (ax != kE && !((s_.known >> ax) & 1u) && s_.why[ax].reason == Unfit::UnknownAtEntry) {
         s_.known |= 1u << ax;
         s_.floating |= 1u << ax;
         s_.why[ax] = {Unfit::None, 0};
       }
+    return s_.floating != floating;
   }
 
   /// Axes in `mask` become unknown, `why`, from block `bi` on (the latest reason is kept).
@@ -767,6 +766,7 @@ class Interpreter {
 
   const Dialect& d_;
   bool end_read_ = false;  ///< the block read was a program end (program_end())
+  int call_read_ = 0;      ///< the block read made a call: its code times ten (after_block())
   double own_radius_ = 0;  ///< the value of the block's keyword read as the arc's radius (kOwnArcRadius)
   /// The G- and M-codes the dialect reads its own way, and those of Dialect::last_turn, each a
   /// bit at its code (times ten) modulo kOwnSlots: most words are ruled out by one test, not a

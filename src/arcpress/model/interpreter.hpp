@@ -19,6 +19,9 @@ namespace arcpress {
 
 /// The state at the start of a program read by `dialect`'s controller.
 ModalState initial_state(const Dialect& dialect);
+/// What a program that writes a length before stating its units is told (W-MODEL-UNITS): the
+/// lengths are read in millimetres, as the frame of initial_state() says, unless told otherwise.
+std::string start_units_warning(const Dialect& dialect);
 
 /// Reads a program block by block, from a given state: for a program that arrives in pieces.
 class ModalInterpreter {
@@ -48,7 +51,8 @@ std::vector<KeywordSpelling> keywords_read(const Dialect& dialect);
 
 /// Reads `program` as `dialect`'s controller would (centre form, G18 direction, numbers
 /// without a decimal point); the default is generic RS274. With `state`, reading starts
-/// from it and it is left as the program ends.
+/// from it and it is left as the program ends; without, from initial_state() and what the
+/// subprograms after the program's end leave (called_programs_of()).
 Interpretation interpret(const Program& program, DiagnosticSink& sink, const Dialect& dialect = Dialect{},
                          ModalState* state = nullptr);
 

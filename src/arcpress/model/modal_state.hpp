@@ -11,6 +11,8 @@
 
 namespace arcpress {
 
+struct CalledPrograms;
+
 /// What the interpreter knows between two blocks: every modal setting, the position and
 /// which axes of it are known and why not. A program read in pieces (a stream) is read on
 /// from the state the previous piece ended in, exactly as if it were read whole.
@@ -40,10 +42,20 @@ struct ModalState {
   /// A program's end (M2, M30, M99) has been read: a program number after it (`O2000`) begins
   /// a program that runs when a call enters it (Mach3's and Fanuc's subprograms in one file).
   bool ended = false;
-  /// A call (M97, M98) was made where G91 was in force, or where G90 or G91 was not known: a
-  /// block only calls enter (JumpTargets::only_called(), a program number after an end) may
-  /// then be entered in G91. Else it is entered in G90.
-  bool called_in_g91 = false;
+  /// The modes the calls read so far (M97, M98, G65) were made in, bits of those seen: a body
+  /// only calls enter (JumpTargets::only_called(), a program number after an end) is read in
+  /// them where they agree (enter_called()).
+  struct CallModes {
+    static constexpr int16_t kNoCall = -2;
+    uint8_t distance = 0;         ///< 1: G90; 2: G91, or not known
+    uint8_t planes = 0;           ///< 1 << Plane; 8: not known
+    uint8_t units = 0;            ///< 1: mm; 2: inch; 4: not known
+    int16_t motion = kNoCall;     ///< the motion (x10) every call was made in; -1 where they differ
+    bool operator==(const CallModes&) const = default;
+  };
+  CallModes calls;
+  /// What the bodies after the program's end leave, read ahead (null: not read).
+  std::shared_ptr<const CalledPrograms> called;
   /// Bit per axis: known only up to a shift the program never states. Where an entry left the
   /// position unknown, G91 moves are read from the place it stands in for: placed relative to
   /// one another, as their increments are. G90 makes such an axis unknown again.
@@ -89,7 +101,7 @@ struct ModalState {
     }
     return f.same_as(o.frame) && plane == o.plane && known == o.known && spindle == o.spindle && cycle_calls == o.cycle_calls &&
            distance_unknown == o.distance_unknown && ended == o.ended &&
-           called_in_g91 == o.called_in_g91 && floating == o.floating && nesting == o.nesting &&
+           calls == o.calls && called == o.called && floating == o.floating && nesting == o.nesting &&
            stated == o.stated && unstated == o.unstated && (subs == o.subs || (subs && o.subs && *subs == *o.subs)) &&
            feed_known == o.feed_known && (!feed_known || feed_mm == o.feed_mm) && (!with_motion || motion == o.motion);
   }

@@ -148,6 +148,9 @@ struct Move {
   /// Every axis it moves ends at a known position, so its end point is known even where
   /// its start is not (the move into the first known position after homing).
   bool end_known = true;
+  /// It starts where an entry left the position standing in for one not known, from which
+  /// its axes float (ModalState::floating): the move before it in the text is no neighbour.
+  bool entered = false;
   Unfit unfit = Unfit::NotLine;  ///< Unfit::None: a plain G1 feed block a fitter may rewrite
 
   bool fittable() const { return unfit == Unfit::None; }

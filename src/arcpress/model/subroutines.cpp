@@ -46,16 +46,22 @@ std::string after_call(ModalState& s, uint32_t label, Frame& frame) {
         "this call runs a subroutine in G{} G{}, whose body was read in G{} G{} where it is defined: its moves may "
         "have been fitted in another plane or scale",
         plane_gcode(s.plane), frame.unit_mm == 1 ? 21 : 20, plane_gcode(body->read_plane), body->read_unit_mm == 1 ? 21 : 20);
+  leave_body(s, body, frame);
+  return problem;
+}
+
+void leave_body(ModalState& s, const Subroutines::Body* body, Frame& frame) {
   const uint8_t unknown = body ? body->ambiguous : kStatesPlane | kStatesUnits | kStatesDistance | kStatesMotion;
   const uint8_t known = body ? uint8_t(body->states & ~unknown) : 0;
-  if (known & kStatesPlane) s.plane = body->plane, s.stated |= kStatesPlane;
-  if (known & kStatesUnits) frame.unit_mm = body->unit_mm, s.stated |= kStatesUnits;
+  if (known & kStatesPlane) s.plane = body->plane;
+  if (known & kStatesUnits) frame.unit_mm = body->unit_mm;
+  s.stated |= known & (kStatesPlane | kStatesUnits);
+  s.unstated &= uint8_t(~known);
   if (known & kStatesDistance) frame.absolute = body->absolute, s.distance_unknown = false;
   if (known & kStatesMotion) s.motion = body->motion;
   if (unknown & kStatesDistance) s.distance_unknown = true;
   if (unknown & kStatesMotion) s.motion = -1;
   s.unstated |= unknown & (kStatesPlane | kStatesUnits);
-  return problem;
 }
 
 }  // namespace arcpress

@@ -96,5 +96,7 @@ void end_of_body(ModalState& s, bool endsub, Frame& frame);
 /// Returns why the call cannot run the body as it was read (its definition's plane or units
 /// differ), else nothing.
 std::string after_call(ModalState& s, uint32_t label, Frame& frame);
+/// The caller's modes after a body that leaves `body`, a body not read where null.
+void leave_body(ModalState& s, const Subroutines::Body* body, Frame& frame);
 
 }  // namespace arcpress

@@ -252,6 +252,7 @@ PathComparison compare_paths(const Program& a, const Interpretation& ia, const P
       // vertices beside the joint, and one further out, past moves that go nowhere.
       std::optional<size_t> v_before, v_after;
       if (prev_j == long(j) - 1 && prev_j >= 0 && (replaced || prev_replaced) && ib.moves[prev_j].plane == mb.plane &&
+          !ia.moves[i].entered &&
           (v_before = ia.vertex_beside(i, -1)) && (v_after = ia.vertex_beside(i, +1))) {
         // The plane the joint was made in: where both moves were fitted, else the output's.
         Plane pl = mb.plane;
