@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "arcpress/arcpress.hpp"
@@ -189,4 +190,46 @@ TEST_CASE("an O-word block closes at its end line, and what its lines changed is
   CHECK_FALSE(quiet.position);
   CHECK_FALSE(quiet.distance);
   CHECK_FALSE(n.close(7).position);
+}
+
+TEST_CASE("a loop that leaves another distance mode than its first moves were read in is refused", "[nesting]") {
+  // Run again, the loop's first lines read their words in the G91 its last line left: the
+  // quarter circle the first time round, increments after. No single reading of them holds.
+  auto rrf = [](const std::string& text) {
+    CompressOptions opt;
+    opt.dialect = shipped_dialect("reprapfirmware");
+    DiagnosticSink sink;
+    const CompressResult r = compress("loop.gcode", text, opt, sink);
+    const bool refused = std::any_of(sink.all().begin(), sink.all().end(),
+                                     [](const Diagnostic& d) { return d.code == "E-FLOW-LOOP-MODES"; });
+    return std::pair(r.ok, refused);
+  };
+  const std::string loop = kHead + "while iterations < 3\n" + quarter(0, 30, "  ") + "  G91\n  G1 Z0.2\nG90\nM400\n";
+  CHECK(rrf(loop) == std::pair(false, true));
+  // Restated at the loop's start, or back in G90 at its end, the moves read the same each time.
+  std::string stated = loop;
+  stated.insert(stated.find("while iterations < 3\n") + 21, "  G90\n");
+  CHECK(rrf(stated) == std::pair(true, false));
+  std::string restored = loop;
+  restored.insert(restored.find("G90\nM400"), "  G90\n");
+  CHECK(rrf(restored) == std::pair(true, false));
+  // An `if` runs once: its lines are read in order.
+  std::string branch = loop;
+  branch.replace(branch.find("while iterations < 3"), 20, "if iterations < 3");
+  CHECK(rrf(branch) == std::pair(true, false));
+  // LinuxCNC's loops: `while`, `do`, `repeat`, closed by their O-word lines.
+  CompressOptions opt;
+  opt.dialect = shipped_dialect("linuxcnc");
+  for (const auto& [open, close] : {std::pair("o1 while [#1 LT 3]", "o1 endwhile"), std::pair("o1 do", "o1 while [#1 LT 3]"),
+                                    std::pair("o1 repeat [3]", "o1 endrepeat")}) {
+    INFO(open);
+    DiagnosticSink sink;
+    const std::string text = "G21 G17 G90\nG1 X0 Y0 F500\n" + std::string(open) + "\n" + quarter(0, 30, "") + "G91 G1 Z0.2\n" +
+                             close + "\nG90\nM2\n";
+    CHECK_FALSE(compress("loop.ngc", text, opt, sink).ok);
+    DiagnosticSink quiet;
+    std::string stated_text = text;
+    stated_text.insert(stated_text.find('\n', stated_text.find(open)) + 1, "G90\n");
+    CHECK(compress("loop.ngc", stated_text, opt, quiet).ok);
+  }
 }

@@ -111,6 +111,8 @@ uint64_t CalledPrograms::key_of(const Word& w) {
   return w.letter == 'N' ? block_key(n) : program_key(n);
 }
 
+uint8_t modes_stated(const Program& p, const Block& b, const Dialect& d) { return effect_of(p, b, d).sets.states; }
+
 const CalledPrograms::Entry* CalledPrograms::find(uint64_t key) const {
   const auto at = std::lower_bound(entries.begin(), entries.end(), key, [](const Entry& e, uint64_t k) { return e.key < k; });
   return at != entries.end() && at->key == key ? &*at : nullptr;

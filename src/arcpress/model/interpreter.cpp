@@ -146,11 +146,8 @@ class Interpreter {
 
   void block(uint32_t bi, const Block& b) {
     switch (b.kind) {
-      case BlockKind::Empty:
-      case BlockKind::Percent:
-        return;
-      case BlockKind::Code:
-        break;
+      case BlockKind::Empty: case BlockKind::Percent: return;
+      case BlockKind::Code: break;
       case BlockKind::HostCommand:
         // Firmware M-codes with a text argument (a message, an object label, a printer check,
         // a file name) move nothing, nor do the extended commands the dialect names
@@ -335,8 +332,7 @@ class Interpreter {
           if (m == 20 || m == 300) end_read_ = true;
           if (m == 20 || m == 300 || m == 990) s_.ended = true;
           if (m == 990) enter(bi, false);  // the blocks after a return run only when a call or jump enters them
-          // A tool change may move the tool (to a tool change position), and
-          // the controller goes on from where it left it: LinuxCNC re-reads its position after M6.
+          // A tool change may move the tool; the controller goes on from there (LinuxCNC re-reads it after M6).
           if (m == 60) forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterToolChange, bi);
           break;
         }
@@ -651,20 +647,24 @@ class Interpreter {
   void join(BlockNesting::Join j, uint32_t bi) {
     if (j.position) forget(kAllAxes & ~(1u << kE), Unfit::UnknownAtEntry, bi);
     s_.distance_unknown |= j.distance;
+    if (j.loop_modes) sink_.error({p_->blocks[bi].line, 1}, "E-FLOW-LOOP-MODES", BlockNesting::loop_modes_problem());
   }
 
   /// Block `bi` inside blocks (BlockNesting), or where blanks open and close them: what it
   /// changes, the blocks around it did; where it closes some, what they changed is not known.
   [[gnu::noinline]] void nested_step(uint32_t bi) {
     const Block& b = p_->blocks[bi];
-    if (d_.indented_blocks) join(s_.nesting.line(p_->raw(b), b.kind != BlockKind::Code && b.kind != BlockKind::Empty), bi);
+    const uint8_t mode = BlockNesting::mode_of(s_.frame.absolute, s_.distance_unknown);
+    if (d_.indented_blocks) join(s_.nesting.line(p_->raw(b), b.kind != BlockKind::Code && b.kind != BlockKind::Empty, mode), bi);
     const uint32_t known = s_.known;
     const size_t frames = o_->frames.size();
     const bool absolute = s_.frame.absolute, distance_unknown = s_.distance_unknown;
     block(bi, b);
     if (end_read_ || call_read_) after_block(bi);
-    s_.nesting.changed(o_->move_of_block[bi] >= 0 || s_.known != known || o_->frames.size() != frames,
-                       s_.frame.absolute != absolute || s_.distance_unknown != distance_unknown);
+    const bool moved = o_->move_of_block[bi] >= 0;
+    s_.nesting.changed(moved || s_.known != known || o_->frames.size() != frames,
+                       s_.frame.absolute != absolute || s_.distance_unknown != distance_unknown, moved,
+                       modes_stated(*p_, b, d_) & kStatesDistance);
   }
 
   void stated(uint8_t mode) { s_.stated |= mode, s_.unstated &= uint8_t(~mode); }  // G17..G19, G20/G21
