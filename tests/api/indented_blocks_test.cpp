@@ -233,3 +233,25 @@ TEST_CASE("a loop that leaves another distance mode than its first moves were re
     CHECK(compress("loop.ngc", stated_text, opt, quiet).ok);
   }
 }
+
+TEST_CASE("Fanuc's macro loops are loops too, WHILE DO1 to END1", "[nesting]") {
+  const std::string head = "G90 G17 G21\nG0 X0 Y0\nG1 F500\n#1=0\n";
+  std::string after;  // the quarter circle again after the loop, its words bare
+  for (size_t at = 0, nl; (nl = quarter(0, 30, "").find('\n', at)) != std::string::npos; at = nl + 1)
+    after += quarter(0, 30, "").substr(at + 3, nl - at - 9) + "\n";  // (without "G1 " and " E0.05")
+  // A loop that steps down in G91 and cuts in G90: after END1, the mode is the loop's end's
+  // or, where it ran no more, the one before it; here the same, but not known to be.
+  const std::string loop = head + "WHILE [#1 LT 3] DO1\nG91 G1 Z-1.\nG90\n" + quarter(0, 30, "") + "#1=#1+1\nEND1\n";
+  const CompressResult inside = compress_as("fanuc", loop + "M30\n");
+  REQUIRE(inside.ok);
+  CHECK(count_of(inside.output, "G3") == 1);
+  CHECK(count_of(compress_as("fanuc", loop + after + "M30\n").output, "G3") == 1);
+  CHECK(count_of(compress_as("fanuc", loop + "G90\n" + after + "M30\n").output, "G3") == 2);
+  // Moves at the loop's start read in G90, run again in the G91 its end leaves: refused.
+  CompressOptions opt;
+  opt.dialect = shipped_dialect("fanuc");
+  DiagnosticSink sink;
+  const std::string refused = head + "N5 WHILE[#1LT3]DO1\n" + quarter(0, 30, "") + "G91 G1 Z-1.\n#1=#1+1\nEND1\nG90\nM30\n";
+  CHECK_FALSE(compress("loop.nc", refused, opt, sink).ok);
+  CHECK(std::any_of(sink.all().begin(), sink.all().end(), [](const Diagnostic& d) { return d.code == "E-FLOW-LOOP-MODES"; }));
+}

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // LinuxCNC's O-words: the flow-control line `o100 sub`, `o<name> call [1]`, `O100 endsub`,
-// `o101 if [...]`, read for what it does and the label it names.
+// `o101 if [...]`, read for what it does and the label it names; and Fanuc's macro loops.
 #include <cstdint>
 #include <string_view>
 
@@ -18,7 +18,9 @@ struct OWord {
   uint32_t label = 0;
 };
 
-/// The O-word line `line` (a block of kind Control): its keyword and label.
+/// The O-word line `line` (a block of kind Control): its keyword and label. Fanuc's and Haas's
+/// macro loops (a block of kind Macro) read as LinuxCNC's: `WHILE [..] DO1` as a `while`, `DO1`
+/// as a `do`, `END1` as the end of either.
 OWord read_o_word(std::string_view line);
 
 }  // namespace arcpress

@@ -169,7 +169,7 @@ class Interpreter {
         if (d_.centre_modal) note_pole_read(bi);
         if (b.kind == BlockKind::Opaque) keep_last_move();
         forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterControl, bi);
-        if (b.kind == BlockKind::Control) o_word_line(bi, b);
+        if (b.kind == BlockKind::Control || b.kind == BlockKind::Macro) o_word_line(bi, b);
         return;
     }
     bool other_words = false;   // words a fitted block could not carry along
