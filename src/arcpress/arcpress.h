@@ -100,7 +100,9 @@ arcpress_status arcpress_push(arcpress_compressor* compressor, const char* bytes
  * line `first_line` on; call it as often as the text comes, before the first push. Without
  * it, each push's jumps are read before its lines, and a jump back to a block an earlier push
  * held fails the push (ARCPRESS_BAD_INPUT, E-FLOW-JUMP-BACK). Once called, the pushes read no
- * more jumps. */
+ * more jumps. The text after the program's end is kept too, for the subprograms there (O2000
+ * after M30): the modes each leaves hold after its calls (M98 P2000); without it, every mode
+ * after a call is unknown until the program states it. */
 arcpress_status arcpress_read_jumps(arcpress_compressor* compressor, const char* bytes, size_t length,
                                     unsigned first_line);
 /* The output finished since the last take, in order; *text is not NUL-terminated. */

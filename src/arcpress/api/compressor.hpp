@@ -72,7 +72,9 @@ class Compressor {
   /// ahead of push(), whole lines from line `first_line` on, so that a jump back to a block
   /// is known before the block is (a program pushed as it comes, from a pipe, fails where a
   /// jump back names a block already read as none's target: E-FLOW-JUMP-BACK). Once called,
-  /// push() reads no more jumps: the text given here is taken to be the whole program's.
+  /// push() reads no more jumps: the text given here is taken to be the whole program's. The
+  /// text after the program's first end is kept for the subprograms written there
+  /// (read_called_programs()), whose modes hold after their calls.
   void read_jumps(std::string_view lines, uint32_t first_line);
   /// Appends the output finished so far, in order, to `out` and returns how many bytes that
   /// was. Output is final once taken: it is never revised.
