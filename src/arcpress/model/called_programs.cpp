@@ -162,12 +162,8 @@ std::shared_ptr<const CalledPrograms> read_called_programs(const Program& p, uin
 }
 
 std::shared_ptr<const CalledPrograms> called_programs_of(const Program& p, const Dialect& d) {
-  bool calls = false;
-  for (uint32_t bi = 0; bi < p.blocks.size(); ++bi) {
-    const Block& b = p.blocks[bi];
-    calls = calls || call_in(p, b).has_value();
-    if (is_end(p, b)) return calls ? read_called_programs(p, bi + 1, d) : nullptr;
-  }
+  for (uint32_t bi = 0; bi < p.blocks.size(); ++bi)
+    if (is_end(p, p.blocks[bi])) return read_called_programs(p, bi + 1, d);
   return nullptr;
 }
 

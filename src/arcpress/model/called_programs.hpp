@@ -45,8 +45,8 @@ struct CalledPrograms {
 /// them all unknown (Subroutines::Body::ambiguous).
 std::shared_ptr<const CalledPrograms> read_called_programs(const Program& program, uint32_t from,
                                                            const Dialect& dialect);
-/// The same for a whole program: the bodies after its first end (M2, M30, M99), where some
-/// block before that end calls a program (M97, M98, G65). Null where none does.
+/// The same for a whole program: the bodies after its first end (M2, M30, M99), as the
+/// compressor reads them from the text after that end. Null where it has no end.
 std::shared_ptr<const CalledPrograms> called_programs_of(const Program& program, const Dialect& dialect);
 
 /// The modes block `b` states (kStates*: G17..G19, G20/G21 and `dialect`'s own codes for them,
