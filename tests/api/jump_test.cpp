@@ -174,12 +174,13 @@ TEST_CASE("a LinuxCNC subroutine's body runs in its caller's modes, and its call
   REQUIRE(called.ok);
   const std::string arc = defined.output.substr(defined.output.find("G3"));
   CHECK(called.output.find(arc.substr(0, arc.find('\n'))) == std::string::npos);
-  // A subroutine in another file (or further on) may leave any mode: after its call, nothing
-  // is fitted until the program states the distance mode, plane and units.
+  // A subroutine in another file (or further on) may leave another distance mode, plane or
+  // motion: after its call, nothing is fitted until the program states them. (Its units are
+  // taken to be kept, as the program around it, which states them once, takes them.)
   const CompressResult other = compress_as("linuxcnc", head + "o<probe> call\nG90\n" + after);
   REQUIRE(other.ok);
   CHECK(count_of(other.output, "G3") == 0);
-  CHECK(count_of(compress_as("linuxcnc", head + "o<probe> call\nG90 G17 G21\n" + after).output, "G3") == 1);
+  CHECK(count_of(compress_as("linuxcnc", head + "o<probe> call\nG90 G17\n" + after).output, "G3") == 1);
   // A body read in G17 and called in G18 would run another path than the one fitted: refused.
   DiagnosticSink sink;
   CompressOptions opt;
@@ -343,12 +344,13 @@ TEST_CASE("a subprogram's caller goes on in the modes its body leaves, and the b
   const std::string g90 = leaving("G91 G1 X1.\nG90\n");
   CHECK(diff_texts(g90, as_arc(g90), opt, fanuc).same(opt.tolerance_mm));
 
-  // A program not in the file (stored in the control) may leave any plane, units, distance
-  // mode and motion: nothing after its call is fitted until the program states them again.
+  // A program not in the file (stored in the control, a probing cycle's G65 P9810) may leave
+  // another plane, distance mode and motion: nothing after its call is fitted until the
+  // program states them again. Its units are taken to be kept.
   const std::string external = head + "M98 P3000\n" + quarter() + "M30\n";
   CHECK(count_of(compress_as("fanuc", external).output, "G3") == 0);
   std::string restated = external;
-  restated.insert(restated.find("G1 X0.0000"), "G90 G17 G21\n");
+  restated.insert(restated.find("G1 X0.0000"), "G90 G17\n");
   CHECK(count_of(compress_as("fanuc", restated).output, "G3") == 1);
 
   // The body runs in the motion, plane and units of its calls: a call made in G0 runs its

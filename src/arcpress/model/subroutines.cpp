@@ -51,7 +51,10 @@ std::string after_call(ModalState& s, uint32_t label, Frame& frame) {
 }
 
 void leave_body(ModalState& s, const Subroutines::Body* body, Frame& frame) {
-  const uint8_t unknown = body ? body->ambiguous : kStatesPlane | kStatesUnits | kStatesDistance | kStatesMotion;
+  // A body not read is taken to keep the units: the program around the call, which states
+  // them once at its start (as CAM posts write it), would be read otherwise by the controller
+  // too were they changed.
+  const uint8_t unknown = body ? body->ambiguous : kStatesPlane | kStatesDistance | kStatesMotion;
   const uint8_t known = body ? uint8_t(body->states & ~unknown) : 0;
   if (known & kStatesPlane) s.plane = body->plane;
   if (known & kStatesUnits) frame.unit_mm = body->unit_mm;

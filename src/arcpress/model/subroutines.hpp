@@ -92,11 +92,12 @@ void begin_definition(ModalState& s, uint32_t label);
 /// before the definition hold again (the frame in `frame`, for the interpreter to set).
 void end_of_body(ModalState& s, bool endsub, Frame& frame);
 /// `o<label> call`: the modes the body leaves stated take effect (the frame in `frame`), those
-/// it may leave either way, or a body not read, are unknown until the program states them.
+/// it may leave either way are unknown until the program states them (leave_body()).
 /// Returns why the call cannot run the body as it was read (its definition's plane or units
 /// differ), else nothing.
 std::string after_call(ModalState& s, uint32_t label, Frame& frame);
-/// The caller's modes after a body that leaves `body`, a body not read where null.
+/// The caller's modes after a body that leaves `body`; where null (a body not read), the plane,
+/// distance mode and motion are unknown until the program states them, the units kept.
 void leave_body(ModalState& s, const Subroutines::Body* body, Frame& frame);
 
 }  // namespace arcpress
