@@ -208,7 +208,9 @@ void return_from_call(ModalState& s, const ProgramCall& c, Frame& frame) {
 
 void enter_called(ModalState& s, uint64_t key, Frame& frame) {
   const CalledPrograms::Entry* body = s.called ? s.called->find(key) : nullptr;
-  const ModalState::CallModes c = body && !body->called_inside ? s.calls : ModalState::CallModes{2, 8, 4, -1};
+  // (Calls not all read: the distance mode, plane and motion are unknown; the units kept, as
+  // after a call of a body not read, leave_body().)
+  const ModalState::CallModes c = body && !body->called_inside ? s.calls : ModalState::CallModes{2, 8, 0, -1};
   if (c.distance & 2) s.distance_unknown = true;
   else frame.absolute = true, s.distance_unknown = false;
   // A mode no call was made in yet stays as the program's end left it.

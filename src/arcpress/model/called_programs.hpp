@@ -70,7 +70,8 @@ ProgramCall read_call(const Program& program, const Block& b, int code10);
 void return_from_call(ModalState& s, const ProgramCall& c, Frame& frame);
 /// A body only calls enter, at the block labelled `key`: read in the modes every call so far
 /// was made in, where they agree, else with them unknown. A body a later body calls too, or one
-/// with no bodies read ahead (a program read as it comes), is entered with them unknown.
+/// with no bodies read ahead (a program read as it comes), is entered with the distance mode,
+/// plane and motion unknown, in the units in force.
 void enter_called(ModalState& s, uint64_t key, Frame& frame);
 
 }  // namespace arcpress
