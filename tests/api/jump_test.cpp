@@ -352,6 +352,19 @@ TEST_CASE("a subprogram's caller goes on in the modes its body leaves, and the b
   std::string restated = external;
   restated.insert(restated.find("G1 X0.0000"), "G90 G17\n");
   CHECK(count_of(compress_as("fanuc", restated).output, "G3") == 1);
+  // So does a body in the file that calls one not in it, or jumps; the units stay, unless it
+  // states them after that.
+  for (const std::string inner : {"M98 P3000\n", "IF [#1 GT 2] GOTO 10\nN10\n"}) {
+    INFO(inner);
+    std::string called = leaving("G21\n" + inner);
+    called.insert(called.find("G1 X0.0000"), "G90 G17\n");
+    CHECK(count_of(compress_as("fanuc", called).output, "G3") == 1);
+    std::string unit_after = called;
+    unit_after.insert(unit_after.find("M99\n"), "G21\n");
+    CHECK(count_of(compress_as("fanuc", unit_after).output, "G3") == 0);
+    unit_after.insert(unit_after.find("G1 X0.0000"), "G21\n");
+    CHECK(count_of(compress_as("fanuc", unit_after).output, "G3") == 1);
+  }
 
   // The body runs in the motion, plane and units of its calls: a call made in G0 runs its
   // bare words as rapids; calls in two planes leave its plane unknown until it states one.

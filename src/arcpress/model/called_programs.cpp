@@ -10,7 +10,11 @@
 namespace arcpress {
 namespace {
 
-constexpr uint8_t kAllModes = kStatesPlane | kStatesUnits | kStatesDistance | kStatesMotion;
+/// The modes a body's jump, call or end leaves unknown where it returns. Its units too where it
+/// states them; where it does not, they are kept, as after a call of a body not read
+/// (leave_body()): a program states its units once.
+constexpr uint8_t kFlowModes = kStatesPlane | kStatesDistance | kStatesMotion;
+uint8_t unknown_after_flow(const Subroutines::Body& b) { return uint8_t(kFlowModes | (b.states & kStatesUnits)); }
 
 /// A label's number, where `w` names one (O2000, N1000, P2000): a whole number, no expression.
 bool label_number(const Word& w, uint64_t& n) {
@@ -123,15 +127,15 @@ std::shared_ptr<const CalledPrograms> read_called_programs(const Program& p, uin
   // From the last block back: what the blocks from each label to the next return state,
   // the last statement of each mode first found. Past the text's end no return is read.
   Subroutines::Body after;
-  after.ambiguous = kAllModes;
+  after.ambiguous = kFlowModes;
   bool computed_call = false;
   std::vector<uint64_t> called;
   for (uint32_t bi = uint32_t(p.blocks.size()); bi-- > from;) {
     const Block& b = p.blocks[bi];
     const Effect e = effect_of(p, b, d);
     if (e.returns) after = Subroutines::Body{};
-    if (e.ends) after = Subroutines::Body{}, after.ambiguous = kAllModes;
-    if (e.flow) after.ambiguous = kAllModes;
+    if (e.ends) after = Subroutines::Body{}, after.ambiguous = kFlowModes;
+    if (e.flow) after.ambiguous |= unknown_after_flow(after);
     state_before(after, e.sets);  // (this block's statements hold where no later one states the mode again)
     if (const std::optional<ProgramCall> c = call_in(p, b)) {
       if (!c->known) computed_call = true;
@@ -149,7 +153,9 @@ std::shared_ptr<const CalledPrograms> read_called_programs(const Program& p, uin
   std::vector<CalledPrograms::Entry> once;
   for (const CalledPrograms::Entry& e : out->entries) {
     if (!once.empty() && once.back().key == e.key) {
-      once.back().leaves.ambiguous = kAllModes;
+      Subroutines::Body& b = once.back().leaves;
+      b.states |= e.leaves.states;
+      b.ambiguous |= unknown_after_flow(b);
       continue;
     }
     once.push_back(e);

@@ -42,7 +42,8 @@ struct CalledPrograms {
 /// The bodies in blocks [from, end) of `program`, read with `dialect`'s codes: for each block
 /// with an O or N number, the plane, units, distance mode and motion stated from it to the
 /// first return (M99) after it. A jump or call before that return, or a program end, leaves
-/// them all unknown (Subroutines::Body::ambiguous).
+/// the plane, distance mode and motion unknown (Subroutines::Body::ambiguous), and the units
+/// where the body states them.
 std::shared_ptr<const CalledPrograms> read_called_programs(const Program& program, uint32_t from,
                                                            const Dialect& dialect);
 /// The same for a whole program: the bodies after its first end (M2, M30, M99), as the
