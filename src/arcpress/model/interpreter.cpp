@@ -664,7 +664,7 @@ class Interpreter {
     const bool moved = o_->move_of_block[bi] >= 0;
     s_.nesting.changed(moved || s_.known != known || o_->frames.size() != frames,
                        s_.frame.absolute != absolute || s_.distance_unknown != distance_unknown, moved,
-                       modes_stated(*p_, b, d_) & kStatesDistance);
+                       s_.nesting.depth > 0 && (modes_stated(*p_, b, d_) & kStatesDistance));
   }
 
   void stated(uint8_t mode) { s_.stated |= mode, s_.unstated &= uint8_t(~mode); }  // G17..G19, G20/G21
