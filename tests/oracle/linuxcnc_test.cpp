@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
@@ -392,4 +393,34 @@ TEST_CASE("LinuxCNC's rs274 reads the moves after an O-word if or loop whose bra
     // Once the program states G90, its moves are fitted.
     CHECK(check_read_alike(head + block + "G90\n" + quarter + "M2\n", "rs274-o-blocks").stats.arcs_out == 1);
   }
+}
+
+TEST_CASE("LinuxCNC's rs274 runs a loop's first moves again in the G91 its end leaves, and arcpress refuses such a loop",
+          "[oracle][linuxcnc]") {
+  RS274_OR_SKIP();
+  std::string quarter;  // absolute places within 10 mm of the origin
+  for (int k = 1; k <= 30; ++k)
+    quarter += fmt::format("G1 X{:.4f} Y{:.4f}\n", 10 * std::sin(deg_to_rad(3 * k)), 10 * std::cos(deg_to_rad(3 * k)) - 10);
+  const std::string g = "G21 G17 G90\nG0 X0 Y0\nG1 F300\no1 repeat [2]\n" + quarter + "G91 G1 Z0.2\no1 endrepeat\nG90\nM2\n";
+  auto dir = rs274_folder("rs274-loop-modes");
+  test::write_file(dir / "in.ngc", g);
+  const Rs274 original = run_rs274(dir, dir / "in.ngc");
+  REQUIRE(original.exit_code == 0);
+  // The second time round, rs274 reads the same words as increments: it goes far past 10 mm.
+  double farthest_mm = 0;
+  std::istringstream canon(original.canon);
+  for (std::string line; std::getline(canon, line);)
+    if (const size_t open = line.find("STRAIGHT_FEED("); open != std::string::npos)
+      farthest_mm = std::max(farthest_mm, std::abs(args_of(line, open + 13).at(0)));
+  CHECK(farthest_mm > 50);
+  // No one output of those words runs both paths: refused.
+  CompressOptions opt;
+  opt.dialect = load_dialect_file(ARCPRESS_SOURCE_DIR "/dialects/linuxcnc.toml");
+  DiagnosticSink sink;
+  CHECK_FALSE(compress("loop.ngc", g, opt, sink).ok);
+  CHECK(std::any_of(sink.all().begin(), sink.all().end(), [](const Diagnostic& d) { return d.code == "E-FLOW-LOOP-MODES"; }));
+  // With G90 stated at the loop's start, both passes are the quarter circle, fitted as rs274 reads it.
+  std::string stated = g;
+  stated.insert(stated.find("o1 repeat [2]\n") + 14, "G90\n");
+  CHECK(check_read_alike(stated, "rs274-loop-modes").stats.arcs_out >= 1);
 }
