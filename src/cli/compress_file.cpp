@@ -152,6 +152,9 @@ int compress_file(const CompressArgs& a, FileReport& report, std::atomic<size_t>
 
   auto t0 = std::chrono::steady_clock::now();
   cli::InputFile input(a.input);
+  // A pipe is read to its end first, unless asked not to, so that it is read as a file is:
+  // its jumps and the subprograms after its end before its blocks, its flavor at its end.
+  if (!a.stream) input.spool();
   const std::optional<size_t> size = input.size();
   // The start of the program, where a slicer's flavor line may be, and, of a file, its end,
   // where PrusaSlicer's config block names the flavor.

@@ -29,6 +29,10 @@ struct CompressArgs {
   bool stats = false;
   bool quiet = false;
   bool progress = false;
+  /// From a pipe, compress as the input comes rather than reading it to its end first
+  /// (InputFile::spool()): then a jump back past what was read fails the run, and the
+  /// subprograms after the program's end are not read (its calls leave the modes unknown).
+  bool stream = false;
   CompressOptions opt;
 };
 

@@ -31,6 +31,12 @@ class InputFile {
   std::string tail(size_t n) const {
     return size_ ? read_at(*size_ - std::min(n, *size_), std::min(n, *size_)) : std::string();
   }
+  /// Where the input is no regular file (a pipe), reads it to its end into an unnamed
+  /// temporary file (in TMPDIR, or the system's folder for them; gone when the process ends)
+  /// and reads on from there, as from a regular file: size(), read_at() and tail() answer.
+  /// Nothing where it is one. Throws arcpress::Error (exit 3), naming the folder, where the
+  /// temporary file cannot be made or written.
+  void spool();
 
  private:
   std::string name_;

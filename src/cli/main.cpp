@@ -325,6 +325,10 @@ int main(int argc, char** argv) {
   app.add_flag("--progress", a.progress,
                "Show the progress line on standard error even where it is no terminal (it is shown on a terminal "
                "for inputs over 4 MB)");
+  app.add_flag("--stream", a.stream,
+               "From a pipe, write output as the input comes instead of reading it to its end first (into a "
+               "temporary file): then a jump back past what was read fails, and subprograms after the program's "
+               "end are not read");
   bool no_verify = false;
   app.add_flag("--no-verify", no_verify, "Skip reading the output back and measuring it against the input");
 

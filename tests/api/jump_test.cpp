@@ -283,23 +283,40 @@ TEST_CASE("compress_stream() reads the jumps of a stream it can read again befor
   CHECK(out.str().find("\nN100 G1 X") != std::string::npos);
 }
 
-TEST_CASE("the command reads a file's jumps before its blocks, and fails a jump back it reads too late from a pipe", "[jumps][cli]") {
+TEST_CASE("the command reads a program's jumps before its blocks, from a pipe too unless told to stream it", "[jumps][cli]") {
   const std::string text = far_jump_back();
   const auto dir = temp_dir("jumps");
   write_file(dir / "back.nc", text);
   const Command file = run_arcpress(fmt::format("'{}' -o '{}' --dialect fanuc --tolerance 0.01", (dir / "back.nc").string(),
                                                 (dir / "out.nc").string()));
   CHECK(file.exit_code == 0);
-  CHECK(read_file(dir / "out.nc").find("\nN100 G1 X") != std::string::npos);
+  const std::string from_file = read_file(dir / "out.nc");
+  CHECK(from_file.find("\nN100 G1 X") != std::string::npos);
   // Standard input that is a regular file is read ahead as the file is.
   const Command redirected = run_shell(fmt::format("\"$ARCPRESS\" --dialect fanuc --tolerance 0.01 < '{}'",
                                                    (dir / "back.nc").string()));
   CHECK(redirected.exit_code == 0);
-  CHECK(redirected.out.find("\nN100 G1 X") != std::string::npos);
-  const Command pipe = run_shell(fmt::format("cat '{}' | \"$ARCPRESS\" --dialect fanuc --tolerance 0.01",
-                                             (dir / "back.nc").string()));
-  CHECK(pipe.exit_code == 2);
-  CHECK(pipe.err.find(":70035:1: error: E-FLOW-JUMP-BACK: a jump back to N100") != std::string::npos);
+  CHECK(redirected.out == from_file);
+  // A pipe is read to its end first (kept in a temporary file, which is gone afterwards)
+  // and comes out as the file does.
+  std::filesystem::create_directories(dir / "tmp");
+  const Command pipe = run_shell(fmt::format("cat '{}' | TMPDIR='{}' \"$ARCPRESS\" --dialect fanuc --tolerance 0.01",
+                                             (dir / "back.nc").string(), (dir / "tmp").string()));
+  CHECK(pipe.exit_code == 0);
+  CHECK(pipe.out == from_file);
+  CHECK(std::filesystem::is_empty(dir / "tmp"));
+  // Streamed as it comes, the jump back is read after its block went out.
+  const Command streamed = run_shell(fmt::format("cat '{}' | \"$ARCPRESS\" --dialect fanuc --tolerance 0.01 --stream",
+                                                 (dir / "back.nc").string()));
+  CHECK(streamed.exit_code == 2);
+  CHECK(streamed.err.find(":70035:1: error: E-FLOW-JUMP-BACK: a jump back to N100") != std::string::npos);
+  // Where the temporary file cannot be made: exit 3, the folder named, nothing written.
+  const Command nowhere = run_shell(fmt::format("cat '{}' | TMPDIR='{}' \"$ARCPRESS\" --dialect fanuc",
+                                                (dir / "back.nc").string(), (dir / "none").string()));
+  CHECK(nowhere.exit_code == 3);
+  CHECK(nowhere.out.empty());
+  CHECK(nowhere.err.find("cannot keep standard input in a temporary file in '" + (dir / "none").string()) !=
+        std::string::npos);
 }
 
 TEST_CASE("arcpress diff holds B to the blocks A's jumps enter", "[jumps][cli]") {
@@ -395,4 +412,25 @@ TEST_CASE("a subprogram's caller goes on in the modes its body leaves, and the b
   std::string nested_stated = nested;
   nested_stated.insert(nested_stated.find("O3000\n") + 6, "G90 G17 G21 G1\n");
   CHECK(count_of(compress_as("fanuc", nested_stated).output, "G3") == 1);
+}
+
+TEST_CASE("a program piped in reads the subprograms after its end as a file does", "[jumps][subprograms][cli]") {
+  const std::string head = "G90 G17 G21\nG0 X0 Y0\nG1 F500\n";
+  const auto dir = temp_dir("piped_subprogram");
+  for (const char* body : {"G91 G1 X1.\n", "G91 G1 X1.\nG90\n"}) {
+    write_file(dir / "sub.nc", head + "M98 P2000\n" + quarter() + "G90 G0 Z5\nM30\nO2000\n" + body + "M99\n");
+    const std::string args = " --dialect fanuc --tolerance 0.01";
+    const Command file = run_arcpress("'" + (dir / "sub.nc").string() + "'" + args);
+    const Command pipe = run_shell(fmt::format("cat '{}' | \"$ARCPRESS\"{}", (dir / "sub.nc").string(), args));
+    REQUIRE(file.exit_code == 0);
+    CHECK(pipe.exit_code == 0);
+    CHECK(pipe.out == file.out);
+    // (After a body that leaves G90 the quarter is one arc; streamed, the body is not read,
+    // and nothing after the call is fitted.)
+    const bool g90 = std::string(body).find("G90") != std::string::npos;
+    CHECK(count_of(pipe.out, "G3") == (g90 ? 1 : 0));
+    const Command streamed = run_shell(fmt::format("cat '{}' | \"$ARCPRESS\"{} --stream", (dir / "sub.nc").string(), args));
+    CHECK(streamed.exit_code == 0);
+    CHECK(count_of(streamed.out, "G3") == 0);
+  }
 }

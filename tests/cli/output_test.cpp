@@ -209,7 +209,8 @@ TEST_CASE("a diff report whose quoted blocks hold a NUL byte still ends with its
   CHECK(c.out.find(std::string("(NOTE \0 ONE)", 12)) != std::string::npos);
 }
 
-TEST_CASE("a pipe fed half a program and held open already gives the output of what came", "[cli][output][stream]") {
+TEST_CASE("a pipe streamed with --stream, fed half a program and held open, already gives the output of what came",
+          "[cli][output][stream]") {
   auto d = arcpress::test::temp_dir("stream");
   // A long program: the first half is some pieces' worth of input.
   std::string program = "G21 G90\n";
@@ -222,7 +223,7 @@ TEST_CASE("a pipe fed half a program and held open already gives the output of w
   arcpress::test::write_file(d / "half.nc", program.substr(0, program.size() / 2 - 17));
   // The input stays open for 20 s after the half; output must appear well before that.
   auto c = run_shell(fmt::format(
-      "cd '{}'\n(cat half.nc; sleep 20) | \"$ARCPRESS\" > out.nc & pid=$!\n"
+      "cd '{}'\n(cat half.nc; sleep 20) | \"$ARCPRESS\" --stream > out.nc & pid=$!\n"
       "for i in $(seq 100); do [ -s out.nc ] && break; sleep 0.1; done\n"
       "size=$(stat -c %s out.nc)\nkill $pid 2>/dev/null; pkill -P $$ sleep 2>/dev/null\necho $size",
       d.string()));

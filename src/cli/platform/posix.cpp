@@ -160,6 +160,43 @@ std::string InputFile::read_at(size_t offset, size_t n) const {
   return out;
 }
 
+void InputFile::spool() {
+  if (size_) return;
+  const char* env = std::getenv("TMPDIR");
+  const std::string folder = env && *env ? env : "/tmp";
+  std::string path = folder + "/arcpress-input-XXXXXX";
+  const int fd = ::mkstemp(path.data());
+  auto fail = [&](int err) {
+    if (fd >= 0) ::close(fd);
+    return Error(kExitIo, fmt::format("cannot keep {} in a temporary file in '{}' to read it whole: {} (set TMPDIR "
+                                      "to another folder, or give --stream)",
+                                      name_, folder, error_text(err)));
+  };
+  if (fd < 0) throw fail(errno);
+  ::unlink(path.c_str());  // (unnamed from here: nothing is left behind, whatever happens)
+  ::fcntl(fd, F_SETFD, FD_CLOEXEC);
+  std::string chunk;
+  size_t total = 0;
+  while (true) {
+    chunk.clear();
+    if (read(chunk, size_t(1) << 20) == 0) break;
+    for (size_t put = 0; put < chunk.size();) {
+      const ssize_t k = ::write(fd, chunk.data() + put, chunk.size() - put);
+      if (k < 0 && errno == EINTR) continue;
+      if (k < 0) throw fail(errno);
+      put += size_t(k);
+    }
+    total += chunk.size();
+  }
+  if (::lseek(fd, 0, SEEK_SET) != 0) throw fail(errno);
+  if (owned_) ::close(int(handle_));
+  handle_ = fd;
+  owned_ = true;
+  size_ = total;
+  start_ = 0;
+  taken_ = 0;
+}
+
 /// The descriptor a path names outright: /dev/stdout, /dev/stderr, /dev/fd/N,
 /// /proc/self/fd/N; -1 for any other path. Written through that descriptor, the output
 /// keeps the offset and append mode the shell gave it.

@@ -228,6 +228,48 @@ std::string InputFile::read_at(size_t offset, size_t n) const {
   return out;
 }
 
+void InputFile::spool() {
+  if (size_) return;
+  wchar_t folder[MAX_PATH + 1] = {}, path[MAX_PATH + 1] = {};
+  const DWORD folder_length = ::GetTempPathW(MAX_PATH + 1, folder);
+  HANDLE h = INVALID_HANDLE_VALUE;
+  auto fail = [&](DWORD err) {
+    if (h != INVALID_HANDLE_VALUE) ::CloseHandle(h);
+    return Error(kExitIo, fmt::format("cannot keep {} in a temporary file in '{}' to read it whole: {} (set TMP to "
+                                      "another folder, or give --stream)",
+                                      name_, utf8(folder, folder_length), error_text(err)));
+  };
+  if (folder_length == 0 || folder_length > MAX_PATH || !::GetTempFileNameW(folder, L"arc", 0, path))
+    throw fail(::GetLastError());
+  // (Deleted when closed: nothing is left behind, whatever happens.)
+  h = ::CreateFileW(path, GENERIC_READ | GENERIC_WRITE, 0, nullptr, CREATE_ALWAYS,
+                    FILE_ATTRIBUTE_TEMPORARY | FILE_FLAG_DELETE_ON_CLOSE, nullptr);
+  if (h == INVALID_HANDLE_VALUE) {
+    const DWORD err = ::GetLastError();
+    ::DeleteFileW(path);
+    throw fail(err);
+  }
+  std::string chunk;
+  size_t total = 0;
+  while (true) {
+    chunk.clear();
+    if (read(chunk, size_t(1) << 20) == 0) break;
+    for (size_t put = 0; put < chunk.size();) {
+      DWORD k = 0;
+      if (!::WriteFile(h, chunk.data() + put, DWORD(chunk.size() - put), &k, nullptr)) throw fail(::GetLastError());
+      put += k;
+    }
+    total += chunk.size();
+  }
+  if (!seek(h, 0)) throw fail(::GetLastError());
+  if (owned_) ::CloseHandle(as_handle(handle_));
+  handle_ = from_handle(h);
+  owned_ = true;
+  size_ = total;
+  start_ = 0;
+  taken_ = 0;
+}
+
 OutputFile::OutputFile(const std::string& path) : path_(path) {
   if (path == "-") {
     if (g_stdout_failed) throw Error(kExitIo, "cannot write standard output");
