@@ -96,12 +96,25 @@ case $check in
     grep -q 'M2' "$work/windows.nc" || fail "the program was cut at Ctrl-Z"
     wine "$exe" --passthrough < "$work/in.nc" > "$work/same.nc"
     cmp "$work/in.nc" "$work/same.nc" || fail "--passthrough changed bytes"
+    # From a pipe, read to its end into a temporary file first (and streamed with --stream):
+    # the subprogram after M30 is read, so the quarter circle after its call is one arc.
+    { printf 'G90 G17 G21\nG0 X0 Y0\nG1 F500\nM98 P2000\n'
+      for i in $(seq 0 30); do
+        awk -v i="$i" 'BEGIN { a = 3.14159265358979 * i / 60; printf "G1 X%.4f Y%.4f\n", 20 * cos(a) - 20, 20 * sin(a) }'
+      done
+      printf 'G90 G0 Z5\nM30\nO2000\nG91 G1 X1.\nG90\nM99\n'; } > "$work/sub.nc"
+    cat "$work/sub.nc" | wine "$exe" --dialect fanuc > "$work/windows-sub.nc"
+    "$linux/arcpress" "$work/sub.nc" --dialect fanuc > "$work/linux-sub.nc"
+    cmp "$work/linux-sub.nc" "$work/windows-sub.nc" || fail "a piped program comes out otherwise than the file on Linux"
+    grep -q '^G3 ' "$work/windows-sub.nc" || fail "the piped program's subprogram was not read"
+    cat "$work/sub.nc" | wine "$exe" --dialect fanuc --stream > "$work/windows-streamed.nc"
+    ! grep -q '^G3 ' "$work/windows-streamed.nc" || fail "--stream read the subprogram after the end"
     # A reader that closes the pipe early: exit 3, and how much it took.
     for _ in $(seq 800); do cat "$sample"; done > "$work/big.nc"
     { rc=0; wine "$exe" "$work/big.nc" 2>"$work/err" || rc=$?; echo "$rc" > "$work/rc"; } | head -c 1000 > /dev/null
     [ "$(cat "$work/rc")" = 3 ] || fail "a closed pipe: exit $(cat "$work/rc")"
     grep -q 'standard output closed after' "$work/err" || fail "a closed pipe: $(cat "$work/err")"
-    echo "standard input to standard output is binary-safe; a closed pipe is exit 3, '$(cat "$work/err")'"
+    echo "standard input to standard output is binary-safe, a pipe reads as the file; a closed pipe is exit 3, '$(cat "$work/err")'"
     ;;
   interrupt)  # Ctrl-C (wine turns SIGINT into the console's Ctrl-C) while the output is being written
     mkdir "$work/out"
