@@ -116,6 +116,16 @@ bool read_line(std::string_view text, size_t start, size_t end, Add& add, AddCom
 
 }  // namespace
 
+std::optional<uint64_t> jump_named(std::string_view line) {
+  std::optional<uint64_t> named;
+  auto add = [&](uint64_t number, size_t, bool call) {
+    if (!call && !named) named = number;
+  };
+  auto add_computed = [](size_t) {};
+  read_line(line, 0, line.size(), add, add_computed);
+  return named;
+}
+
 size_t JumpTargets::read(std::string_view text, uint32_t first_line, const PassedNumbers* passed) {
   size_t ended = std::string_view::npos;
   const size_t before = numbers_.size();

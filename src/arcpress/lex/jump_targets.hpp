@@ -28,6 +28,11 @@ class PassedNumbers {
   bool any_ = false, high_ = false;
 };
 
+/// The block number the jump in `line` names (`GOTO 100`, `IF [..] GOTO 100`, `M99 P100`;
+/// not a call, which returns), read as JumpTargets::read() reads it; none where the line
+/// holds no such jump or the program computes the number.
+std::optional<uint64_t> jump_named(std::string_view line);
+
 class JumpTargets {
  public:
   /// Reads the jumps in `text`, whole lines, the first of them line `first_line`:

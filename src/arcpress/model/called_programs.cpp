@@ -227,4 +227,15 @@ void enter_called(ModalState& s, uint64_t key, Frame& frame) {
   if (c.motion != ModalState::CallModes::kNoCall) s.motion = c.motion;
 }
 
+bool end_program(ModalState& s, Frame& frame) {
+  frame.absolute = true;
+  frame.inverse_time = false;
+  const bool offset = frame.work_offset != 54 && frame.work_offset != 540;  // (G54 is read as 540, at the start 54)
+  if (offset) frame.work_offset = 540;
+  s.distance_unknown = false;
+  s.plane = Plane::XY;
+  s.motion = 10;
+  return offset;
+}
+
 }  // namespace arcpress

@@ -74,5 +74,9 @@ void return_from_call(ModalState& s, const ProgramCall& c, Frame& frame);
 /// with no bodies read ahead (a program read as it comes), is entered with the distance mode,
 /// plane and motion unknown, in the units in force.
 void enter_called(ModalState& s, uint64_t key, Frame& frame);
+/// An M2 or M30 read in state `s` (its frame `frame`): RS274's program end (LinuxCNC's,
+/// Grbl's) puts G1, G17, G90, G94 and G54 in force; a sender that streams on runs what
+/// follows so. Returns whether the work offset changed (the position is then not known).
+bool end_program(ModalState& s, Frame& frame);
 
 }  // namespace arcpress

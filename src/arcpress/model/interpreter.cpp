@@ -13,6 +13,7 @@
 #include "arcpress/lex/o_word.hpp"
 #include "arcpress/model/arc_centre.hpp"
 #include "arcpress/model/called_programs.hpp"
+#include "arcpress/model/jump_entries.hpp"
 #include "arcpress/model/o_word_flow.hpp"
 
 namespace arcpress {
@@ -170,6 +171,7 @@ class Interpreter {
         if (b.kind == BlockKind::Opaque) keep_last_move();
         forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterControl, bi);
         if (b.kind == BlockKind::Control || b.kind == BlockKind::Macro) o_word_line(bi, b);
+        if (p_->jumps) read_jump(s_, p_->raw(b), b.line, sink_);
         return;
     }
     bool other_words = false;   // words a fitted block could not carry along
@@ -331,6 +333,7 @@ class Interpreter {
           if (m == 820 || m == 830) F().e_relative = m == 830;
           if (m == 20 || m == 300) end_read_ = true;
           if (m == 20 || m == 300 || m == 990) s_.ended = true;
+          if (m == 990 && p_->jumps) read_jump(s_, p_->raw(b), b.line, sink_);  // (M99 Pn: a jump)
           if (m == 990) enter(bi, false);  // the blocks after a return run only when a call or jump enters them
           // A tool change may move the tool; the controller goes on from there (LinuxCNC re-reads it after M6).
           if (m == 60) forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterToolChange, bi);
@@ -360,7 +363,8 @@ class Interpreter {
           s_.spindle = w->value;
           break;
         case 'N':
-          if (p_->jumps && p_->jumps->enters(w->value)) enter(bi, p_->jumps->only_called(w->value), CalledPrograms::key_of(*w));
+          if (p_->jumps && p_->jumps->enters(w->value))
+            enter(bi, p_->jumps->only_called(w->value), CalledPrograms::key_of(*w), w->value);
           break;
         case 'T':
           other_words = true;
@@ -442,7 +446,7 @@ class Interpreter {
       }
     }
     if (fedit) set_frame(*fedit);
-    if (motion >= 0) s_.motion = motion;
+    if (motion >= 0) s_.motion = motion, s_.entry_pending &= uint8_t(~kStatesMotion);
     if (d_.centre_modal && (ijk_seen[0] || ijk_seen[1] || ijk_seen[2] || (own & kOwnPole)))
       set_pole(s_, ijk, ijk_seen, own & kOwnPole);
 
@@ -610,6 +614,7 @@ class Interpreter {
               : !(moved_xyz || target == s_.pos) ? Unfit::NoPathAxis
                                               : Unfit::None;
     if (cycle_here && m.unfit == Unfit::None) m.unfit = Unfit::CycleCall;
+    if (s_.entry_pending && m.known && is_feed(kind)) [[unlikely]] note_entry_use(s_);
     if (!m.known && is_feed(kind)) o_->unplaced.push_back({uint32_t(o_->moves.size() - 1), s_.cause_line});
     s_.pos = target;
     const bool known_changed = known_after != s_.known;
@@ -624,13 +629,15 @@ class Interpreter {
   /// Block `bi` may be entered from elsewhere (JumpTargets, a program number after an end), or
   /// the blocks after it only so (M99): the position and G90 or G91 are not known; where only
   /// calls enter it (`called`, at label `key`), the modes of the calls (enter_called()).
-  [[gnu::noinline]] void enter(uint32_t bi, bool called, uint64_t key = CalledPrograms::kNoLabel) {
+  [[gnu::noinline]] void enter(uint32_t bi, bool called, uint64_t key = CalledPrograms::kNoLabel, double number = -1) {
     forget(kAllAxes & ~(1u << kE), Unfit::UnknownAtEntry, bi);
     s_.distance_unknown = true;
     Frame f = s_.frame;
     if (called) enter_called(s_, key, f);
+    else if (number >= 0) enter_jumped(s_, f, number);
     set_frame(f);
   }
+
 
   /// After block `bi`: a call it made has returned (model/called_programs.hpp), or the program ended.
   [[gnu::noinline]] void after_block(uint32_t bi) {
@@ -667,7 +674,7 @@ class Interpreter {
                        s_.nesting.depth > 0 && (modes_stated(*p_, b, d_) & kStatesDistance));
   }
 
-  void stated(uint8_t mode) { s_.stated |= mode, s_.unstated &= uint8_t(~mode); }  // G17..G19, G20/G21
+  void stated(uint8_t mode) { s_.stated |= mode, s_.unstated &= uint8_t(~mode), s_.entry_pending &= uint8_t(~mode); }
 
   /// LinuxCNC's O-word line `b` (block `bi`), followed as model/o_word_flow.hpp says.
   [[gnu::noinline]] void o_word_line(uint32_t bi, const Block& b) {
@@ -680,22 +687,13 @@ class Interpreter {
     set_frame(f);
   }
 
-  /// After block `bi`, an M2 or M30: RS274's program end (LinuxCNC's, Grbl's) puts G1, G17,
-  /// G90, G94 and G54 in force; a sender that streams on runs what follows so.
+  /// After block `bi`, an M2 or M30 (end_program()).
   [[gnu::noinline]] void program_end(uint32_t bi) {
     end_read_ = false;
     if (s_.floating) forget(s_.floating, Unfit::UnknownAtEntry, bi);  // (G90 from here)
     Frame f = s_.frame;
-    f.absolute = true;
-    f.inverse_time = false;
-    if (f.work_offset != 54 && f.work_offset != 540) {  // (G54 is read as 540, at the start 54)
-      forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterOffset, bi);
-      f.work_offset = 540;
-    }
+    if (end_program(s_, f)) forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterOffset, bi);
     set_frame(f);
-    s_.distance_unknown = false;
-    s_.plane = Plane::XY;
-    s_.motion = 10;
   }
 
   /// A G91 move where an entry left axes unknown: they float (ModalState::floating), unless arc

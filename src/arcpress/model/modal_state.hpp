@@ -12,6 +12,7 @@
 namespace arcpress {
 
 struct CalledPrograms;
+struct JumpEntries;
 
 /// What the interpreter knows between two blocks: every modal setting, the position and
 /// which axes of it are known and why not. A program read in pieces (a stream) is read on
@@ -56,6 +57,12 @@ struct ModalState {
   CallModes calls;
   /// What the bodies after the program's end leave, read ahead (null: not read).
   std::shared_ptr<const CalledPrograms> called;
+  /// The modes the blocks jumps name are entered in (model/jump_entries.hpp; null: no jump yet).
+  std::shared_ptr<const JumpEntries> jump_entries;
+  /// The modes (kStatesPlane, kStatesUnits, kStatesMotion) the last jump target entered,
+  /// block `entry_number`, was read in that no block has stated since and no move used yet.
+  uint8_t entry_pending = 0;
+  uint64_t entry_number = 0;
   /// Bit per axis: known only up to a shift the program never states. Where an entry left the
   /// position unknown, G91 moves are read from the place it stands in for: placed relative to
   /// one another, as their increments are. G90 makes such an axis unknown again.
@@ -88,6 +95,8 @@ struct ModalState {
   /// may change them (one not read), until the program states them: moves are not placed.
   uint8_t unstated = 0;
 
+  /// Whether the jump entries of this and `o` agree (model/jump_entries.cpp).
+  bool same_entries(const ModalState& o) const;
   /// Whether a reader in state `o` reads every following block as one in this state does:
   /// the same position, known axes, frame, plane, feed and spindle, and (where
   /// `with_motion`) modal motion. The reasons axes are unknown, and their lines, are only told.
@@ -101,7 +110,7 @@ struct ModalState {
     }
     return f.same_as(o.frame) && plane == o.plane && known == o.known && spindle == o.spindle && cycle_calls == o.cycle_calls &&
            distance_unknown == o.distance_unknown && ended == o.ended &&
-           calls == o.calls && called == o.called && floating == o.floating && nesting == o.nesting &&
+           calls == o.calls && called == o.called && same_entries(o) && entry_number == o.entry_number && floating == o.floating && nesting == o.nesting &&
            stated == o.stated && unstated == o.unstated && (subs == o.subs || (subs && o.subs && *subs == *o.subs)) &&
            feed_known == o.feed_known && (!feed_known || feed_mm == o.feed_mm) && (!with_motion || motion == o.motion);
   }

@@ -1,0 +1,115 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "arcpress/model/jump_entries.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "arcpress/lex/jump_targets.hpp"
+#include "arcpress/model/modal_state.hpp"
+
+namespace arcpress {
+
+namespace {
+
+/// The modes in force in `s` under `frame`.
+JumpEntries::Modes modes_of(const ModalState& s, const Frame& frame) {
+  JumpEntries::Modes m;
+  m.planes = (s.unstated & kStatesPlane) ? 8 : uint8_t(1u << int(s.plane));
+  m.units = (s.unstated & kStatesUnits) ? 4 : frame.unit_mm == 1.0 ? 1 : 2;
+  m.motion = int16_t(s.motion);
+  return m;
+}
+
+/// Entry `number` of `s`'s entries, made where there is none; entries other states share are
+/// copied first.
+JumpEntries::Entry& entry_of(ModalState& s, uint64_t number) {
+  // (A state no other shares is changed in place: one copy per piece, not one per jump.)
+  std::shared_ptr<JumpEntries> copy = !s.jump_entries              ? std::make_shared<JumpEntries>()
+                                      : s.jump_entries.use_count() == 1 ? std::const_pointer_cast<JumpEntries>(s.jump_entries)
+                                                                        : std::make_shared<JumpEntries>(*s.jump_entries);
+  auto& list = copy->entries;
+  auto at = std::lower_bound(list.begin(), list.end(), number,
+                             [](const JumpEntries::Entry& e, uint64_t n) { return e.number < n; });
+  if (at == list.end() || at->number != number) {
+    JumpEntries::Entry e;
+    e.number = number;
+    at = list.insert(at, e);
+  }
+  JumpEntries::Entry& e = *at;
+  s.jump_entries = std::move(copy);
+  return e;
+}
+
+const char* plane_name(uint8_t planes) {
+  return planes == 1 ? "G17" : planes == 2 ? "G18" : planes == 4 ? "G19" : "a plane not known";
+}
+
+/// The problem with a jump to block `number` in state `s`, if any (read_jump()).
+std::string jump_to(ModalState& s, uint64_t number) {
+  const JumpEntries::Modes here = modes_of(s, s.frame);
+  JumpEntries::Entry& e = entry_of(s, number);
+  if (!e.read) {  // ahead: the target is read in these modes too
+    e.modes.planes |= here.planes;
+    e.modes.units |= here.units;
+    e.modes.motion = e.modes.motion == -3 || e.modes.motion == here.motion ? here.motion : int16_t(-1);
+    return {};
+  }
+  std::string what;
+  auto differ = [&](const std::string& text) { what += (what.empty() ? "" : ", ") + text; };
+  if ((e.used & kStatesPlane) && e.modes.planes != here.planes)
+    differ(fmt::format("{} there, {} here", plane_name(e.modes.planes), plane_name(here.planes)));
+  if ((e.used & kStatesUnits) && e.modes.units != here.units)
+    differ(fmt::format("{} there, {} here", e.modes.units == 1 ? "G21" : e.modes.units == 2 ? "G20" : "units not known",
+                       here.units == 1 ? "G21" : here.units == 2 ? "G20" : "units not known"));
+  if ((e.used & kStatesMotion) && e.modes.motion != here.motion)
+    differ(fmt::format("motion G{} there, G{} here", e.modes.motion / 10, here.motion / 10));
+  if (what.empty()) return {};
+  return fmt::format("the jump back to N{} runs the lines after it again in other modes than they were read in "
+                     "({}), and moves there depend on them: state them in block N{}",
+                     number, what, number);
+}
+
+}  // namespace
+
+void read_jump(ModalState& s, std::string_view line, uint32_t line_number, DiagnosticSink& sink) {
+  if (const auto n = jump_named(line))
+    if (const std::string problem = jump_to(s, *n); !problem.empty())
+      sink.error({line_number, 1}, "E-FLOW-LOOP-MODES", problem);
+}
+
+void enter_jumped(ModalState& s, Frame& frame, double number) {
+  if (!(number >= 0) || number != std::floor(number) || number >= 1e15) return;
+  const JumpEntries::Modes here = modes_of(s, frame);
+  JumpEntries::Entry& e = entry_of(s, uint64_t(number));
+  if (!e.read) {
+    const JumpEntries::Modes& in = e.modes;  // the jumps' ahead of it (none: as here)
+    if ((in.planes | here.planes) != here.planes) s.unstated |= kStatesPlane;
+    if ((in.units | here.units) != here.units) s.unstated |= kStatesUnits;
+    if (in.motion != -3 && in.motion != here.motion) s.motion = -1;
+  }
+  e.read = true;
+  e.modes = modes_of(s, frame);
+  s.entry_pending = kStatesPlane | kStatesUnits | kStatesMotion;
+  s.entry_number = uint64_t(number);
+}
+
+void note_entry_use(ModalState& s) {
+  entry_of(s, s.entry_number).used |= s.entry_pending;
+  s.entry_pending = 0;
+}
+
+bool JumpEntries::reads_as(const JumpEntries& o) const {
+  return std::equal(entries.begin(), entries.end(), o.entries.begin(), o.entries.end(), [](const Entry& x, const Entry& y) {
+    return x.number == y.number && x.read == y.read && (x.read || x.modes == y.modes);
+  });
+}
+
+bool ModalState::same_entries(const ModalState& o) const {
+  return jump_entries == o.jump_entries || (jump_entries && o.jump_entries && jump_entries->reads_as(*o.jump_entries));
+}
+
+}  // namespace arcpress

@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// The modes a jump's target is entered in. A controller that jumps (`GOTO 50`, `IF [..] GOTO
+// 10`, `M99 P10`) goes on at the target in the plane, units and motion in force at the jump,
+// which need not be those of the line before the target in the text: a jump ahead may pass
+// over a `G18`, and a jump back, a loop, runs its first lines again in the modes its last
+// lines left. A jump ahead is read before its target: the target is read in the modes of
+// every way in, and a mode in which they differ is not known there until the program
+// states it. A jump back comes after its target was read: where the loop's first lines
+// used a mode (a feed move from a known place, before the program stated the mode again)
+// that differs at the jump, no output can match both passes, and the run fails
+// (E-FLOW-LOOP-MODES).
+#include <cstdint>
+#include <memory>
+#include <string_view>
+#include <vector>
+
+#include "arcpress/core/diagnostic.hpp"
+#include "arcpress/model/move.hpp"
+
+namespace arcpress {
+
+struct ModalState;
+
+/// Per block number a jump names: the modes of the jumps to it read before it, or, once it
+/// was read, the modes it was read in and which of them its first lines used.
+struct JumpEntries {
+  struct Modes {
+    uint8_t planes = 0;     ///< 1 << Plane; 8: not known
+    uint8_t units = 0;      ///< 1: mm; 2: inch; 4: not known
+    int16_t motion = -3;    ///< modal motion x10; -1: not known or differing; -3: none yet
+    bool operator==(const Modes&) const = default;
+  };
+  struct Entry {
+    uint64_t number = 0;
+    bool read = false;  ///< the target has been read: `modes` are those it was read in
+    Modes modes;        ///< the jumps' before it is read; its own after
+    uint8_t used = 0;   ///< kStatesPlane, kStatesUnits, kStatesMotion its first lines used
+  };
+  std::vector<Entry> entries;  ///< sorted by number
+  /// Whether later blocks are read alike after these entries and `o`: the same targets read,
+  /// and those not yet read to be read in the same modes. (What a target read was read in,
+  /// and used, only decides whether a jump back is refused: an output, whose fitted blocks
+  /// state their motion where the input's moves used the one in force, refuses no jump its
+  /// input passed; where one did, the check would refuse that output.)
+  bool reads_as(const JumpEntries& o) const;
+};
+
+/// Line `line` (line number `line_number`) read in state `s`: where it jumps to a numbered
+/// block (jump_named()), ahead, its modes join those the target will be read in; back, where
+/// the target's first lines used a mode that differs here, no output can match both passes:
+/// an error (E-FLOW-LOOP-MODES) to `sink`.
+void read_jump(ModalState& s, std::string_view line, uint32_t line_number, DiagnosticSink& sink);
+/// Block `number`, a jump's target, is entered (a number no jump names: nothing): where the jumps ahead of it were made in
+/// other modes than the text before it leaves, those are not known (the plane and units
+/// until stated, the motion until a block names one); the modes it is read in are kept for
+/// the jumps back to it, and which of them its first lines use (note_entry_use()).
+void enter_jumped(ModalState& s, Frame& frame, double number);
+/// A feed move from a known place read while modes of the last target entered are pending
+/// (ModalState::entry_pending): it uses them, as the target's first lines read them. (A move
+/// from a place not known is written back as it is, and reads the same in the output as in
+/// the input, whatever the modes.)
+void note_entry_use(ModalState& s);
+
+}  // namespace arcpress
