@@ -125,7 +125,7 @@ case $check in
     [ -f "$big" ] || { for _ in $(seq 500); do cat "$sample"; done > "$work/big.nc"; big="$work/big.nc"; }
     { head -c 3000000 "$big"; exec sleep 30; } > "$work/fifo" 2>/dev/null &
     feeder=$!
-    wine "$exe" - -o "$work/out/dest.nc" < "$work/fifo" 2>"$work/err" &
+    wine "$exe" - -o "$work/out/dest.nc" --stream < "$work/fifo" 2>"$work/err" &  # (written as it comes)
     runner=$!
     for _ in $(seq 100); do has_temporary "$work/out" && break; sleep 0.2; done
     has_temporary "$work/out" || fail "no temporary file appeared"
