@@ -448,10 +448,10 @@ TEST_CASE("a jump's target is read in the modes of every way in, and a loop back
   const std::string head = "G90 G17 G21\nG0 X0 Y0 Z0\nG1 F500\n";
   // What the compressor makes of `text`: whether it refused it with E-FLOW-LOOP-MODES, and
   // how many arcs it wrote.
-  auto run = [](const std::string& text) {
+  auto run = [](const std::string& text, const std::string& dialect = "fanuc") {
     DiagnosticSink sink;
     CompressOptions opt;
-    opt.dialect = shipped_dialect("fanuc");
+    opt.dialect = shipped_dialect(dialect);
     opt.fit.tolerance_mm = 0.01;
     const CompressResult r = compress("part.nc", text, opt, sink);
     const bool refused = std::any_of(sink.all().begin(), sink.all().end(),
@@ -494,6 +494,11 @@ TEST_CASE("a jump's target is read in the modes of every way in, and a loop back
   CHECK(back("G90 G1 ", "G0 Z1\n", "IF [#1 LT 3] GOTO 10") == std::pair(false, size_t(1)));
   // A loop that leaves the modes as it found them: one arc.
   CHECK(back("G90 ", "G18\nG17\n", "IF [#1 LT 3] GOTO 10") == std::pair(false, size_t(1)));
+  // Sinumerik's GOTOB and Okuma's GOTO N10 jump back as well.
+  for (const auto& [dialect, jump] : {std::pair{"sinumerik", "GOTOB N10"}, std::pair{"okuma", "GOTO N10"}}) {
+    CHECK(run(head + from("G90 ") + "G18\n" + jump + "\nM30\n", dialect) == std::pair(true, size_t(0)));
+    CHECK(run(head + from("G17 G90 ") + "G18\n" + jump + "\nM30\n", dialect) == std::pair(false, size_t(1)));
+  }
   // The same refusal where the whole program is read at once, as arcpress diff reads it.
   DiagnosticSink sink;
   Program p = lex("part.nc", head + "#1=0\n" + from("G90 ") + "G18\n#1=#1+1\nIF [#1 LT 3] GOTO 10\nM30\n", sink);

@@ -150,6 +150,7 @@ class Interpreter {
       case BlockKind::Empty: case BlockKind::Percent: return;
       case BlockKind::Code: break;
       case BlockKind::HostCommand:
+        if (p_->jumps) read_jump(s_, p_->raw(b), b.line, sink_);  // (Sinumerik's GOTOB N10)
         // Firmware M-codes with a text argument (a message, an object label, a printer check,
         // a file name) move nothing, nor do the extended commands the dialect names
         // (Klipper's EXCLUDE_OBJECT_START, SET_VELOCITY_LIMIT, ...); M32 starts another
