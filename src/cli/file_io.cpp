@@ -5,6 +5,17 @@
 
 namespace arcpress::cli {
 
+size_t InputFile::copy_rest(const std::function<void(std::string_view)>& put) {
+  std::string chunk;
+  size_t total = 0;
+  while (true) {
+    chunk.clear();
+    if (read(chunk, size_t(1) << 20) == 0) return total;
+    put(chunk);
+    total += chunk.size();
+  }
+}
+
 std::string read_input(const std::string& path) {
   InputFile in(path);
   std::string data;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -39,6 +40,9 @@ class InputFile {
   void spool();
 
  private:
+  /// Reads the rest of the input, handing each piece read to `put`; returns how many bytes.
+  size_t copy_rest(const std::function<void(std::string_view)>& put);
+
   std::string name_;
   std::intptr_t handle_ = -1;  // the system's descriptor or handle
   bool owned_ = false;

@@ -175,19 +175,14 @@ void InputFile::spool() {
   if (fd < 0) throw fail(errno);
   ::unlink(path.c_str());  // (unnamed from here: nothing is left behind, whatever happens)
   ::fcntl(fd, F_SETFD, FD_CLOEXEC);
-  std::string chunk;
-  size_t total = 0;
-  while (true) {
-    chunk.clear();
-    if (read(chunk, size_t(1) << 20) == 0) break;
-    for (size_t put = 0; put < chunk.size();) {
-      const ssize_t k = ::write(fd, chunk.data() + put, chunk.size() - put);
+  const size_t total = copy_rest([&](std::string_view data) {
+    for (size_t put = 0; put < data.size();) {
+      const ssize_t k = ::write(fd, data.data() + put, data.size() - put);
       if (k < 0 && errno == EINTR) continue;
       if (k < 0) throw fail(errno);
       put += size_t(k);
     }
-    total += chunk.size();
-  }
+  });
   if (::lseek(fd, 0, SEEK_SET) != 0) throw fail(errno);
   if (owned_) ::close(int(handle_));
   handle_ = fd;

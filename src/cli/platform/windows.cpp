@@ -249,18 +249,13 @@ void InputFile::spool() {
     ::DeleteFileW(path);
     throw fail(err);
   }
-  std::string chunk;
-  size_t total = 0;
-  while (true) {
-    chunk.clear();
-    if (read(chunk, size_t(1) << 20) == 0) break;
-    for (size_t put = 0; put < chunk.size();) {
+  const size_t total = copy_rest([&](std::string_view data) {
+    for (size_t put = 0; put < data.size();) {
       DWORD k = 0;
-      if (!::WriteFile(h, chunk.data() + put, DWORD(chunk.size() - put), &k, nullptr)) throw fail(::GetLastError());
+      if (!::WriteFile(h, data.data() + put, DWORD(data.size() - put), &k, nullptr)) throw fail(::GetLastError());
       put += k;
     }
-    total += chunk.size();
-  }
+  });
   if (!seek(h, 0)) throw fail(::GetLastError());
   if (owned_) ::CloseHandle(as_handle(handle_));
   handle_ = from_handle(h);
