@@ -57,8 +57,6 @@ RandomCase random_case(std::span<const uint8_t> bytes) {
   double last_x = 0, last_y = 0;  // the last printed point, for the extrusion of a move
   bool rotary = false;             // moves carry an A word
   long numbered = 0;               // the number of the last move written with one (0: none)
-  const bool other_plane = uint8_t(o + form) % 4 >= 2;  // O9000 leaves G18, or is not in the file (below)
-  bool plane_unsure = false;  // a call since that move may have left another plane
   std::string indent;              // of the moves in an `if` block
   long sub_label = 0;              // of the subroutine being defined (0: none)
   for (size_t i = 3; i + 2 < bytes.size(); i += 3) {
@@ -110,11 +108,11 @@ RandomCase random_case(std::span<const uint8_t> bytes) {
       s += fmt::format("CT X{:.3f} Y{:.3f}\n", last_x + step_mm * 5, last_y - step_mm * 3);
     // A jump back to a numbered move (a loop), whose block must stay one, and G90 stated
     // again, after which the moves are placed again.
-    // (Not after a call of O9000 where it leaves G18 or is not in the file, nor after a
-    // LinuxCNC call, whose body a dialect that reads no O-words does not read: the lines after
-    // the number would run again in another plane than they were read in, or one not known,
-    // which arcpress refuses.)
-    if (!tnc && (h & 0x3f) == 0x31 && numbered > 0 && !plane_unsure)
+    // (After a call of O9000 where it leaves G18 or is not in the file, or after a LinuxCNC
+    // call, whose body a dialect that reads no O-words does not read, the lines after the
+    // number run again in another plane than they were read in, or one not known: they are
+    // then written as they are, W-FLOW-LOOP-MODES.)
+    if (!tnc && (h & 0x3f) == 0x31 && numbered > 0)
       s += a < 0 ? fmt::format("IF [#1 LT 2] GOTO {}\n", numbered) : fmt::format("M99 P{}\n", numbered);
     if (!tnc && (h & 0x3f) == 0x32) s += extrudes ? "G90 M83\n" : "G90\n";  // (G90 alone makes E absolute)
     // An `if` whose moves are indented below it (RepRapFirmware's blocks) and the line that
@@ -125,12 +123,12 @@ RandomCase random_case(std::span<const uint8_t> bytes) {
     }
     if (!tnc && (h & 0x3f) == 0x34 && !sub_label) s += fmt::format("o{} sub\n", sub_label = long(i));
     if (!tnc && (h & 0x3f) == 0x35 && sub_label)
-      s += fmt::format("o{0} endsub\no{0} call\n", std::exchange(sub_label, 0)), plane_unsure = true;
+      s += fmt::format("o{0} endsub\no{0} call\n", std::exchange(sub_label, 0));
     // A call of a subprogram written after the program's end (or stored in the control): the
     // moves after it are read in the modes it leaves.
-    if (!tnc && (h & 0x3f) == 0x36) s += a < 0 ? "M98 P9000 L2\n" : "M98 P9000\n", plane_unsure |= other_plane;
+    if (!tnc && (h & 0x3f) == 0x36) s += a < 0 ? "M98 P9000 L2\n" : "M98 P9000\n";
     const bool number_it = !tnc && (h & 0x3f) == 0x30;
-    if (number_it) numbered = long(i), plane_unsure = false;
+    if (number_it) numbered = long(i);
     const double px = std::stod(fmt::format("{:.{}f}", x, decimals)), py = std::stod(fmt::format("{:.{}f}", y, decimals));
     s += indent;
     if (number_it) s += fmt::format("N{} ", i);

@@ -332,3 +332,33 @@ TEST_CASE("the C library reads a program's jumps ahead of its pushes, or fails a
   CHECK(ahead == ARCPRESS_OK);
   CHECK(ahead_out.find("\nN100 G1 X") != std::string::npos);
 }
+
+TEST_CASE("the C library reads a program's loops ahead, or fails a loop back in other modes it reads too late", "[capi][jumps]") {
+  // quarter_circle() with its first move numbered N100 and stating G90, then a G18 and a
+  // jump back to it: the quarter would run again in G18.
+  std::string program = kProgram;
+  const size_t first = program.find("G1 ");
+  program.insert(first, "N100 G90 ");
+  program.insert(program.find("G0 Z5."), "G18\nIF [#1 LT 3] GOTO 100\n");
+  auto run = [&](bool loops) {
+    arcpress_options* o = arcpress_options_new();
+    REQUIRE(arcpress_options_set_dialect(o, "fanuc") == ARCPRESS_OK);
+    arcpress_compressor* c = nullptr;
+    REQUIRE(arcpress_compressor_new(o, "c", &c) == ARCPRESS_OK);
+    arcpress_options_free(o);
+    REQUIRE(arcpress_read_jumps(c, program.data(), program.size(), 1) == ARCPRESS_OK);
+    if (loops) REQUIRE(arcpress_read_loops(c, program.data(), program.size()) == ARCPRESS_OK);
+    arcpress_status status = arcpress_push(c, program.data(), program.size());
+    if (status == ARCPRESS_OK) status = arcpress_finish(c);
+    const std::string told = arcpress_diagnostics(c);
+    arcpress_compressor_free(c);
+    return std::pair(status, told);
+  };
+  const auto [late, late_told] = run(false);
+  CHECK(late == ARCPRESS_BAD_INPUT);
+  CHECK(late_told.find("E-FLOW-LOOP-MODES") != std::string::npos);
+  const auto [ahead, ahead_told] = run(true);
+  CHECK(ahead == ARCPRESS_OK);
+  CHECK(ahead_told.find("W-FLOW-LOOP-MODES") != std::string::npos);
+  CHECK(arcpress_read_loops(nullptr, program.data(), program.size()) == ARCPRESS_BAD_INPUT);
+}

@@ -34,7 +34,7 @@ template <class NextSize>
 Streamed stream(const std::string& text, const CompressOptions& opt, NextSize next_size, bool jumps_ahead = false) {
   DiagnosticSink sink("stream");
   Compressor c("stream", opt, sink);
-  if (jumps_ahead) c.read_jumps(text, 1);
+  if (jumps_ahead) c.read_jumps(text, 1), c.read_loops(text);
   Streamed s;
   for (size_t at = 0; at < text.size();) {
     const size_t n = std::min(next_size(), text.size() - at);

@@ -219,6 +219,18 @@ arcpress_status arcpress_read_jumps(arcpress_compressor* c, const char* bytes, s
   });
 }
 
+arcpress_status arcpress_read_loops(arcpress_compressor* c, const char* bytes, size_t length) {
+  if (!c || (!bytes && length > 0)) return ARCPRESS_BAD_INPUT;
+  if (c->finished) {
+    c->error = "the compressor is finished";
+    return ARCPRESS_BAD_INPUT;
+  }
+  return guarded(c->error, [&] {
+    c->compressor->read_loops(std::string_view(bytes ? bytes : "", length));
+    return c->compressor->result().ok ? ARCPRESS_OK : ARCPRESS_BAD_INPUT;
+  });
+}
+
 arcpress_status arcpress_take(arcpress_compressor* c, const char** text, size_t* length) {
   if (!c || !text || !length) return ARCPRESS_BAD_INPUT;
   return guarded(c->error, [&] {

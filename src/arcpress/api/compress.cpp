@@ -58,6 +58,7 @@ CompressResult compress(const std::string& name, std::string text, const Compres
                         DiagnosticSink& sink) {
   Compressor c(name, opt, sink);
   c.read_jumps(text, 1);  // (the whole program is at hand: its jumps and subprograms are read first)
+  c.read_loops(text);
   c.push(text);
   text = {};
   c.finish();

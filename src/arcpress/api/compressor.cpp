@@ -21,6 +21,7 @@
 #include "arcpress/lex/lexer.hpp"
 #include "arcpress/lex/refusal_scan.hpp"
 #include "arcpress/model/called_programs.hpp"
+#include "arcpress/model/jump_entries.hpp"
 #include "arcpress/model/interpreter.hpp"
 
 namespace arcpress {
@@ -208,6 +209,22 @@ struct Compressor::Impl {
       total.ok = false;
       ready.clear();
     }
+  }
+
+  /// The loops of `program` (the whole text) whose jump back would run their first moves
+  /// in other modes: their starts are read with those not known (Compressor::read_loops()).
+  void read_loops(std::string_view program) {
+    if (!jumps || failed) return;
+    if (after_end_found) called_ahead();
+    DiagnosticSink quiet(name);
+    Program p = lex(name, std::string(program), quiet, keywords);
+    p.jumps = jumps;
+    ModalState s = reader.state();
+    const LoopsFound loops = loops_in_other_modes(p, opt.dialect, s);
+    if (loops.starts.empty()) return;
+    seed_loops(s, loops.starts);
+    reader.reset(s);
+    for (const Diagnostic& d : loops.told) sink.warning(d.at, d.code, d.message);
   }
 
   /// What the subprograms in the text after the program's end leave (CalledPrograms), read
@@ -548,6 +565,8 @@ void Compressor::push(std::string_view bytes) { guarded([&] { impl_->push(bytes)
 void Compressor::read_jumps(std::string_view lines, uint32_t first_line) {
   guarded([&] { impl_->read_jumps(lines, first_line, true); });
 }
+bool Compressor::has_jumps() const { return impl_->jumps && impl_->jumps->any(); }
+void Compressor::read_loops(std::string_view program) { guarded([&] { impl_->read_loops(program); }); }
 size_t Compressor::take(std::string& out) { return guarded([&] { return impl_->take(out); }); }
 void Compressor::finish() { guarded([&] { impl_->finish(); }); }
 const CompressResult& Compressor::result() const { return impl_->total; }

@@ -76,6 +76,15 @@ class Compressor {
   /// text after the program's first end is kept for the subprograms written there
   /// (read_called_programs()), whose modes hold after their calls.
   void read_jumps(std::string_view lines, uint32_t first_line);
+  /// Whether read_jumps() found a jump or a call of a numbered block.
+  bool has_jumps() const;
+  /// After read_jumps() of the whole program: reads `program`, all of it, once ahead as
+  /// push() will, for the loops whose jump back would run their first moves in other modes
+  /// than they were read in. push() then reads those loops' starts with the plane, units and
+  /// motion not known, and writes the moves after them as they are until the program states
+  /// those (a warning, W-FLOW-LOOP-MODES), where it would otherwise fail the program
+  /// (E-FLOW-LOOP-MODES). Nothing where read_jumps() found no jump.
+  void read_loops(std::string_view program);
   /// Appends the output finished so far, in order, to `out` and returns how many bytes that
   /// was. Output is final once taken: it is never revised.
   size_t take(std::string& out);

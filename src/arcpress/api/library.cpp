@@ -38,6 +38,15 @@ CompressResult compress_stream(std::istream& in, std::ostream& out, const std::s
     c.read_jumps(lines, 0);
     in.clear();
     if (!in.seekg(start)) throw Error(kExitIo, fmt::format("cannot read '{}' again", name));
+    // A program that jumps is read once more ahead, whole, for its loops.
+    if (c.has_jumps()) {
+      std::string program;
+      for (size_t got; in.read(chunk.data(), std::streamsize(chunk.size())), (got = size_t(in.gcount())) > 0;)
+        program.append(chunk.data(), got);
+      c.read_loops(program);
+      in.clear();
+      if (!in.seekg(start)) throw Error(kExitIo, fmt::format("cannot read '{}' again", name));
+    }
   }
   auto write = [&] {
     text.clear();

@@ -51,9 +51,23 @@ std::vector<KeywordSpelling> keywords_read(const Dialect& dialect);
 
 /// Reads `program` as `dialect`'s controller would (centre form, G18 direction, numbers
 /// without a decimal point); the default is generic RS274. With `state`, reading starts
-/// from it and it is left as the program ends; without, from initial_state() and what the
-/// subprograms after the program's end leave (called_programs_of()).
+/// from it and it is left as the program ends; without, from whole_program_start().
 Interpretation interpret(const Program& program, DiagnosticSink& sink, const Dialect& dialect = Dialect{},
                          ModalState* state = nullptr);
+
+/// The loops of `program` read from `start` whose jump back would run their first moves in
+/// other modes than they were read in (E-FLOW-LOOP-MODES, model/jump_entries.hpp): the
+/// numbers of their starts, and why, as warnings (W-FLOW-LOOP-MODES). Read with those starts
+/// in seed_loops() (read again until no other is found), the program is refused nowhere:
+/// the moves after each start are written as they are until the program states the modes.
+struct LoopsFound {
+  std::vector<uint64_t> starts;
+  std::vector<Diagnostic> told;
+};
+LoopsFound loops_in_other_modes(const Program& program, const Dialect& dialect, const ModalState& start);
+/// The state interpret() without a state starts `program` in: initial_state() and what the
+/// subprograms after its end leave; with the starts of loops_in_other_modes() marked, the
+/// warnings told to `sink`.
+ModalState whole_program_start(const Program& program, const Dialect& dialect, DiagnosticSink& sink);
 
 }  // namespace arcpress

@@ -48,8 +48,15 @@ const char* plane_name(uint8_t planes) {
   return planes == 1 ? "G17" : planes == 2 ? "G18" : planes == 4 ? "G19" : "a plane not known";
 }
 
-/// The problem with a jump to block `number` in state `s`, if any (read_jump()).
-std::string jump_to(ModalState& s, uint64_t number) {
+const char* units_name(uint8_t units) { return units == 1 ? "G21" : units == 2 ? "G20" : "units not known"; }
+
+std::string motion_name(int16_t motion) {
+  return motion < 0 ? std::string("a motion not known") : fmt::format("G{}", motion / 10);
+}
+
+/// A jump at line `line` to block `number` in state `s`: what differs from the modes the
+/// target's first moves used (read_jump()), else empty.
+std::string jump_to(ModalState& s, uint64_t number, uint32_t line) {
   const JumpEntries::Modes here = modes_of(s, s.frame);
   JumpEntries::Entry& e = entry_of(s, number);
   if (!e.read) {  // ahead: the target is read in these modes too
@@ -63,22 +70,22 @@ std::string jump_to(ModalState& s, uint64_t number) {
   if ((e.used & kStatesPlane) && e.modes.planes != here.planes)
     differ(fmt::format("{} there, {} here", plane_name(e.modes.planes), plane_name(here.planes)));
   if ((e.used & kStatesUnits) && e.modes.units != here.units)
-    differ(fmt::format("{} there, {} here", e.modes.units == 1 ? "G21" : e.modes.units == 2 ? "G20" : "units not known",
-                       here.units == 1 ? "G21" : here.units == 2 ? "G20" : "units not known"));
+    differ(fmt::format("{} there, {} here", units_name(e.modes.units), units_name(here.units)));
   if ((e.used & kStatesMotion) && e.modes.motion != here.motion)
-    differ(fmt::format("motion G{} there, G{} here", e.modes.motion / 10, here.motion / 10));
-  if (what.empty()) return {};
-  return fmt::format("the jump back to N{} runs the lines after it again in other modes than they were read in "
-                     "({}), and moves there depend on them: state them in block N{}",
-                     number, what, number);
+    differ(fmt::format("{} there, {} here", motion_name(e.modes.motion), motion_name(here.motion)));
+  if (!what.empty() && e.refused.empty()) e.refused = what, e.refused_line = line;
+  return what;
 }
 
 }  // namespace
 
 void read_jump(ModalState& s, std::string_view line, uint32_t line_number, DiagnosticSink& sink) {
   if (const auto n = jump_named(line))
-    if (const std::string problem = jump_to(s, *n); !problem.empty())
-      sink.error({line_number, 1}, "E-FLOW-LOOP-MODES", problem);
+    if (const std::string what = jump_to(s, *n, line_number); !what.empty())
+      sink.error({line_number, 1}, "E-FLOW-LOOP-MODES",
+                 fmt::format("the jump back to N{} runs the lines after it again in other modes than they were read "
+                             "in ({}), which moves there depend on: state them in block N{}",
+                             *n, what, *n));
 }
 
 void enter_jumped(ModalState& s, Frame& frame, double number) {
@@ -91,6 +98,7 @@ void enter_jumped(ModalState& s, Frame& frame, double number) {
     if ((in.units | here.units) != here.units) s.unstated |= kStatesUnits;
     if (in.motion != -3 && in.motion != here.motion) s.motion = -1;
   }
+  if (e.loop) s.unstated |= kStatesPlane | kStatesUnits, s.motion = -1;
   e.read = true;
   e.modes = modes_of(s, frame);
   s.entry_pending = kStatesPlane | kStatesUnits | kStatesMotion;
@@ -102,9 +110,21 @@ void note_entry_use(ModalState& s) {
   s.entry_pending = 0;
 }
 
+std::vector<JumpEntries::Entry> refused_loops(const ModalState& s) {
+  std::vector<JumpEntries::Entry> out;
+  if (s.jump_entries)
+    for (const JumpEntries::Entry& e : s.jump_entries->entries)
+      if (!e.refused.empty()) out.push_back(e);
+  return out;
+}
+
+void seed_loops(ModalState& s, const std::vector<uint64_t>& numbers) {
+  for (uint64_t n : numbers) entry_of(s, n).loop = true;
+}
+
 bool JumpEntries::reads_as(const JumpEntries& o) const {
   return std::equal(entries.begin(), entries.end(), o.entries.begin(), o.entries.end(), [](const Entry& x, const Entry& y) {
-    return x.number == y.number && x.read == y.read && (x.read || x.modes == y.modes);
+    return x.number == y.number && x.read == y.read && x.loop == y.loop && (x.read || x.modes == y.modes);
   });
 }
 

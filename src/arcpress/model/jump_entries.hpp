@@ -12,6 +12,7 @@
 // (E-FLOW-LOOP-MODES).
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -36,6 +37,11 @@ struct JumpEntries {
     bool read = false;  ///< the target has been read: `modes` are those it was read in
     Modes modes;        ///< the jumps' before it is read; its own after
     uint8_t used = 0;   ///< kStatesPlane, kStatesUnits, kStatesMotion its first lines used
+    std::string refused;        ///< what differed where a jump back to it was refused, else empty
+    uint32_t refused_line = 0;  ///< that jump's line
+    /// A first reading of the whole program found a jump back to it in other modes
+    /// (seed_loops()): it is entered with its plane, units and motion not known.
+    bool loop = false;
   };
   std::vector<Entry> entries;  ///< sorted by number
   /// Whether later blocks are read alike after these entries and `o`: the same targets read,
@@ -51,15 +57,23 @@ struct JumpEntries {
 /// the target's first lines used a mode that differs here, no output can match both passes:
 /// an error (E-FLOW-LOOP-MODES) to `sink`.
 void read_jump(ModalState& s, std::string_view line, uint32_t line_number, DiagnosticSink& sink);
-/// Block `number`, a jump's target, is entered (a number no jump names: nothing): where the jumps ahead of it were made in
-/// other modes than the text before it leaves, those are not known (the plane and units
-/// until stated, the motion until a block names one); the modes it is read in are kept for
-/// the jumps back to it, and which of them its first lines use (note_entry_use()).
+/// Block `number`, a jump's target, is entered (a number no jump names: nothing): where the
+/// jumps ahead of it were made in other modes than the text before it leaves, or it is a
+/// loop's start seed_loops() marked, those are not known (the plane and units until stated,
+/// the motion until a block names one); the modes it is read in are kept for the jumps back
+/// to it, and which of them its first lines use (note_entry_use()).
 void enter_jumped(ModalState& s, Frame& frame, double number);
 /// A feed move from a known place read while modes of the last target entered are pending
 /// (ModalState::entry_pending): it uses them, as the target's first lines read them. (A move
 /// from a place not known is written back as it is, and reads the same in the output as in
 /// the input, whatever the modes.)
 void note_entry_use(ModalState& s);
+/// The blocks a jump back to was refused in state `s`, a whole program's reading ended in.
+std::vector<JumpEntries::Entry> refused_loops(const ModalState& s);
+/// Marks blocks `numbers` in `s`, the state a program's reading starts in, as loops' starts
+/// that a jump back runs again in other modes (refused_loops() of a first reading): each is
+/// entered with its plane, units and motion not known until the program states them, so
+/// that the moves after it are written as they are, not fitted, and no jump back is refused.
+void seed_loops(ModalState& s, const std::vector<uint64_t>& numbers);
 
 }  // namespace arcpress

@@ -5,7 +5,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "arcpress/model/called_programs.hpp"
+#include "arcpress/model/jump_entries.hpp"
 
 namespace arcpress {
 
@@ -34,10 +37,45 @@ std::vector<KeywordSpelling> keywords_read(const Dialect& dialect) {
   return out;
 }
 
+LoopsFound loops_in_other_modes(const Program& program, const Dialect& dialect, const ModalState& start) {
+  LoopsFound found;
+  if (!program.jumps) return found;
+  // (A start marked reads the moves after it unplaced, which may leave another loop's jump
+  // in a mode not known: read again, a few times at most.)
+  constexpr int kRounds = 4;
+  for (int round = 0; round < kRounds; ++round) {
+    DiagnosticSink quiet(program.name);
+    ModalState s = start;
+    seed_loops(s, found.starts);
+    (void)interpret(program, quiet, dialect, &s);
+    const std::vector<JumpEntries::Entry> more = refused_loops(s);
+    if (more.empty()) break;
+    for (const JumpEntries::Entry& e : more) {
+      found.starts.push_back(e.number);
+      found.told.push_back({Severity::Warning, {e.refused_line, 1}, "W-FLOW-LOOP-MODES",
+                            fmt::format("the jump back to N{0} runs the lines after it again in other modes than "
+                                        "they were read in ({1}): the moves after N{0} are written as they are "
+                                        "until the program states those modes (stated in block N{0}, they are fitted)",
+                                        e.number, e.refused)});
+    }
+    std::sort(found.starts.begin(), found.starts.end());
+    found.starts.erase(std::unique(found.starts.begin(), found.starts.end()), found.starts.end());
+  }
+  return found;
+}
+
+ModalState whole_program_start(const Program& program, const Dialect& dialect, DiagnosticSink& sink) {
+  ModalState start = initial_state(dialect);
+  start.called = called_programs_of(program, dialect);  // (read whole: its subprograms too)
+  const LoopsFound loops = loops_in_other_modes(program, dialect, start);
+  seed_loops(start, loops.starts);
+  for (const Diagnostic& d : loops.told) sink.warning(d.at, d.code, d.message);
+  return start;
+}
+
 Interpretation interpret(const Program& program, DiagnosticSink& sink, const Dialect& dialect, ModalState* state) {
   Interpretation out;
-  ModalState start = state ? *state : initial_state(dialect);
-  if (!state) start.called = called_programs_of(program, dialect);  // (read whole: its subprograms too)
+  const ModalState start = state ? *state : whole_program_start(program, dialect, sink);
   ModalInterpreter it(dialect, sink, start);
   it.begin(program, out);
   out.move_of_block.assign(program.blocks.size(), -1);
