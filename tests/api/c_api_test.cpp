@@ -296,6 +296,16 @@ TEST_CASE("the C library refuses what the command refuses, with the status of it
   arcpress_options_free(o);
 }
 
+/// A compressor for Fanuc's dialect (freed by the caller).
+static arcpress_compressor* fanuc_compressor() {
+  arcpress_options* o = arcpress_options_new();
+  REQUIRE(arcpress_options_set_dialect(o, "fanuc") == ARCPRESS_OK);
+  arcpress_compressor* c = nullptr;
+  REQUIRE(arcpress_compressor_new(o, "c", &c) == ARCPRESS_OK);
+  arcpress_options_free(o);
+  return c;
+}
+
 TEST_CASE("the C library reads a program's jumps ahead of its pushes, or fails a jump back it reads too late", "[capi][jumps]") {
   // quarter_circle() with its 20th move numbered N100, and a jump back to it after the path.
   std::string program = kProgram;
@@ -304,11 +314,7 @@ TEST_CASE("the C library reads a program's jumps ahead of its pushes, or fails a
   program.insert(at, "N100 ");
   program.insert(program.find("G0 Z5."), "IF [#1 LT 3] GOTO 100\n");
   auto run = [&](bool ahead) {
-    arcpress_options* o = arcpress_options_new();
-    REQUIRE(arcpress_options_set_dialect(o, "fanuc") == ARCPRESS_OK);
-    arcpress_compressor* c = nullptr;
-    REQUIRE(arcpress_compressor_new(o, "c", &c) == ARCPRESS_OK);
-    arcpress_options_free(o);
+    arcpress_compressor* c = fanuc_compressor();
     if (ahead) REQUIRE(arcpress_read_jumps(c, program.data(), program.size(), 1) == ARCPRESS_OK);
     arcpress_status status = ARCPRESS_OK;
     for (size_t from = 0; from < program.size() && status == ARCPRESS_OK;) {  // a line a push
@@ -341,11 +347,7 @@ TEST_CASE("the C library reads a program's loops ahead, or fails a loop back in 
   program.insert(first, "N100 G90 ");
   program.insert(program.find("G0 Z5."), "G18\nIF [#1 LT 3] GOTO 100\n");
   auto run = [&](bool loops) {
-    arcpress_options* o = arcpress_options_new();
-    REQUIRE(arcpress_options_set_dialect(o, "fanuc") == ARCPRESS_OK);
-    arcpress_compressor* c = nullptr;
-    REQUIRE(arcpress_compressor_new(o, "c", &c) == ARCPRESS_OK);
-    arcpress_options_free(o);
+    arcpress_compressor* c = fanuc_compressor();
     REQUIRE(arcpress_read_jumps(c, program.data(), program.size(), 1) == ARCPRESS_OK);
     if (loops) REQUIRE(arcpress_read_loops(c, program.data(), program.size()) == ARCPRESS_OK);
     arcpress_status status = arcpress_push(c, program.data(), program.size());

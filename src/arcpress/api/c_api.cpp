@@ -195,40 +195,36 @@ arcpress_status arcpress_compressor_new(arcpress_options* o, const char* name, a
 
 void arcpress_compressor_free(arcpress_compressor* c) { delete c; }
 
-arcpress_status arcpress_push(arcpress_compressor* c, const char* bytes, size_t length) {
+extern "C++" {
+namespace {
+
+/// `give(text)` to compressor `c`, which must be unfinished, of the `length` bytes at `bytes`.
+template <class Give>
+arcpress_status give_text(arcpress_compressor* c, const char* bytes, size_t length, Give&& give) {
   if (!c || (!bytes && length > 0)) return ARCPRESS_BAD_INPUT;
   if (c->finished) {
     c->error = "the compressor is finished";
     return ARCPRESS_BAD_INPUT;
   }
   return guarded(c->error, [&] {
-    c->compressor->push(std::string_view(bytes ? bytes : "", length));
+    give(std::string_view(bytes ? bytes : "", length));
     return c->compressor->result().ok ? ARCPRESS_OK : ARCPRESS_BAD_INPUT;
   });
+}
+
+}  // namespace
+}  // extern "C++"
+
+arcpress_status arcpress_push(arcpress_compressor* c, const char* bytes, size_t length) {
+  return give_text(c, bytes, length, [&](std::string_view text) { c->compressor->push(text); });
 }
 
 arcpress_status arcpress_read_jumps(arcpress_compressor* c, const char* bytes, size_t length, unsigned first_line) {
-  if (!c || (!bytes && length > 0)) return ARCPRESS_BAD_INPUT;
-  if (c->finished) {
-    c->error = "the compressor is finished";
-    return ARCPRESS_BAD_INPUT;
-  }
-  return guarded(c->error, [&] {
-    c->compressor->read_jumps(std::string_view(bytes ? bytes : "", length), first_line);
-    return c->compressor->result().ok ? ARCPRESS_OK : ARCPRESS_BAD_INPUT;
-  });
+  return give_text(c, bytes, length, [&](std::string_view text) { c->compressor->read_jumps(text, first_line); });
 }
 
 arcpress_status arcpress_read_loops(arcpress_compressor* c, const char* bytes, size_t length) {
-  if (!c || (!bytes && length > 0)) return ARCPRESS_BAD_INPUT;
-  if (c->finished) {
-    c->error = "the compressor is finished";
-    return ARCPRESS_BAD_INPUT;
-  }
-  return guarded(c->error, [&] {
-    c->compressor->read_loops(std::string_view(bytes ? bytes : "", length));
-    return c->compressor->result().ok ? ARCPRESS_OK : ARCPRESS_BAD_INPUT;
-  });
+  return give_text(c, bytes, length, [&](std::string_view text) { c->compressor->read_loops(text); });
 }
 
 arcpress_status arcpress_take(arcpress_compressor* c, const char** text, size_t* length) {
