@@ -327,8 +327,8 @@ int main(int argc, char** argv) {
                "for inputs over 4 MB)");
   app.add_flag("--stream", a.stream,
                "From a pipe, write output as the input comes instead of reading it to its end first (into a "
-               "temporary file): then a jump back past what was read fails, and subprograms after the program's "
-               "end are not read");
+               "temporary file): then a jump back past what was read, or one that would run a loop's first moves "
+               "in other modes, fails, and subprograms after the program's end are not read");
   bool no_verify = false;
   app.add_flag("--no-verify", no_verify, "Skip reading the output back and measuring it against the input");
 
