@@ -43,6 +43,8 @@ def load(path):
     lib.arcpress_compressor_new.argtypes = [p, ctypes.c_char_p, ctypes.POINTER(p)]
     lib.arcpress_compressor_free.argtypes = [p]
     lib.arcpress_push.argtypes = [p, ctypes.c_char_p, ctypes.c_size_t]
+    lib.arcpress_read_jumps.argtypes = [p, ctypes.c_char_p, ctypes.c_size_t, ctypes.c_uint]
+    lib.arcpress_read_loops.argtypes = [p, ctypes.c_char_p, ctypes.c_size_t]
     lib.arcpress_take.argtypes = [p, ctypes.POINTER(ctypes.c_char_p), ctypes.POINTER(ctypes.c_size_t)]
     lib.arcpress_finish.argtypes = [p]
     lib.arcpress_get_stats.argtypes = [p, ctypes.POINTER(Stats)]
@@ -70,6 +72,26 @@ def compress(lib, source, target, dialect, tolerance, units=None):
         text, length = ctypes.c_char_p(), ctypes.c_size_t()
         status = OK
         with open(source, "rb") as src:
+            # The program's jumps first, whole lines at a time, and the subprograms after its
+            # end; then, where it jumps, its loops, from the whole text (up to 64 MB), as the
+            # command reads a file.
+            lines = b""
+            while status == OK:
+                chunk = src.read(1 << 20)
+                if not chunk:
+                    break
+                lines += chunk
+                last = lines.rfind(b"\n") + 1
+                status = lib.arcpress_read_jumps(compressor, lines[:last], last, 0)
+                lines = lines[last:]
+            if status == OK:
+                status = lib.arcpress_read_jumps(compressor, lines, len(lines), 0)
+            if status == OK and os.path.getsize(source) <= 64 << 20:
+                src.seek(0)
+                whole = src.read()
+                status = lib.arcpress_read_loops(compressor, whole, len(whole))
+                del whole
+            src.seek(0)
             # A name of its own beside the target: an existing file is never overwritten.
             folder = os.path.dirname(os.path.abspath(target))
             fd, partial = tempfile.mkstemp(prefix=os.path.basename(target) + ".", suffix=".partial", dir=folder)
