@@ -105,8 +105,6 @@ void require_executed_rule(const Dialect& dialect, const char* option) {
 constexpr size_t kFlavorBytes = size_t(1) << 20;
 /// ... at the start of a program read from a pipe (Cura names it on its first line).
 constexpr size_t kFlavorPipeBytes = size_t(1) << 16;
-/// The largest program that jumps read whole once ahead for its loops (Compressor::read_loops()).
-constexpr size_t kLoopReadBytes = size_t(64) << 20;
 /// How much of the input is read at once.
 constexpr size_t kReadBytes = size_t(1) << 20;
 
@@ -177,7 +175,8 @@ int compress_file(const CompressArgs& a, FileReport& report, std::atomic<size_t>
   Compressor compressor(name, opt, sink);
   if (size) read_jumps_ahead(input, compressor);
   // A program that jumps is read once ahead for its loops (Compressor::read_loops()).
-  if (size && *size <= kLoopReadBytes && compressor.has_jumps()) compressor.read_loops(input.read_at(0, *size));
+  if (size && *size <= Compressor::kLoopsAheadBytes && compressor.has_jumps())
+    compressor.read_loops(input.read_at(0, *size));
   cli::OutputFile out(out_path);
   report.output = out_path;
   // In a batch, the batch's progress line counts what is read.

@@ -214,7 +214,7 @@ struct Compressor::Impl {
   /// The loops of `program` (the whole text) whose jump back would run their first moves
   /// in other modes: their starts are read with those not known (Compressor::read_loops()).
   void read_loops(std::string_view program) {
-    if (!jumps || failed) return;
+    if (!jumps || failed || program.size() > kLoopsAheadBytes) return;
     if (after_end_found) called_ahead();
     DiagnosticSink quiet(name);
     Program p = lex(name, std::string(program), quiet, keywords);

@@ -83,8 +83,10 @@ class Compressor {
   /// than they were read in. push() then reads those loops' starts with the plane, units and
   /// motion not known, and writes the moves after them as they are until the program states
   /// those (a warning, W-FLOW-LOOP-MODES), where it would otherwise fail the program
-  /// (E-FLOW-LOOP-MODES). Nothing where read_jumps() found no jump.
+  /// (E-FLOW-LOOP-MODES). Nothing where read_jumps() found no jump, or for a program over
+  /// kLoopsAheadBytes (read twice more, it would hold that much memory at once).
   void read_loops(std::string_view program);
+  static constexpr size_t kLoopsAheadBytes = size_t(64) << 20;
   /// Appends the output finished so far, in order, to `out` and returns how many bytes that
   /// was. Output is final once taken: it is never revised.
   size_t take(std::string& out);

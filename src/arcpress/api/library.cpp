@@ -38,10 +38,12 @@ CompressResult compress_stream(std::istream& in, std::ostream& out, const std::s
     c.read_jumps(lines, 0);
     in.clear();
     if (!in.seekg(start)) throw Error(kExitIo, fmt::format("cannot read '{}' again", name));
-    // A program that jumps is read once more ahead, whole, for its loops.
+    // A program that jumps is read once more ahead, whole, for its loops (up to the size
+    // read_loops() takes).
     if (c.has_jumps()) {
       std::string program;
-      for (size_t got; in.read(chunk.data(), std::streamsize(chunk.size())), (got = size_t(in.gcount())) > 0;)
+      for (size_t got; program.size() <= Compressor::kLoopsAheadBytes &&
+                       (in.read(chunk.data(), std::streamsize(chunk.size())), (got = size_t(in.gcount())) > 0);)
         program.append(chunk.data(), got);
       c.read_loops(program);
       in.clear();

@@ -639,7 +639,6 @@ class Interpreter {
     set_frame(f);
   }
 
-
   /// After block `bi`: a call it made has returned (model/called_programs.hpp), or the program ended.
   [[gnu::noinline]] void after_block(uint32_t bi) {
     if (call_read_) {

@@ -110,7 +110,8 @@ struct ModalState {
     }
     return f.same_as(o.frame) && plane == o.plane && known == o.known && spindle == o.spindle && cycle_calls == o.cycle_calls &&
            distance_unknown == o.distance_unknown && ended == o.ended &&
-           calls == o.calls && called == o.called && same_entries(o) && entry_number == o.entry_number && floating == o.floating && nesting == o.nesting &&
+           calls == o.calls && called == o.called && same_entries(o) && entry_number == o.entry_number &&
+           floating == o.floating && nesting == o.nesting &&
            stated == o.stated && unstated == o.unstated && (subs == o.subs || (subs && o.subs && *subs == *o.subs)) &&
            feed_known == o.feed_known && (!feed_known || feed_mm == o.feed_mm) && (!with_motion || motion == o.motion);
   }
