@@ -395,15 +395,15 @@ TEST_CASE("LinuxCNC's rs274 reads the moves after an O-word if or loop whose bra
   }
 }
 
-TEST_CASE("LinuxCNC's rs274 runs a loop's first moves again in the G91 its end leaves, and arcpress refuses such a loop",
+TEST_CASE("LinuxCNC's rs274 runs a loop's first moves again in the modes its end leaves, and arcpress writes them as they are",
           "[oracle][linuxcnc]") {
   RS274_OR_SKIP();
   std::string quarter;  // absolute places within 10 mm of the origin
   for (int k = 1; k <= 30; ++k)
     quarter += fmt::format("G1 X{:.4f} Y{:.4f}\n", 10 * std::sin(deg_to_rad(3 * k)), 10 * std::cos(deg_to_rad(3 * k)) - 10);
-  const std::string g = "G21 G17 G90\nG0 X0 Y0\nG1 F300\no1 repeat [2]\n" + quarter + "G91 G1 Z0.2\no1 endrepeat\nG90\nM2\n";
+  const std::string g91 = "G21 G17 G90\nG0 X0 Y0\nG1 F300\no1 repeat [2]\n" + quarter + "G91 G1 Z0.2\no1 endrepeat\nG90\nM2\n";
   auto dir = rs274_folder("rs274-loop-modes");
-  test::write_file(dir / "in.ngc", g);
+  test::write_file(dir / "in.ngc", g91);
   const Rs274 original = run_rs274(dir, dir / "in.ngc");
   REQUIRE(original.exit_code == 0);
   // The second time round, rs274 reads the same words as increments: it goes far past 10 mm.
@@ -413,14 +413,27 @@ TEST_CASE("LinuxCNC's rs274 runs a loop's first moves again in the G91 its end l
     if (const size_t open = line.find("STRAIGHT_FEED("); open != std::string::npos)
       farthest_mm = std::max(farthest_mm, std::abs(args_of(line, open + 13).at(0)));
   CHECK(farthest_mm > 50);
-  // No one output of those words runs both paths: refused.
-  CompressOptions opt;
-  opt.dialect = load_dialect_file(ARCPRESS_SOURCE_DIR "/dialects/linuxcnc.toml");
-  DiagnosticSink sink;
-  CHECK_FALSE(compress("loop.ngc", g, opt, sink).ok);
-  CHECK(std::any_of(sink.all().begin(), sink.all().end(), [](const Diagnostic& d) { return d.code == "E-FLOW-LOOP-MODES"; }));
-  // With G90 stated at the loop's start, both passes are the quarter circle, fitted as rs274 reads it.
-  std::string stated = g;
+  // A loop that ends in G18: the same moves, in XY the first time, are the lines of the XZ
+  // plane after; an arc fitted in XY would be one in XZ (J read in the XZ plane, which rs274
+  // refuses).
+  const std::string g18 = "G21 G17 G90\nG0 X0 Y0 Z0\nG1 F300\n#1=0\no2 do\n" + quarter + "G18\n#1=[#1+1]\no2 while [#1 LT 2]\nM2\n";
+  // No one output of those words runs both passes: they are written as they are, and rs274
+  // runs the output as it runs the input.
+  for (const auto& [g, tag] : {std::pair{g91, "rs274-loop-g91"}, std::pair{g18, "rs274-loop-g18"}}) {
+    INFO(tag);
+    CHECK(check_read_alike(g, tag).stats.arcs_out == 0);
+    CompressOptions opt;
+    opt.dialect = load_dialect_file(ARCPRESS_SOURCE_DIR "/dialects/linuxcnc.toml");
+    DiagnosticSink sink;
+    CHECK(compress("loop.ngc", g, opt, sink).ok);
+    CHECK(std::any_of(sink.all().begin(), sink.all().end(), [](const Diagnostic& d) { return d.code == "W-FLOW-LOOP-MODES"; }));
+  }
+  // With the modes stated at the loop's start, both passes are the quarter circle, fitted as
+  // rs274 reads it.
+  std::string stated = g91;
   stated.insert(stated.find("o1 repeat [2]\n") + 14, "G90\n");
-  CHECK(check_read_alike(stated, "rs274-loop-modes").stats.arcs_out >= 1);
+  CHECK(check_read_alike(stated, "rs274-loop-g90").stats.arcs_out >= 1);
+  std::string planed = g18;
+  planed.insert(planed.find("o2 do\n") + 6, "G17\n");
+  CHECK(check_read_alike(planed, "rs274-loop-g17").stats.arcs_out >= 1);
 }

@@ -49,11 +49,21 @@ bool m_code_is(std::string_view text, size_t j, size_t end, unsigned code) {
   return v == code && (j >= end || !is_digit(text[j]));
 }
 
+/// Whether text[i, end) begins with keyword `word` (upper case), in any case, not followed by
+/// a letter.
+bool keyword_at(std::string_view text, size_t i, size_t end, std::string_view word) {
+  if (end - i < word.size()) return false;
+  for (size_t j = 0; j < word.size(); ++j)
+    if (upper(text[i + j]) != word[j]) return false;
+  return i + word.size() == end || !is_letter(text[i + word.size()]);
+}
+
 /// The jumps in the line text[start, end): `add(number, at, call)` for a block number named
-/// (`call`: by a call, which returns), `add_computed(at)` for a computed one. Returns whether
-/// the line ends a program (M2, M30, M99).
+/// (`call`: by a call, which returns), `add_computed(at)` for a computed one; `loops` set where
+/// it opens or ends a loop of blocks (`do`, `DO1`, `while`, `repeat`). Returns whether the line
+/// ends a program (M2, M30, M99).
 template <class Add, class AddComputed>
-bool read_line(std::string_view text, size_t start, size_t end, Add& add, AddComputed& add_computed) {
+bool read_line(std::string_view text, size_t start, size_t end, Add& add, AddComputed& add_computed, bool& loops) {
   char jump_m = 0;      // M97 ('7') or M99 ('9')
   bool call_m = false;  // M98
   bool ends = false;
@@ -84,6 +94,12 @@ bool read_line(std::string_view text, size_t start, size_t end, Add& add, AddCom
         i = j - 1;
         break;
       }
+      case 'D': case 'd':  // `do`, `DO1`
+        loops = loops || (starts && i + 1 < end && upper(text[i + 1]) == 'O' &&
+                          (i + 2 == end || is_digit(text[i + 2]) || text[i + 2] == ' ' || text[i + 2] == '\t' || text[i + 2] == '\r'));
+        break;
+      case 'W': case 'w': loops = loops || (starts && keyword_at(text, i, end, "WHILE")); break;
+      case 'R': case 'r': loops = loops || (starts && keyword_at(text, i, end, "REPEAT")); break;
       case 'M': case 'm': {
         if (!starts) break;
         size_t j = i + 1;
@@ -122,7 +138,8 @@ std::optional<uint64_t> jump_named(std::string_view line) {
     if (!call && !named) named = number;
   };
   auto add_computed = [](size_t) {};
-  read_line(line, 0, line.size(), add, add_computed);
+  bool loops = false;
+  read_line(line, 0, line.size(), add, add_computed, loops);
   return named;
 }
 
@@ -149,26 +166,28 @@ size_t JumpTargets::read(std::string_view text, uint32_t first_line, const Passe
     if (!late_ && !computed_ && passed && passed->any()) late_ = Late{line, 0, true};
     computed_ = true;
   };
-  // Only a line with an M or an O (of GOTO), either case, can hold a jump: those are found
-  // by memchr, a byte at a time only in such lines.
-  constexpr char kKeys[4] = {'M', 'm', 'O', 'o'};
-  size_t next[4];
+  // Only a line with an M or an O (of GOTO), either case, can hold a jump, and a loop only
+  // one with an O (LinuxCNC's O-words, Fanuc's DO1) or RepRapFirmware's `while`: those are
+  // found by memchr, a byte at a time only in such lines.
+  constexpr int kKeyCount = 5;
+  constexpr char kKeys[kKeyCount] = {'M', 'm', 'O', 'o', 'w'};
+  size_t next[kKeyCount];
   const size_t n = text.size();
   auto find = [&](int k, size_t from) {
     const void* hit = from < n ? std::memchr(text.data() + from, kKeys[k], n - from) : nullptr;
     next[k] = hit ? size_t(static_cast<const char*>(hit) - text.data()) : n;
   };
-  for (int k = 0; k < 4; ++k) find(k, 0);
+  for (int k = 0; k < kKeyCount; ++k) find(k, 0);
   for (size_t from = 0;;) {
-    const size_t at = *std::min_element(next, next + 4);
+    const size_t at = *std::min_element(next, next + kKeyCount);
     if (at >= n) break;
     const size_t start = at == 0 ? 0 : text.rfind('\n', at - 1) + 1;  // (npos + 1 is 0)
     size_t end = text.find('\n', at);
     if (end == std::string_view::npos) end = n;
-    if (start >= from && read_line(text, start, end, add, add_computed) && ended == std::string_view::npos)
+    if (start >= from && read_line(text, start, end, add, add_computed, loops_) && ended == std::string_view::npos)
       ended = std::min(end + 1, n);
     from = end + 1;
-    for (int k = 0; k < 4; ++k)
+    for (int k = 0; k < kKeyCount; ++k)
       if (next[k] < from) find(k, from);
   }
   for (auto [list, size] : {std::pair{&numbers_, before}, std::pair{&jumped_, jumped_before}})
@@ -182,6 +201,7 @@ size_t JumpTargets::read(std::string_view text, uint32_t first_line, const Passe
 void JumpTargets::merge(const JumpTargets& other) {
   if (!late_) late_ = other.late_;
   computed_ = computed_ || other.computed_;
+  loops_ = loops_ || other.loops_;
   for (auto [to, from] : {std::pair{&numbers_, &other.numbers_}, std::pair{&jumped_, &other.jumped_}}) {
     if (from->empty()) continue;
     to->insert(to->end(), from->begin(), from->end());

@@ -42,15 +42,20 @@ class JumpTargets {
   /// `M98 P.. Qn` (a call of a program from its block n, Mitsubishi's and Okuma's). A
   /// number computed by the program (`GOTO #1`, `M99 P#5`) may be any block's. A jump to a
   /// label (`GOTOB LOOP1`) names no number: a label's line is one arcpress does not read.
-  /// Comments and quoted text are skipped. With `passed`, a jump to a block among them is
+  /// Comments and quoted text are skipped. A line that opens or ends a loop of blocks
+  /// (`do`, `DO1`, `while`, `repeat`) is noted too (loops()). With `passed`, a jump to a block among them is
   /// noted as late(). Returns where in `text` the first line holding a program end (M2, M30,
   /// M99) ends, after which a file holds the subprograms its calls run, else npos.
   size_t read(std::string_view text, uint32_t first_line, const PassedNumbers* passed = nullptr);
   /// Adds the targets of `other` (and its late jump, if this has none).
   void merge(const JumpTargets& other);
 
-  /// Whether a jump names some block, or a computed one any.
-  bool any() const { return computed_ || !numbers_.empty(); }
+  /// Whether a jump names some block, a computed one any, or the program has loops of
+  /// blocks (`WHILE [..] DO1`, `o1 do`, `while`), which run their first lines again: whether
+  /// its flow goes elsewhere than the next line.
+  bool any() const { return computed_ || loops_ || !numbers_.empty(); }
+  /// Whether the program has loops of blocks.
+  bool loops() const { return loops_; }
   /// Whether a jump may enter the block numbered `n` (the value of its N word).
   bool enters(double n) const;
   /// Whether only calls enter it (M97 Pn, M98 P.. Qn), which return: no jump (GOTO, M99 P) does.
@@ -68,6 +73,7 @@ class JumpTargets {
   std::vector<uint64_t> numbers_;  // sorted, each once
   std::vector<uint64_t> jumped_;   // ... those a jump names, not only a call
   bool computed_ = false;
+  bool loops_ = false;
   std::optional<Late> late_;
 };
 

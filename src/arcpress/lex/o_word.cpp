@@ -98,7 +98,7 @@ OWord read_o_word(std::string_view line) {
       {"SUB", K::Sub},        {"ENDSUB", K::EndSub}, {"RETURN", K::Return}, {"CALL", K::Call},
       {"IF", K::If},          {"ELSEIF", K::ElseIf}, {"ELSE", K::Else},     {"ENDIF", K::EndIf},
       {"WHILE", K::While},    {"ENDWHILE", K::EndWhile}, {"DO", K::Do},     {"REPEAT", K::Repeat},
-      {"ENDREPEAT", K::EndRepeat}};
+      {"ENDREPEAT", K::EndRepeat}, {"CONTINUE", K::Continue}};
   for (const auto& [name, kind] : kKeywords)
     if (is(name)) w.kind = kind;
   return w;

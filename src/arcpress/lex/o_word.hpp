@@ -10,7 +10,7 @@ namespace arcpress {
 struct OWord {
   enum class Kind : uint8_t {
     Other, Sub, EndSub, Return, Call,
-    If, ElseIf, Else, EndIf, While, EndWhile, Do, Repeat, EndRepeat  ///< (a While may end a Do)
+    If, ElseIf, Else, EndIf, While, EndWhile, Do, Repeat, EndRepeat, Continue  ///< (a While may end a Do)
   };
   Kind kind = Kind::Other;
   /// The label (`100`, `<name>` in any case), hashed: two lines name one subroutine where

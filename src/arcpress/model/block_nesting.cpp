@@ -3,6 +3,8 @@
 
 #include <algorithm>
 
+#include "arcpress/model/subroutines.hpp"
+
 namespace arcpress {
 
 int32_t BlockNesting::indent_of(std::string_view line) {
@@ -17,16 +19,25 @@ int32_t BlockNesting::indent_of(std::string_view line) {
 
 namespace {
 
-/// Whether `line`, after its blanks, is RepRapFirmware's `while`.
-bool is_while(std::string_view line) {
+/// Whether `line`, after its blanks, is RepRapFirmware's keyword `word` (`while`, `continue`).
+bool is_keyword(std::string_view line, std::string_view word) {
   const size_t at = line.find_first_not_of(" \t");
-  if (at == std::string_view::npos || line.substr(at, 5) != "while") return false;
-  return at + 5 == line.size() || line[at + 5] == ' ' || line[at + 5] == '\t' || line[at + 5] == '\r';
+  if (at == std::string_view::npos || line.substr(at, word.size()) != word) return false;
+  const size_t end = at + word.size();
+  return end == line.size() || line[end] == ' ' || line[end] == '\t' || line[end] == '\r';
 }
 
 }  // namespace
 
-BlockNesting::Join BlockNesting::line(std::string_view line, bool opens, uint8_t mode) {
+uint8_t BlockNesting::differing(const Modes& a, const Modes& b) {
+  return uint8_t((a.plane != b.plane ? kStatesPlane : 0) | (a.units != b.units ? kStatesUnits : 0) |
+                 (a.distance != b.distance ? kStatesDistance : 0) | (a.motion != b.motion ? kStatesMotion : 0) |
+                 ((a.unstated ^ b.unstated) & (kStatesPlane | kStatesUnits)));
+}
+
+bool BlockNesting::leaves_block(std::string_view line) { return is_keyword(line, "break") || is_keyword(line, "continue"); }
+
+BlockNesting::Join BlockNesting::line(std::string_view line, bool opens, uint32_t line_number, const Modes& now) {
   const int32_t indent = indent_of(line);
   if (indent < 0) return {};
   const uint16_t d = uint16_t(indent);
@@ -34,33 +45,35 @@ BlockNesting::Join BlockNesting::line(std::string_view line, bool opens, uint8_t
   if (d < last_indent) {
     uint8_t closed = 0;
     while (depth > 0 && levels[depth - 1].indent > d) {
-      if (!levels[depth - 1].plain) closed |= levels[depth - 1].changed;  // (an outer level's holds the inner's)
-      j.loop_modes = j.loop_modes || runs_again_otherwise(levels[depth - 1], mode);
+      if (!levels[depth - 1].plain)
+        closed |= uint8_t(levels[depth - 1].changed | differing(levels[depth - 1].at_open, now) << 1);
+      j.back_to(levels[depth - 1].loop);
       levels[--depth] = Level{};
     }
     j.position = (closed & kMoved) != 0;
-    j.distance = (closed & kDistance) != 0;
+    j.modes = uint8_t(closed >> 1);
   }
   if (d > (depth > 0 ? levels[depth - 1].indent : 0)) {
     if (depth < kMostLevels)
-      levels[depth++] = Level{d, 0, false, 0, !last_opens, uint8_t(last_loops ? 1 + mode : 0)};
+      levels[depth++] = Level{d, 0, false, 0, !last_opens, last_loop, now}, j.loop_entered = last_loop;
     else  // merged: it keeps what changed since the outer block began, and is a block where either is
       levels[depth - 1].indent = d, levels[depth - 1].plain = levels[depth - 1].plain && !last_opens;
   }
+  if (opens && is_keyword(line, "continue")) j.back_to(loop_of(0));
   last_indent = d;
   last_opens = opens;
-  last_loops = opens && is_while(line);
+  last_loop = opens && is_keyword(line, "while") ? line_number : 0;
   return j;
 }
 
-void BlockNesting::open(uint32_t label, bool do_loop, bool loop, uint8_t mode) {
+void BlockNesting::open(uint32_t label, bool do_loop, uint32_t loop_line, const Modes& now) {
   if (depth < kMostLevels)
-    levels[depth++] = Level{0, 0, do_loop, label, false, uint8_t(loop ? 1 + mode : 0)};
+    levels[depth++] = Level{0, 0, do_loop, label, false, loop_line, now};
   else
     levels[depth - 1].label = label, levels[depth - 1].do_loop = do_loop;  // merged, as in line()
 }
 
-BlockNesting::Join BlockNesting::close(uint32_t label, uint8_t mode) {
+BlockNesting::Join BlockNesting::close(uint32_t label, const Modes& now) {
   uint32_t k = depth;
   while (k > 0 && levels[k - 1].label != label) --k;
   if (k == 0) {
@@ -68,21 +81,20 @@ BlockNesting::Join BlockNesting::close(uint32_t label, uint8_t mode) {
     if (depth == 0) return {};
     k = depth;
   }
-  const uint8_t closed = levels[k - 1].changed;  // (the outer level's holds the inner's)
-  bool loop_modes = false;
-  for (uint32_t at = k - 1; at < depth; ++at) loop_modes = loop_modes || runs_again_otherwise(levels[at], mode);
+  Join j;
+  uint8_t closed = 0;
+  for (uint32_t at = k - 1; at < depth; ++at) closed |= uint8_t(levels[at].changed | differing(levels[at].at_open, now) << 1);
+  j.position = (closed & kMoved) != 0;
+  j.modes = uint8_t(closed >> 1);
+  for (uint32_t at = depth; at-- > k - 1;) j.back_to(levels[at].loop);
   while (depth >= k) levels[--depth] = Level{};
-  return {(closed & kMoved) != 0, (closed & kDistance) != 0, loop_modes};
+  return j;
 }
 
-bool BlockNesting::runs_again_otherwise(const Level& l, uint8_t mode) {
-  return l.loop != 0 && (l.changed & kEarly) && (mode != l.loop - 1 || mode == kUnknownMode);
-}
-
-const char* BlockNesting::loop_modes_problem() {
-  return "a loop ends here in another distance mode (G90 or G91) than the one the moves at its start, before its "
-         "first G90 or G91, were read in: run again, they read their words otherwise; state G90 or G91 at the "
-         "loop's start";
+uint32_t BlockNesting::loop_of(uint32_t label) const {
+  for (uint32_t k = depth; k-- > 0;)
+    if (levels[k].loop != 0 && (label == 0 || levels[k].label == label)) return levels[k].loop;
+  return 0;
 }
 
 }  // namespace arcpress

@@ -8,7 +8,10 @@
 // `break`. What any line between may have changed is not known there. LinuxCNC's O-word
 // blocks (`o101 if` .. `o101 endif`, `while`, `do`, `repeat`) are such blocks too, opened and
 // closed by their lines instead of by blanks. A loop (`while`, `do`, `repeat`) also runs its
-// first lines again in the distance mode its last leave.
+// first lines again in the modes its last leave: its start is an entry, and its end (or a
+// `continue`) a jump back to it (model/jump_entries.hpp), both named by the line that opens it.
+// The modes after a block are known where they are the same on every way out of it: where it
+// began, where it ends, and at every line of flow control in it (a `break`, a `return`).
 #include <array>
 #include <cstdint>
 #include <string_view>
@@ -16,17 +19,38 @@
 namespace arcpress {
 
 struct BlockNesting {
+  /// Blocks open more deeply than this are merged into the deepest one kept, which
+  /// joins at least where they would.
+  static constexpr uint32_t kMostLevels = 8;
+  /// The modes a block's ways out are compared in (ModalState::modes()).
+  struct Modes {
+    uint8_t plane = 0;
+    uint8_t units = 0;     ///< 1: mm; 2: inch
+    uint8_t distance = 0;  ///< 1: G90; 2: G91; 3: not known
+    uint8_t unstated = 0;  ///< kStatesPlane, kStatesUnits not known (ModalState::unstated)
+    int16_t motion = 0;    ///< ModalState::motion
+    bool operator==(const Modes&) const = default;
+  };
+  /// kStates* (model/subroutines.hpp) of the modes that differ between `a` and `b`.
+  static uint8_t differing(const Modes& a, const Modes& b);
+
   /// What may differ at a line entered from both ends of the blocks it closes.
   struct Join {
     bool position = false;  ///< a move, or a change of the known axes, frame or offsets
-    bool distance = false;  ///< G90 or G91 (or whether it is known)
-    /// A loop closes whose lines before its first G90 or G91 moved, and which leaves another
-    /// distance mode than the one they were read in: run again, they read their words otherwise.
-    bool loop_modes = false;
+    /// kStates* (model/subroutines.hpp) of the modes a line in the blocks changed: G90 or G91
+    /// (or whether it is known), the plane, the units, the modal motion.
+    uint8_t modes = 0;
+    /// The loops that jump back from here to their start, by the lines that open them: those
+    /// that end, innermost first, or the one a `continue` runs again.
+    std::array<uint32_t, kMostLevels> loops_back{};
+    uint8_t loops_back_count = 0;
+    /// The loop whose first lines begin after this line, by the line that opens it.
+    uint32_t loop_entered = 0;
+    /// Adds loop `loop` (a line; 0: none) to those this jumps back to.
+    void back_to(uint32_t loop) {
+      if (loop != 0 && loops_back_count < loops_back.size()) loops_back[loops_back_count++] = loop;
+    }
   };
-  /// The distance mode, as line() and open() take it.
-  static constexpr uint8_t kAbsolute = 0, kIncremental = 1, kUnknownMode = 2;
-  static uint8_t mode_of(bool absolute, bool unknown) { return unknown ? kUnknownMode : absolute ? kAbsolute : kIncremental; }
 
   /// Reads the leading blanks of `line` (a block's raw text) before the block is read:
   /// what may differ at it where it closes blocks. Blank lines and indented comment lines
@@ -34,55 +58,58 @@ struct BlockNesting {
   /// next multiple of 4, as the firmware counts. `opens`: the line is flow control (`if`,
   /// `else`, `while`, or any line the interpreter does not read as code), whose deeper lines
   /// are its block; lines indented deeper after any other line are a plain block, which runs
-  /// once, in order, and whose end joins nothing. A `while`'s block is a loop. `mode`: the
-  /// distance mode before the line.
-  Join line(std::string_view line, bool opens, uint8_t mode = kAbsolute);
-  /// An O-word block labelled `label` opens (`do_loop`: a `do`, which a `while` ends; `loop`: a
-  /// loop, entered in distance mode `mode`).
-  void open(uint32_t label, bool do_loop, bool loop = false, uint8_t mode = kAbsolute);
-  /// The O-word block labelled `label` ends (and those opened in it), in distance mode `mode`:
-  /// what may differ after it. Where none is open with that label, nothing is known to end.
-  Join close(uint32_t label, uint8_t mode = kAbsolute);
+  /// once, in order, and whose end joins nothing. A `while`'s block is a loop; a `continue`
+  /// in one runs it again. `line_number`: the line's; `now`: the modes before it.
+  Join line(std::string_view line, bool opens, uint32_t line_number, const Modes& now);
+  /// An O-word block labelled `label` opens in modes `now` (`do_loop`: a `do`, which a
+  /// `while` ends; `loop_line`: a loop's, the line opening it; 0: no loop).
+  void open(uint32_t label, bool do_loop, uint32_t loop_line, const Modes& now);
+  /// The O-word block labelled `label` ends (and those opened in it), in modes `now`: what may
+  /// differ after it. Where none is open with that label, nothing is known to end.
+  Join close(uint32_t label, const Modes& now);
+  /// A line of flow control that may leave the open blocks (a `break`, a `return`, a `GOTO`:
+  /// any, to be sure) is read in modes `now`.
+  void way_out(const Modes& now) {
+    for (uint32_t k = 0; k < depth; ++k)
+      if (!levels[k].plain) levels[k].changed |= uint8_t(differing(levels[k].at_open, now) << 1);
+  }
+  /// Whether `line` is RepRapFirmware's `break` or `continue`, which leave their loop's block
+  /// at once (a line of flow control the firmware goes on from elsewhere than the next).
+  static bool leaves_block(std::string_view line);
+  /// The line opening the innermost loop open labelled `label` (any label where `label` is
+  /// 0), which a `continue` runs again; 0 where none is open.
+  uint32_t loop_of(uint32_t label) const;
   /// Whether the innermost open block is a `do` labelled `label`.
   bool in_do(uint32_t label) const { return depth > 0 && levels[depth - 1].label == label && levels[depth - 1].do_loop; }
   /// The indent of `line` as the firmware counts it (a space 1, a tab to the next multiple of
   /// 4), or -1 where the line counts for nothing (blank, or an indented `;` comment).
   static int32_t indent_of(std::string_view line);
-  /// After a block: what it changed, for every block open around it; whether it moved, and
-  /// whether it stated G90 or G91 (which holds for the rest of the innermost block).
-  void changed(bool position, bool distance, bool moved = false, bool stated = false) {
-    const uint8_t bits = uint8_t((position ? kMoved : 0) | (distance ? kDistance : 0));
-    if (stated && depth > 0) levels[depth - 1].changed |= kStated;
-    for (uint32_t k = 0; k < depth; ++k)
-      levels[k].changed |= uint8_t(bits | (moved && !(levels[k].changed & kStated) ? kEarly : 0));
+  /// After a block that changed the position (a move, or a change of the known axes, frame
+  /// or offsets), for every block open around it.
+  void moved() {
+    for (uint32_t k = 0; k < depth; ++k) levels[k].changed |= kMoved;
   }
 
   bool operator==(const BlockNesting&) const = default;
 
-  /// kMoved, kDistance: what the block's lines changed; kStated: one of its own lines stated
-  /// G90 or G91; kEarly: a line moved before that.
-  static constexpr uint8_t kMoved = 1, kDistance = 2, kStated = 4, kEarly = 8;
-  /// Blocks open more deeply than this are merged into the deepest one kept, which
-  /// joins at least where they would.
-  static constexpr uint32_t kMostLevels = 8;
+  /// kMoved: the block's lines changed the position; above it, the kStates* of the modes that
+  /// differ on a way out (way_out()).
+  static constexpr uint8_t kMoved = 1;
   struct Level {
     uint16_t indent = 0;
-    uint8_t changed = 0;  ///< kMoved | kDistance | kStated | kEarly since the level's first line
+    uint8_t changed = 0;  ///< kMoved | the modes differing on a way out << 1, since the level's first line
     bool do_loop = false;
     uint32_t label = 0;   ///< an O-word block's (OWord::label); 0 for a block of blanks
     bool plain = false;   ///< deeper blanks after a line that is no flow control (line())
-    uint8_t loop = 0;     ///< a loop's: 1 + the distance mode it was entered in; 0 no loop
+    uint32_t loop = 0;    ///< a loop's: the line opening it; 0 no loop
+    Modes at_open;        ///< the modes it was entered in
     bool operator==(const Level&) const = default;
   };
-  /// What is said where a loop closes whose lines run again otherwise than read (Join::loop_modes).
-  static const char* loop_modes_problem();
-  /// Whether loop `l`, ending in distance mode `mode`, runs lines read in another again.
-  static bool runs_again_otherwise(const Level& l, uint8_t mode);
   std::array<Level, kMostLevels> levels{};
   uint32_t depth = 0;        ///< levels open (indented past 0)
   uint16_t last_indent = 0;  ///< of the last line read that counts
   bool last_opens = false;   ///< that line is flow control
-  bool last_loops = false;   ///< that line is a `while`
+  uint32_t last_loop = 0;    ///< that line is a `while`: its line number
 };
 
 }  // namespace arcpress

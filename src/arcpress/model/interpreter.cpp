@@ -263,10 +263,10 @@ class Interpreter {
             case 70: F().diameter_mode = true; break;
             case 80: F().diameter_mode = false; break;
             case 900:
-              F().absolute = true, F().e_relative = false, s_.distance_unknown = false;
+              F().absolute = true, F().e_relative = false, s_.distance_unknown = false, entry_stated(kStatesDistance);
               if (s_.floating) forget(s_.floating, Unfit::UnknownAtEntry, bi);
               break;
-            case 910: F().absolute = false; F().e_relative = true; s_.distance_unknown = false; break;
+            case 910: F().absolute = false, F().e_relative = true, s_.distance_unknown = false, entry_stated(kStatesDistance); break;
             case 901: F().arc_absolute = true, s_.centre_told = true; break;
             case 911: F().arc_absolute = false, s_.centre_told = true; break;
             case 920: g92 = true; axis_consumer = true; break;
@@ -447,7 +447,7 @@ class Interpreter {
       }
     }
     if (fedit) set_frame(*fedit);
-    if (motion >= 0) s_.motion = motion, s_.entry_pending &= uint8_t(~kStatesMotion);
+    if (motion >= 0) s_.motion = motion, entry_stated(kStatesMotion);
     if (d_.centre_modal && (ijk_seen[0] || ijk_seen[1] || ijk_seen[2] || (own & kOwnPole)))
       set_pole(s_, ijk, ijk_seen, own & kOwnPole);
 
@@ -615,7 +615,8 @@ class Interpreter {
               : !(moved_xyz || target == s_.pos) ? Unfit::NoPathAxis
                                               : Unfit::None;
     if (cycle_here && m.unfit == Unfit::None) m.unfit = Unfit::CycleCall;
-    if (s_.entry_pending && m.known && is_feed(kind)) [[unlikely]] note_entry_use(s_);
+    if (s_.entry_pending && m.end_known) [[unlikely]]  // (a rapid places the moves after it)
+      note_entry_use(s_, m.known && is_feed(kind) ? kStatesAll : kStatesUnits | kStatesDistance);
     if (!m.known && is_feed(kind)) o_->unplaced.push_back({uint32_t(o_->moves.size() - 1), s_.cause_line});
     s_.pos = target;
     const bool known_changed = known_after != s_.known;
@@ -650,36 +651,37 @@ class Interpreter {
     if (end_read_) program_end(bi);
   }
 
-  /// Block `bi` is entered both from where a block ended and from where it began (BlockNesting).
-  void join(BlockNesting::Join j, uint32_t bi) {
+  /// Block `bi` jumps back to loops' starts, joins the ways out of blocks, or begins a loop (BlockNesting).
+  void join(const BlockNesting::Join& j, uint32_t bi) {
+    for (uint32_t k = 0; k < j.loops_back_count; ++k) loop_back(s_, j.loops_back[k], p_->blocks[bi].line, sink_);
     if (j.position) forget(kAllAxes & ~(1u << kE), Unfit::UnknownAtEntry, bi);
-    s_.distance_unknown |= j.distance;
-    if (j.loop_modes) sink_.error({p_->blocks[bi].line, 1}, "E-FLOW-LOOP-MODES", BlockNesting::loop_modes_problem());
+    s_.forget_modes(j.modes);
+    if (j.loop_entered) enter_loop(s_, j.loop_entered);
   }
 
   /// Block `bi` inside blocks (BlockNesting), or where blanks open and close them: what it
   /// changes, the blocks around it did; where it closes some, what they changed is not known.
   [[gnu::noinline]] void nested_step(uint32_t bi) {
     const Block& b = p_->blocks[bi];
-    const uint8_t mode = BlockNesting::mode_of(s_.frame.absolute, s_.distance_unknown);
-    if (d_.indented_blocks) join(s_.nesting.line(p_->raw(b), b.kind != BlockKind::Code && b.kind != BlockKind::Empty, mode), bi);
+    const BlockNesting::Modes now = s_.modes();
+    const std::string_view raw = p_->raw(b);
+    if (d_.indented_blocks) join(s_.nesting.line(raw, b.kind != BlockKind::Code && b.kind != BlockKind::Empty, b.line, now), bi);
+    if (b.kind == BlockKind::Control || b.kind == BlockKind::Macro || (d_.indented_blocks && BlockNesting::leaves_block(raw)))
+      s_.nesting.way_out(now);
     const uint32_t known = s_.known;
     const size_t frames = o_->frames.size();
-    const bool absolute = s_.frame.absolute, distance_unknown = s_.distance_unknown;
     block(bi, b);
     if (end_read_ || call_read_) after_block(bi);
-    const bool moved = o_->move_of_block[bi] >= 0;
-    s_.nesting.changed(moved || s_.known != known || o_->frames.size() != frames,
-                       s_.frame.absolute != absolute || s_.distance_unknown != distance_unknown, moved,
-                       s_.nesting.depth > 0 && (modes_stated(*p_, b, d_) & kStatesDistance));
+    if (o_->move_of_block[bi] >= 0 || s_.known != known || o_->frames.size() != frames) s_.nesting.moved();
   }
 
-  void stated(uint8_t mode) { s_.stated |= mode, s_.unstated &= uint8_t(~mode), s_.entry_pending &= uint8_t(~mode); }
+  void stated(uint8_t mode) { s_.stated |= mode, s_.unstated &= uint8_t(~mode), entry_stated(mode); }
+  void entry_stated(uint8_t mode) { s_.entry_pending & mode ? note_entry_stated(s_, mode) : void(); }
 
   /// LinuxCNC's O-word line `b` (block `bi`), followed as model/o_word_flow.hpp says.
   [[gnu::noinline]] void o_word_line(uint32_t bi, const Block& b) {
     Frame f = s_.frame;
-    const OWordFlow flow = follow_o_word(s_, read_o_word(p_->raw(b)), f);
+    const OWordFlow flow = follow_o_word(s_, read_o_word(p_->raw(b)), f, b.line);
     if (flow.enters_body) enter(bi, false), s_.motion = -1;
     if (flow.after_call) forget(kAllAxes & ~(1u << kE), Unfit::UnknownAtEntry, bi);  // one place: G91 floats
     join(flow.join, bi);

@@ -20,18 +20,25 @@ JumpEntries::Modes modes_of(const ModalState& s, const Frame& frame) {
   JumpEntries::Modes m;
   m.planes = (s.unstated & kStatesPlane) ? 8 : uint8_t(1u << int(s.plane));
   m.units = (s.unstated & kStatesUnits) ? 4 : frame.unit_mm == 1.0 ? 1 : 2;
+  m.distance = s.distance_unknown ? 4 : frame.absolute ? 1 : 2;
   m.motion = int16_t(s.motion);
   return m;
 }
 
-/// Entry `number` of `s`'s entries, made where there is none; entries other states share are
-/// copied first.
-JumpEntries::Entry& entry_of(ModalState& s, uint64_t number) {
+/// `s`'s entries, its own: copied first where other states share them.
+JumpEntries& own_entries(ModalState& s) {
   // (A state no other shares is changed in place: one copy per piece, not one per jump.)
   std::shared_ptr<JumpEntries> copy = !s.jump_entries              ? std::make_shared<JumpEntries>()
                                       : s.jump_entries.use_count() == 1 ? std::const_pointer_cast<JumpEntries>(s.jump_entries)
                                                                         : std::make_shared<JumpEntries>(*s.jump_entries);
-  auto& list = copy->entries;
+  JumpEntries& own = *copy;
+  s.jump_entries = std::move(copy);
+  return own;
+}
+
+/// Entry `number` of `s`'s entries, made where there is none.
+JumpEntries::Entry& entry_of(ModalState& s, uint64_t number) {
+  auto& list = own_entries(s).entries;
   auto at = std::lower_bound(list.begin(), list.end(), number,
                              [](const JumpEntries::Entry& e, uint64_t n) { return e.number < n; });
   if (at == list.end() || at->number != number) {
@@ -39,9 +46,7 @@ JumpEntries::Entry& entry_of(ModalState& s, uint64_t number) {
     e.number = number;
     at = list.insert(at, e);
   }
-  JumpEntries::Entry& e = *at;
-  s.jump_entries = std::move(copy);
-  return e;
+  return *at;
 }
 
 const char* plane_name(uint8_t planes) {
@@ -52,6 +57,22 @@ const char* units_name(uint8_t units) { return units == 1 ? "G21" : units == 2 ?
 
 std::string motion_name(int16_t motion) {
   return motion < 0 ? std::string("a motion not known") : fmt::format("G{}", motion / 10);
+}
+
+const char* distance_name(uint8_t distance) { return distance == 1 ? "G90" : distance == 2 ? "G91" : "G90 or G91 not known"; }
+
+bool is_loop_of_blocks(uint64_t number) { return (number & JumpEntries::kLoopOfBlocks) != 0; }
+uint32_t line_of_loop(uint64_t number) { return uint32_t(number & ~JumpEntries::kLoopOfBlocks); }
+
+/// What a jump back to `number` is called where it runs lines again otherwise: `what` differs.
+std::string refused_jump(uint64_t number, const std::string& what) {
+  if (is_loop_of_blocks(number))
+    return fmt::format("the loop that begins at line {} runs its first lines again in other modes than they were "
+                       "read in ({}), which moves there depend on: state them at the loop's start",
+                       line_of_loop(number), what);
+  return fmt::format("the jump back to N{} runs the lines after it again in other modes than they were read in ({}), "
+                     "which moves there depend on: state them in block N{}",
+                     number, what, number);
 }
 
 /// A jump at line `line` to block `number` in state `s`: what differs from the modes the
@@ -73,6 +94,8 @@ std::string jump_to(ModalState& s, uint64_t number, uint32_t line) {
     differ(fmt::format("{} there, {} here", units_name(e.modes.units), units_name(here.units)));
   if ((e.used & kStatesMotion) && e.modes.motion != here.motion)
     differ(fmt::format("{} there, {} here", motion_name(e.modes.motion), motion_name(here.motion)));
+  if ((e.used & kStatesDistance) && e.modes.distance != here.distance)
+    differ(fmt::format("{} there, {} here", distance_name(e.modes.distance), distance_name(here.distance)));
   if (!what.empty() && e.refused.empty()) e.refused = what, e.refused_line = line;
   return what;
 }
@@ -82,11 +105,27 @@ std::string jump_to(ModalState& s, uint64_t number, uint32_t line) {
 void read_jump(ModalState& s, std::string_view line, uint32_t line_number, DiagnosticSink& sink) {
   if (const auto n = jump_named(line))
     if (const std::string what = jump_to(s, *n, line_number); !what.empty())
-      sink.error({line_number, 1}, "E-FLOW-LOOP-MODES",
-                 fmt::format("the jump back to N{} runs the lines after it again in other modes than they were read "
-                             "in ({}), which moves there depend on: state them in block N{}",
-                             *n, what, *n));
+      sink.error({line_number, 1}, "E-FLOW-LOOP-MODES", refused_jump(*n, what));
 }
+
+void loop_back(ModalState& s, uint32_t loop, uint32_t line_number, DiagnosticSink& sink) {
+  const uint64_t key = JumpEntries::kLoopOfBlocks | loop;
+  if (const std::string what = jump_to(s, key, line_number); !what.empty())
+    sink.error({line_number, 1}, "E-FLOW-LOOP-MODES", refused_jump(key, what));
+}
+
+namespace {
+
+/// Entry `number` is entered in state `s` (`frame`): its modes are kept, and wait for a move
+/// to use them.
+void entered(ModalState& s, const Frame& frame, JumpEntries::Entry& e) {
+  e.read = true;
+  e.modes = modes_of(s, frame);
+  e.pending = kStatesPlane | kStatesUnits | kStatesDistance | kStatesMotion;
+  s.entry_pending |= e.pending;
+}
+
+}  // namespace
 
 void enter_jumped(ModalState& s, Frame& frame, double number) {
   if (!(number >= 0) || number != std::floor(number) || number >= 1e15) return;
@@ -99,15 +138,44 @@ void enter_jumped(ModalState& s, Frame& frame, double number) {
     if (in.motion != -3 && in.motion != here.motion) s.motion = -1;
   }
   if (e.loop) s.unstated |= kStatesPlane | kStatesUnits, s.motion = -1;
-  e.read = true;
-  e.modes = modes_of(s, frame);
-  s.entry_pending = kStatesPlane | kStatesUnits | kStatesMotion;
-  s.entry_number = uint64_t(number);
+  entered(s, frame, e);
 }
 
-void note_entry_use(ModalState& s) {
-  entry_of(s, s.entry_number).used |= s.entry_pending;
-  s.entry_pending = 0;
+void enter_loop(ModalState& s, uint32_t loop) {
+  JumpEntries::Entry& e = entry_of(s, JumpEntries::kLoopOfBlocks | loop);
+  if (e.loop) s.forget_modes(kStatesAll);
+  entered(s, s.frame, e);
+}
+
+void note_entry_use(ModalState& s, uint8_t modes) {
+  uint8_t pending = 0;
+  for (JumpEntries::Entry& e : own_entries(s).entries) {
+    e.used |= e.pending & modes;
+    e.pending &= uint8_t(~modes);
+    pending |= e.pending;
+  }
+  s.entry_pending = pending;
+}
+
+void note_entry_stated(ModalState& s, uint8_t modes) {
+  uint8_t pending = 0;
+  for (JumpEntries::Entry& e : own_entries(s).entries) {
+    e.pending &= uint8_t(~modes);
+    pending |= e.pending;
+  }
+  s.entry_pending = pending;
+}
+
+std::string loop_written_as_is(const JumpEntries::Entry& e) {
+  if (is_loop_of_blocks(e.number))
+    return fmt::format("the loop that begins at line {} runs its first lines again in other modes than they were read "
+                       "in ({}): its moves are written as they are until the program states those modes (stated at "
+                       "the loop's start, they are fitted)",
+                       line_of_loop(e.number), e.refused);
+  return fmt::format("the jump back to N{0} runs the lines after it again in other modes than they were read in ({1}): "
+                     "the moves after N{0} are written as they are until the program states those modes (stated in "
+                     "block N{0}, they are fitted)",
+                     e.number, e.refused);
 }
 
 std::vector<JumpEntries::Entry> refused_loops(const ModalState& s) {

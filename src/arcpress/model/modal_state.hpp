@@ -59,10 +59,9 @@ struct ModalState {
   std::shared_ptr<const CalledPrograms> called;
   /// The modes the blocks jumps name are entered in (model/jump_entries.hpp; null: no jump yet).
   std::shared_ptr<const JumpEntries> jump_entries;
-  /// The modes (kStatesPlane, kStatesUnits, kStatesMotion) the last jump target entered,
-  /// block `entry_number`, was read in that no block has stated since and no move used yet.
+  /// The modes (kStates*) some jump target or loop entered was read in that no block has
+  /// stated since and no move used yet (JumpEntries::Entry::pending, of them all).
   uint8_t entry_pending = 0;
-  uint64_t entry_number = 0;
   /// Bit per axis: known only up to a shift the program never states. Where an entry left the
   /// position unknown, G91 moves are read from the place it stands in for: placed relative to
   /// one another, as their increments are. G90 makes such an axis unknown again.
@@ -95,6 +94,17 @@ struct ModalState {
   /// may change them (one not read), until the program states them: moves are not placed.
   uint8_t unstated = 0;
 
+  /// The modes BlockNesting compares on a block's ways out.
+  BlockNesting::Modes modes() const {
+    return {uint8_t(plane), uint8_t(frame.unit_mm == 1.0 ? 1 : 2), uint8_t(distance_unknown ? 3 : frame.absolute ? 1 : 2),
+            unstated, int16_t(motion)};
+  }
+  /// Modes `modes` (kStates*) are no longer known: a line entered on ways they differ on.
+  void forget_modes(uint8_t modes) {
+    if (modes & kStatesDistance) distance_unknown = true;
+    if (modes & kStatesMotion) motion = -1;
+    unstated |= modes & (kStatesPlane | kStatesUnits);
+  }
   /// Whether the jump entries of this and `o` agree (model/jump_entries.cpp).
   bool same_entries(const ModalState& o) const;
   /// Whether a reader in state `o` reads every following block as one in this state does:
@@ -110,7 +120,7 @@ struct ModalState {
     }
     return f.same_as(o.frame) && plane == o.plane && known == o.known && spindle == o.spindle && cycle_calls == o.cycle_calls &&
            distance_unknown == o.distance_unknown && ended == o.ended &&
-           calls == o.calls && called == o.called && same_entries(o) && entry_number == o.entry_number &&
+           calls == o.calls && called == o.called && same_entries(o) &&
            floating == o.floating && nesting == o.nesting &&
            stated == o.stated && unstated == o.unstated && (subs == o.subs || (subs && o.subs && *subs == *o.subs)) &&
            feed_known == o.feed_known && (!feed_known || feed_mm == o.feed_mm) && (!with_motion || motion == o.motion);

@@ -3,23 +3,34 @@
 
 namespace arcpress {
 
-OWordFlow follow_o_word(ModalState& s, const OWord& w, Frame& frame) {
+OWordFlow follow_o_word(ModalState& s, const OWord& w, Frame& frame, uint32_t line) {
   using K = OWord::Kind;
   BlockNesting& n = s.nesting;
-  const uint8_t mode = BlockNesting::mode_of(frame.absolute, s.distance_unknown);
+  const BlockNesting::Modes now = s.modes();
   OWordFlow flow;
   switch (w.kind) {
-    case K::If: n.open(w.label, false); break;
-    case K::Do: case K::Repeat: n.open(w.label, w.kind == K::Do, true, mode); break;
+    case K::If: n.open(w.label, false, 0, now); break;
+    case K::Do: case K::Repeat:
+      n.open(w.label, w.kind == K::Do, line, now);
+      flow.join.loop_entered = line;
+      break;
     case K::While:  // (the end of a `do`, or a loop of its own)
-      if (n.in_do(w.label)) flow.join = n.close(w.label, mode);
-      else n.open(w.label, false, true, mode);
+      if (n.in_do(w.label)) {
+        flow.join = n.close(w.label, now);
+      } else {
+        n.open(w.label, false, line, now);
+        flow.join.loop_entered = line;
+      }
       break;
     case K::ElseIf: case K::Else:  // (entered from where the `if` began, not from the branch before)
-      flow.join = n.close(w.label, mode);
-      n.open(w.label, false);
+    {
+      const BlockNesting::Modes at_if = n.depth > 0 && n.levels[n.depth - 1].label == w.label ? n.levels[n.depth - 1].at_open : now;
+      flow.join = n.close(w.label, now);
+      n.open(w.label, false, 0, at_if);
       break;
-    case K::EndIf: case K::EndWhile: case K::EndRepeat: flow.join = n.close(w.label, mode); break;
+    }
+    case K::EndIf: case K::EndWhile: case K::EndRepeat: flow.join = n.close(w.label, now); break;
+    case K::Continue: flow.join.back_to(n.loop_of(w.label)); break;
     case K::Sub:
       begin_definition(s, w.label);
       flow.enters_body = true;

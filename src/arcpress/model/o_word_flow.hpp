@@ -17,13 +17,15 @@ struct OWordFlow {
   bool enters_body = false;
   /// A call: the position is where the body ended (one place, not known).
   bool after_call = false;
-  /// The line ends blocks: what they may have changed is not known after it.
+  /// The line ends blocks (what they may have changed is not known after it), jumps back to a
+  /// loop's start, or begins a loop.
   BlockNesting::Join join;
   /// Why a call cannot run the body as it was read (E-FLOW-SUB-MODES), else empty.
   std::string problem;
 };
 
-/// O-word `w` read in state `s`, whose frame the interpreter sets from `frame` afterwards.
-OWordFlow follow_o_word(ModalState& s, const OWord& w, Frame& frame);
+/// O-word `w`, line `line`, read in state `s`, whose frame the interpreter sets from `frame`
+/// afterwards.
+OWordFlow follow_o_word(ModalState& s, const OWord& w, Frame& frame, uint32_t line);
 
 }  // namespace arcpress

@@ -52,11 +52,7 @@ LoopsFound loops_in_other_modes(const Program& program, const Dialect& dialect, 
     if (more.empty()) break;
     for (const JumpEntries::Entry& e : more) {
       found.starts.push_back(e.number);
-      found.told.push_back({Severity::Warning, {e.refused_line, 1}, "W-FLOW-LOOP-MODES",
-                            fmt::format("the jump back to N{0} runs the lines after it again in other modes than "
-                                        "they were read in ({1}): the moves after N{0} are written as they are "
-                                        "until the program states those modes (stated in block N{0}, they are fitted)",
-                                        e.number, e.refused)});
+      found.told.push_back({Severity::Warning, {e.refused_line, 1}, "W-FLOW-LOOP-MODES", loop_written_as_is(e)});
     }
     std::sort(found.starts.begin(), found.starts.end());
     found.starts.erase(std::unique(found.starts.begin(), found.starts.end()), found.starts.end());

@@ -15,7 +15,7 @@
 namespace arcpress {
 
 /// Modes a body may state, as bits.
-inline constexpr uint8_t kStatesPlane = 1, kStatesUnits = 2, kStatesDistance = 4, kStatesMotion = 8;
+inline constexpr uint8_t kStatesPlane = 1, kStatesUnits = 2, kStatesDistance = 4, kStatesMotion = 8, kStatesAll = 15;
 
 struct Subroutines {
   /// The modes before the definition being read, which hold again after it.
