@@ -130,6 +130,17 @@ TEST_CASE("a loop whose last move became an arc ends in the input's motion again
   const CompressResult kept = compress_as("reprapfirmware", text.substr(0, text.size() - 5) + "  G1 X0 Y0 E0.05\nM400\n");
   REQUIRE(kept.ok);
   CHECK(kept.output.find("\n  G1\n") == std::string::npos);
+  // So before a `break` or `continue`, after which the firmware reads the lines after the
+  // loop, or its first, in the motion left there.
+  for (const char* leave : {"break", "continue"}) {
+    const std::string left = kHead + "while iterations < 3\n  if iterations == 2\n" + quarter(0, 30, "    ") + "    " +
+                             leave + "\n  G1 X0 Y0 E0.05\nX1 Y1 E0.05\nM400\n";
+    const CompressResult r = compress_as("reprapfirmware", left);
+    REQUIRE(r.ok);
+    CHECK(r.runs_kept_as_input == 0);
+    CHECK(r.output.find("    G3 X") != std::string::npos);
+    CHECK(r.output.find(std::string("\n    G1\n    ") + leave + "\n") != std::string::npos);
+  }
 }
 
 TEST_CASE("the moves after an if block are not fitted from inside it", "[nesting]") {

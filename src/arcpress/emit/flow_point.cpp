@@ -6,6 +6,7 @@
 namespace arcpress {
 
 bool jumps_elsewhere(const Program& p, const Block& b, const Dialect& dialect) {
+  if (dialect.indented_blocks && b.kind == BlockKind::HostCommand && BlockNesting::leaves_block(p.raw(b))) return true;
   for (auto* w = p.words_begin(b); w != p.words_end(b); ++w)
     if (w->letter == 'M' && !w->is_expr) {
       const int m = w->code10();

@@ -8,7 +8,8 @@
 namespace arcpress {
 
 /// Whether block `b` of `program` calls, returns or jumps (M97, M98, M99; where `dialect`
-/// reads an M-code as a loop, M808), after which the program goes on from elsewhere.
+/// reads an M-code as a loop, M808; where it has indented blocks, RepRapFirmware's `break`
+/// and `continue`), after which the program goes on from elsewhere.
 bool jumps_elsewhere(const Program& program, const Block& b, const Dialect& dialect);
 
 /// Where block `b` of `program` ends blocks of blanks (Dialect::indented_blocks: it is indented
