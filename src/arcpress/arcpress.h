@@ -106,10 +106,11 @@ arcpress_status arcpress_push(arcpress_compressor* compressor, const char* bytes
 arcpress_status arcpress_read_jumps(arcpress_compressor* compressor, const char* bytes, size_t length,
                                     unsigned first_line);
 /* After arcpress_read_jumps() of the whole program: the whole program once more, read ahead
- * for its loops (GOTO, M99 P) whose jump back would run their first moves in another plane,
- * units or motion than they were read in. Their moves are then written as they are (a
+ * for its loops (GOTO, M99 P; WHILE [..] DO1 .. END1, o1 do .. o1 while, RepRapFirmware's
+ * while) whose end would run their first moves in another plane, units, motion or G90/G91
+ * than they were read in. Their moves are then written as they are (a
  * W-FLOW-LOOP-MODES warning); without it, such a loop fails the push that brings its jump
- * (ARCPRESS_BAD_INPUT, E-FLOW-LOOP-MODES). Does nothing where the program has no jump. */
+ * (ARCPRESS_BAD_INPUT, E-FLOW-LOOP-MODES). Does nothing where the program has neither jump nor loop. */
 arcpress_status arcpress_read_loops(arcpress_compressor* compressor, const char* bytes, size_t length);
 /* The output finished since the last take, in order; *text is not NUL-terminated. */
 arcpress_status arcpress_take(arcpress_compressor* compressor, const char** text, size_t* length);

@@ -76,14 +76,15 @@ class Compressor {
   /// text after the program's first end is kept for the subprograms written there
   /// (read_called_programs()), whose modes hold after their calls.
   void read_jumps(std::string_view lines, uint32_t first_line);
-  /// Whether read_jumps() found a jump or a call of a numbered block.
+  /// Whether read_jumps() found a jump, a call of a numbered block, or a loop of blocks
+  /// (`WHILE [..] DO1`, `o1 do`, RepRapFirmware's `while`).
   bool has_jumps() const;
   /// After read_jumps() of the whole program: reads `program`, all of it, once ahead as
-  /// push() will, for the loops whose jump back would run their first moves in other modes
-  /// than they were read in. push() then reads those loops' starts with the plane, units and
-  /// motion not known, and writes the moves after them as they are until the program states
+  /// push() will, for the loops (by a jump back, or of blocks) whose end would run their first
+  /// moves in other modes than they were read in. push() then reads those loops' starts with
+  /// the plane, units, motion (and for loops of blocks G90 or G91) not known, and writes the moves after them as they are until the program states
   /// those (a warning, W-FLOW-LOOP-MODES), where it would otherwise fail the program
-  /// (E-FLOW-LOOP-MODES). Nothing where read_jumps() found no jump, or for a program over
+  /// (E-FLOW-LOOP-MODES). Nothing where has_jumps() is false, or for a program over
   /// kLoopsAheadBytes (read twice more, it would hold that much memory at once).
   void read_loops(std::string_view program);
   static constexpr size_t kLoopsAheadBytes = size_t(64) << 20;
