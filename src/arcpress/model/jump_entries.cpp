@@ -121,7 +121,10 @@ namespace {
 void entered(ModalState& s, const Frame& frame, JumpEntries::Entry& e) {
   e.read = true;
   e.modes = modes_of(s, frame);
-  e.pending = kStatesPlane | kStatesUnits | kStatesDistance | kStatesMotion;
+  auto& waiting = own_entries(s).waiting;
+  for (uint32_t k = 0; k < waiting.size(); ++k)
+    if (!(e.pending & (1u << k))) waiting[k].push_back(e.number);
+  e.pending = kStatesAll;
   s.entry_pending |= e.pending;
 }
 
@@ -147,24 +150,32 @@ void enter_loop(ModalState& s, uint32_t loop) {
   entered(s, s.frame, e);
 }
 
-void note_entry_use(ModalState& s, uint8_t modes) {
+namespace {
+
+/// Modes `modes` of the entries waiting in `s` are settled: stated, or (`use`) used by a move.
+void settle(ModalState& s, uint8_t modes, bool use) {
+  auto& waiting = own_entries(s).waiting;
   uint8_t pending = 0;
-  for (JumpEntries::Entry& e : own_entries(s).entries) {
-    e.used |= e.pending & modes;
-    e.pending &= uint8_t(~modes);
-    pending |= e.pending;
+  for (uint32_t k = 0; k < waiting.size(); ++k) {
+    const uint8_t bit = uint8_t(1u << k);
+    if (modes & bit) {
+      for (const uint64_t number : waiting[k]) {
+        JumpEntries::Entry& e = entry_of(s, number);
+        e.used |= use ? bit : 0;
+        e.pending &= uint8_t(~bit);
+      }
+      waiting[k].clear();
+    }
+    if (!waiting[k].empty()) pending |= bit;
   }
   s.entry_pending = pending;
 }
 
-void note_entry_stated(ModalState& s, uint8_t modes) {
-  uint8_t pending = 0;
-  for (JumpEntries::Entry& e : own_entries(s).entries) {
-    e.pending &= uint8_t(~modes);
-    pending |= e.pending;
-  }
-  s.entry_pending = pending;
-}
+}  // namespace
+
+void note_entry_use(ModalState& s, uint8_t modes) { settle(s, modes, true); }
+
+void note_entry_stated(ModalState& s, uint8_t modes) { settle(s, modes, false); }
 
 std::string loop_written_as_is(const JumpEntries::Entry& e) {
   if (is_loop_of_blocks(e.number))

@@ -13,6 +13,7 @@
 // .. `o1 while`, RepRapFirmware's `while`: model/block_nesting.hpp) are read so too: the
 // line after the one opening the loop is the entry, and the loop's end the jump back; their
 // G90 or G91 counts as a mode too (a jump's target is read with it not known).
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -51,6 +52,10 @@ struct JumpEntries {
     bool loop = false;
   };
   std::vector<Entry> entries;  ///< sorted by number
+  /// Per mode (the bits of kStates*, lowest first): the numbers of the entries still waiting
+  /// for it. The first block after an entry that states a mode, or move that uses it, settles
+  /// it for every entry waiting (each is settled once: the cost stays linear).
+  std::array<std::vector<uint64_t>, 4> waiting;
   /// Whether later blocks are read alike after these entries and `o`: the same targets read,
   /// and those not yet read to be read in the same modes. (What a target read was read in,
   /// and used, only decides whether a jump back is refused: an output, whose fitted blocks
