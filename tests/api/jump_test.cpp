@@ -501,6 +501,16 @@ TEST_CASE("a jump's target is read in the modes of every way in, and a loop back
     CHECK(run(head + from("G90 ") + "G18\n" + jump + "\nM30\n", dialect) == std::pair(size_t(0), true));
     CHECK(run(head + from("G17 G90 ") + "G18\n" + jump + "\nM30\n", dialect) == std::pair(size_t(1), false));
   }
+  // A jump to a number the program computes (`GOTO #2`) may enter any numbered block: ahead,
+  // the blocks after it are read in its modes too; back, it is checked against every target
+  // read.
+  CHECK(ahead("#2=10\nIF [#1 EQ 1] GOTO #2\nG18\n", "G90 ") == 0);
+  CHECK(ahead("#2=10\nIF [#1 EQ 1] GOTO #2\nG18\n", "G17 G90 ") == 1);
+  CHECK(run(in_zx + "#2=10\nIF [#1 EQ 1] GOTO #2\nG17\n" + from("G90 ") + "M30\n").first == 0);
+  CHECK(run(in_zx + "#2=10\nIF [#1 EQ 1] GOTO #2\nG17\n" + from("G17 G90 ") + "M30\n").first == 1);
+  CHECK(run(back("G90 ", "G18\n", "#2=10\nIF [#1 LT 3] GOTO #2")) == std::pair(size_t(0), true));
+  CHECK(run(back("G17 G90 ", "G18\n", "#2=10\nIF [#1 LT 3] GOTO #2")) == std::pair(size_t(1), false));
+  CHECK(run(back("G90 ", "G18\nG17\n", "#2=10\nIF [#1 LT 3] GOTO #2")) == std::pair(size_t(1), false));
   // Pushed as it comes, its text not read ahead, such a loop is found only at its jump back,
   // after its moves were written: the program fails (E-FLOW-LOOP-MODES).
   {

@@ -143,6 +143,14 @@ std::optional<uint64_t> jump_named(std::string_view line) {
   return named;
 }
 
+bool jump_computed(std::string_view line) {
+  bool computed = false, loops = false;
+  auto add = [](uint64_t, size_t, bool) {};
+  auto add_computed = [&](size_t) { computed = true; };
+  read_line(line, 0, line.size(), add, add_computed, loops);
+  return computed;
+}
+
 size_t JumpTargets::read(std::string_view text, uint32_t first_line, const PassedNumbers* passed) {
   size_t ended = std::string_view::npos;
   const size_t before = numbers_.size();

@@ -32,6 +32,9 @@ class PassedNumbers {
 /// not a call, which returns), read as JumpTargets::read() reads it; none where the line
 /// holds no such jump or the program computes the number.
 std::optional<uint64_t> jump_named(std::string_view line);
+/// Whether `line` jumps to a block number the program computes (`GOTO #1`, `M99 P#5`), which
+/// may be any numbered block's.
+bool jump_computed(std::string_view line);
 
 class JumpTargets {
  public:

@@ -61,6 +61,14 @@ std::string motion_name(int16_t motion) {
 
 const char* distance_name(uint8_t distance) { return distance == 1 ? "G90" : distance == 2 ? "G91" : "G90 or G91 not known"; }
 
+/// Joins modes `m` into `into`, those of `bits` (kStates*).
+void join(JumpEntries::Modes& into, const JumpEntries::Modes& m, uint8_t bits) {
+  if (bits & kStatesPlane) into.planes |= m.planes;
+  if (bits & kStatesUnits) into.units |= m.units;
+  if (bits & kStatesDistance) into.distance |= m.distance;
+  if (bits & kStatesMotion) into.motion = into.motion == -3 || into.motion == m.motion ? m.motion : int16_t(-1);
+}
+
 bool is_loop_of_blocks(uint64_t number) { return (number & JumpEntries::kLoopOfBlocks) != 0; }
 uint32_t line_of_loop(uint64_t number) { return uint32_t(number & ~JumpEntries::kLoopOfBlocks); }
 
@@ -75,17 +83,9 @@ std::string refused_jump(uint64_t number, const std::string& what) {
                      number, what, number);
 }
 
-/// A jump at line `line` to block `number` in state `s`: what differs from the modes the
-/// target's first moves used (read_jump()), else empty.
-std::string jump_to(ModalState& s, uint64_t number, uint32_t line) {
-  const JumpEntries::Modes here = modes_of(s, s.frame);
-  JumpEntries::Entry& e = entry_of(s, number);
-  if (!e.read) {  // ahead: the target is read in these modes too
-    e.modes.planes |= here.planes;
-    e.modes.units |= here.units;
-    e.modes.motion = e.modes.motion == -3 || e.modes.motion == here.motion ? here.motion : int16_t(-1);
-    return {};
-  }
+/// What differs between modes `here` and those entry `e` was read in that its first moves
+/// used (a jump back), else empty; noted in `e` as refused at line `line`.
+std::string refusal(JumpEntries::Entry& e, const JumpEntries::Modes& here, uint32_t line) {
   std::string what;
   auto differ = [&](const std::string& text) { what += (what.empty() ? "" : ", ") + text; };
   if ((e.used & kStatesPlane) && e.modes.planes != here.planes)
@@ -100,12 +100,49 @@ std::string jump_to(ModalState& s, uint64_t number, uint32_t line) {
   return what;
 }
 
+/// A jump at line `line` to block `number` in state `s`: what differs from the modes the
+/// target's first moves used (read_jump()), else empty.
+std::string jump_to(ModalState& s, uint64_t number, uint32_t line) {
+  const JumpEntries::Modes here = modes_of(s, s.frame);
+  JumpEntries::Entry& e = entry_of(s, number);
+  if (!e.read) {  // ahead: the target is read in these modes too
+    join(e.modes, here, kStatesPlane | kStatesUnits | kStatesMotion);
+    return {};
+  }
+  return refusal(e, here, line);
+}
+
+/// A jump at line `line` to a number state `s` computes: ahead, the numbered blocks read after
+/// it are read in its modes too; back, each target read whose first moves used a mode that
+/// differs here is refused. The first refused and what differed there, else nothing.
+std::pair<uint64_t, std::string> computed_jump(ModalState& s, uint32_t line) {
+  const JumpEntries::Modes here = modes_of(s, s.frame);
+  JumpEntries& all = own_entries(s);
+  join(all.computed, here, kStatesPlane | kStatesUnits | kStatesMotion);
+  all.computed_jumps = true;
+  const JumpEntries::Modes& used = all.used;
+  auto differs = [](uint8_t set, uint8_t one) { return set != 0 && set != one; };
+  if (!differs(used.planes, here.planes) && !differs(used.units, here.units) &&
+      !differs(used.distance, here.distance) && (used.motion == -3 || used.motion == here.motion))
+    return {};
+  std::pair<uint64_t, std::string> first;
+  for (JumpEntries::Entry& e : all.entries)
+    if (e.read)
+      if (std::string what = refusal(e, here, line); !what.empty() && first.second.empty()) first = {e.number, what};
+  return first;
+}
+
 }  // namespace
 
 void read_jump(ModalState& s, std::string_view line, uint32_t line_number, DiagnosticSink& sink) {
-  if (const auto n = jump_named(line))
+  if (const auto n = jump_named(line)) {
     if (const std::string what = jump_to(s, *n, line_number); !what.empty())
       sink.error({line_number, 1}, "E-FLOW-LOOP-MODES", refused_jump(*n, what));
+  } else if (jump_computed(line)) {
+    if (const auto [target, what] = computed_jump(s, line_number); !what.empty())
+      sink.error({line_number, 1}, "E-FLOW-LOOP-MODES",
+                 "a jump to a number the program computes, which may be back: " + refused_jump(target, what));
+  }
 }
 
 void loop_back(ModalState& s, uint32_t loop, uint32_t line_number, DiagnosticSink& sink) {
@@ -135,7 +172,8 @@ void enter_jumped(ModalState& s, Frame& frame, double number) {
   const JumpEntries::Modes here = modes_of(s, frame);
   JumpEntries::Entry& e = entry_of(s, uint64_t(number));
   if (!e.read) {
-    const JumpEntries::Modes& in = e.modes;  // the jumps' ahead of it (none: as here)
+    JumpEntries::Modes in = e.modes;  // the jumps' ahead of it (none: as here)
+    if (s.jump_entries->computed_jumps) join(in, s.jump_entries->computed, kStatesAll);
     if ((in.planes | here.planes) != here.planes) s.unstated |= kStatesPlane;
     if ((in.units | here.units) != here.units) s.unstated |= kStatesUnits;
     if (in.motion != -3 && in.motion != here.motion) s.motion = -1;
@@ -161,8 +199,8 @@ void settle(ModalState& s, uint8_t modes, bool use) {
     if (modes & bit) {
       for (const uint64_t number : waiting[k]) {
         JumpEntries::Entry& e = entry_of(s, number);
-        e.used |= use ? bit : 0;
         e.pending &= uint8_t(~bit);
+        if (use) e.used |= bit, join(own_entries(s).used, e.modes, bit);
       }
       waiting[k].clear();
     }
@@ -204,7 +242,7 @@ void seed_loops(ModalState& s, const std::vector<uint64_t>& numbers) {
 bool JumpEntries::reads_as(const JumpEntries& o) const {
   return std::equal(entries.begin(), entries.end(), o.entries.begin(), o.entries.end(), [](const Entry& x, const Entry& y) {
     return x.number == y.number && x.read == y.read && x.loop == y.loop && (x.read || x.modes == y.modes);
-  });
+  }) && computed_jumps == o.computed_jumps && computed == o.computed;
 }
 
 bool ModalState::same_entries(const ModalState& o) const {

@@ -56,8 +56,15 @@ struct JumpEntries {
   /// for it. The first block after an entry that states a mode, or move that uses it, settles
   /// it for every entry waiting (each is settled once: the cost stays linear).
   std::array<std::vector<uint64_t>, 4> waiting;
+  /// The modes of the computed jumps (`GOTO #1`) read so far, joined: a numbered block read
+  /// after them may be entered in any (`computed_jumps`: there were some).
+  Modes computed;
+  bool computed_jumps = false;
+  /// The modes the targets read were read in, joined over those their first lines used: a
+  /// computed jump back, which may enter any of them, is checked against these first.
+  Modes used;
   /// Whether later blocks are read alike after these entries and `o`: the same targets read,
-  /// and those not yet read to be read in the same modes. (What a target read was read in,
+  /// those not yet read to be read in the same modes, and the same computed jumps. (What a target read was read in,
   /// and used, only decides whether a jump back is refused: an output, whose fitted blocks
   /// state their motion where the input's moves used the one in force, refuses no jump its
   /// input passed; where one did, the check would refuse that output.)
