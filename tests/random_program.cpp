@@ -59,6 +59,7 @@ RandomCase random_case(std::span<const uint8_t> bytes) {
   long numbered = 0;               // the number of the last move written with one (0: none)
   std::string indent;              // of the moves in an `if` block
   long sub_label = 0;              // of the subroutine being defined (0: none)
+  const char* loop_end = nullptr;  // the line that ends the loop of blocks open (none: null)
   for (size_t i = 3; i + 2 < bytes.size(); i += 3) {
     const auto a = static_cast<int8_t>(bytes[i]), b = static_cast<int8_t>(bytes[i + 1]),
                h = static_cast<int8_t>(bytes[i + 2]);
@@ -121,9 +122,16 @@ RandomCase random_case(std::span<const uint8_t> bytes) {
       if (indent.empty()) s += "if true\n";
       indent = indent.empty() ? "  " : "";
     }
-    if (!tnc && (h & 0x3f) == 0x34 && !sub_label) s += fmt::format("o{} sub\n", sub_label = long(i));
+    if (!tnc && (h & 0x3f) == 0x34 && !sub_label && !loop_end) s += fmt::format("o{} sub\n", sub_label = long(i));
     if (!tnc && (h & 0x3f) == 0x35 && sub_label)
       s += fmt::format("o{0} endsub\no{0} call\n", std::exchange(sub_label, 0));
+    // A loop of blocks around some moves (Fanuc's WHILE .. DO1 .. END1, LinuxCNC's do ..
+    // while), whose end may leave other modes than its first moves were read in: they are
+    // then written as they are (W-FLOW-LOOP-MODES).
+    if (!tnc && (h & 0x3f) == 0x37 && !sub_label) {
+      if (loop_end) s += std::exchange(loop_end, nullptr);
+      else s += a < 0 ? "WHILE [#1 LT 2] DO1\n" : "o9 do\n", loop_end = a < 0 ? "END1\n" : "o9 while [#1 LT 2]\n";
+    }
     // A call of a subprogram written after the program's end (or stored in the control): the
     // moves after it are read in the modes it leaves.
     if (!tnc && (h & 0x3f) == 0x36) s += a < 0 ? "M98 P9000 L2\n" : "M98 P9000\n";
@@ -146,6 +154,7 @@ RandomCase random_case(std::span<const uint8_t> bytes) {
     last_y = py;
   }
   if (sub_label) s += fmt::format("o{} endsub\n", sub_label);
+  if (loop_end) s += loop_end;
   s += tnc ? fmt::format("N{} M2 *\nN99999999 %RANDOM G71 *\n", bytes.size() + 3) : "M2\n";
   // O9000 leaves G90, G91 or G18 where it returns, or is not in the file.
   const char* bodies[] = {"O9000\nG91 G1 X0.5\nG90\nM99\n", "O9000\nG91 G1 X0.5\nM99\n", "O9000\nG18 G1 Z0.5\nM99\n", ""};

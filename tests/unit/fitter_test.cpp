@@ -1127,7 +1127,7 @@ TEST_CASE("programs made from random bytes keep every promise, in every plane, m
     test::RandomCase c = test::random_case(bytes);
     DiagnosticSink sink;
     CompressResult r = compress("random.nc", c.text, c.opt, sink);
-    INFO("trial " << trial << "\n" << c.text);
+    INFO("trial " << trial << " dialect " << c.opt.dialect.name << " tol " << c.opt.fit.tolerance_mm << " method " << int(c.opt.fit.method) << "\n" << c.text);
     CHECK(test::broken_promise(r) == "");
   }
 }

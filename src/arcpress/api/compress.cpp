@@ -33,8 +33,11 @@ FitOptions fit_options_for(const FitOptions& user, const Dialect& d, const Frame
 
 void verify_output(const Program& input, const Interpretation& in, const CompressOptions& opt, CompressResult& r,
                    std::span<const Run> runs) {
-  ModalState start = initial_state(opt.dialect);
-  start.called = called_programs_of(input, opt.dialect);  // (as the input was read, where it was read whole)
+  // The output is read from the state the input was, where it was read whole: with what the
+  // subprograms after its end leave, and its loops that run their first moves again in other
+  // modes (the output's are the same lines of flow control) read so.
+  DiagnosticSink quiet(input.name);
+  const ModalState start = whole_program_start(input, opt.dialect, quiet);
   verify_piece_output(input, in, opt, r, runs, start, nullptr, false);
 }
 

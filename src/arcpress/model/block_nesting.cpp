@@ -54,10 +54,13 @@ BlockNesting::Join BlockNesting::line(std::string_view line, bool opens, uint32_
     j.modes = uint8_t(closed >> 1);
   }
   if (d > (depth > 0 ? levels[depth - 1].indent : 0)) {
-    if (depth < kMostLevels)
-      levels[depth++] = Level{d, 0, false, 0, !last_opens, last_loop, now}, j.loop_entered = last_loop;
-    else  // merged: it keeps what changed since the outer block began, and is a block where either is
+    if (depth < kMostLevels) {
+      const uint32_t loop = last_loop ? ++loops : 0;
+      levels[depth++] = Level{d, 0, false, 0, !last_opens, loop, now};
+      j.loop_entered = loop, j.loop_line = last_loop;
+    } else {  // merged: it keeps what changed since the outer block began, and is a block where either is
       levels[depth - 1].indent = d, levels[depth - 1].plain = levels[depth - 1].plain && !last_opens;
+    }
   }
   if (opens && is_keyword(line, "continue")) j.back_to(loop_of(0));
   last_indent = d;
@@ -66,11 +69,14 @@ BlockNesting::Join BlockNesting::line(std::string_view line, bool opens, uint32_
   return j;
 }
 
-void BlockNesting::open(uint32_t label, bool do_loop, uint32_t loop_line, const Modes& now) {
-  if (depth < kMostLevels)
-    levels[depth++] = Level{0, 0, do_loop, label, false, loop_line, now};
-  else
+uint32_t BlockNesting::open(uint32_t label, bool do_loop, bool loop, const Modes& now) {
+  if (depth == kMostLevels) {
     levels[depth - 1].label = label, levels[depth - 1].do_loop = do_loop;  // merged, as in line()
+    return 0;
+  }
+  const uint32_t number = loop ? ++loops : 0;
+  levels[depth++] = Level{0, 0, do_loop, label, false, number, now};
+  return number;
 }
 
 BlockNesting::Join BlockNesting::close(uint32_t label, const Modes& now) {

@@ -9,7 +9,9 @@
 // blocks (`o101 if` .. `o101 endif`, `while`, `do`, `repeat`) are such blocks too, opened and
 // closed by their lines instead of by blanks. A loop (`while`, `do`, `repeat`) also runs its
 // first lines again in the modes its last leave: its start is an entry, and its end (or a
-// `continue`) a jump back to it (model/jump_entries.hpp), both named by the line that opens it.
+// `continue`) a jump back to it (model/jump_entries.hpp), both named by the loop's number:
+// how many loops the program opened up to it, which an output, whose lines are others' but
+// whose flow control is the input's, numbers alike.
 // The modes after a block are known where they are the same on every way out of it: where it
 // began, where it ends, and at every line of flow control in it (a `break`, a `return`).
 #include <array>
@@ -40,12 +42,13 @@ struct BlockNesting {
     /// kStates* (model/subroutines.hpp) of the modes a line in the blocks changed: G90 or G91
     /// (or whether it is known), the plane, the units, the modal motion.
     uint8_t modes = 0;
-    /// The loops that jump back from here to their start, by the lines that open them: those
-    /// that end, innermost first, or the one a `continue` runs again.
+    /// The loops that jump back from here to their start, by their numbers: those that end,
+    /// innermost first, or the one a `continue` runs again.
     std::array<uint32_t, kMostLevels> loops_back{};
     uint8_t loops_back_count = 0;
-    /// The loop whose first lines begin after this line, by the line that opens it.
-    uint32_t loop_entered = 0;
+    /// The loop whose first lines begin after this line, by its number (0: none), and the
+    /// line that opens it.
+    uint32_t loop_entered = 0, loop_line = 0;
     /// Adds loop `loop` (a line; 0: none) to those this jumps back to.
     void back_to(uint32_t loop) {
       if (loop != 0 && loops_back_count < loops_back.size()) loops_back[loops_back_count++] = loop;
@@ -62,8 +65,9 @@ struct BlockNesting {
   /// in one runs it again. `line_number`: the line's; `now`: the modes before it.
   Join line(std::string_view line, bool opens, uint32_t line_number, const Modes& now);
   /// An O-word block labelled `label` opens in modes `now` (`do_loop`: a `do`, which a
-  /// `while` ends; `loop_line`: a loop's, the line opening it; 0: no loop).
-  void open(uint32_t label, bool do_loop, uint32_t loop_line, const Modes& now);
+  /// `while` ends; `loop`: it is a loop). Returns the loop's number (0: no loop, or one past
+  /// kMostLevels, which is not followed).
+  uint32_t open(uint32_t label, bool do_loop, bool loop, const Modes& now);
   /// The O-word block labelled `label` ends (and those opened in it), in modes `now`: what may
   /// differ after it. Where none is open with that label, nothing is known to end.
   Join close(uint32_t label, const Modes& now);
@@ -76,8 +80,8 @@ struct BlockNesting {
   /// Whether `line` is RepRapFirmware's `break` or `continue`, which leave their loop's block
   /// at once (a line of flow control the firmware goes on from elsewhere than the next).
   static bool leaves_block(std::string_view line);
-  /// The line opening the innermost loop open labelled `label` (any label where `label` is
-  /// 0), which a `continue` runs again; 0 where none is open.
+  /// The number of the innermost loop open labelled `label` (any label where `label` is 0),
+  /// which a `continue` runs again; 0 where none is open.
   uint32_t loop_of(uint32_t label) const;
   /// Whether the innermost open block is a `do` labelled `label`.
   bool in_do(uint32_t label) const { return depth > 0 && levels[depth - 1].label == label && levels[depth - 1].do_loop; }
@@ -101,7 +105,7 @@ struct BlockNesting {
     bool do_loop = false;
     uint32_t label = 0;   ///< an O-word block's (OWord::label); 0 for a block of blanks
     bool plain = false;   ///< deeper blanks after a line that is no flow control (line())
-    uint32_t loop = 0;    ///< a loop's: the line opening it; 0 no loop
+    uint32_t loop = 0;    ///< a loop's number; 0 no loop
     Modes at_open;        ///< the modes it was entered in
     bool operator==(const Level&) const = default;
   };
@@ -110,6 +114,7 @@ struct BlockNesting {
   uint16_t last_indent = 0;  ///< of the last line read that counts
   bool last_opens = false;   ///< that line is flow control
   uint32_t last_loop = 0;    ///< that line is a `while`: its line number
+  uint32_t loops = 0;        ///< loops opened so far: the last one's number
 };
 
 }  // namespace arcpress

@@ -615,7 +615,7 @@ class Interpreter {
               : !(moved_xyz || target == s_.pos) ? Unfit::NoPathAxis
                                               : Unfit::None;
     if (cycle_here && m.unfit == Unfit::None) m.unfit = Unfit::CycleCall;
-    if (s_.entry_pending && m.end_known) [[unlikely]]  // (a rapid places the moves after it)
+    if (s_.entry_pending && any_axis && m.end_known) [[unlikely]]  // (a rapid places the moves after it)
       note_entry_use(s_, m.known && is_feed(kind) ? kStatesAll : kStatesUnits | kStatesDistance);
     if (!m.known && is_feed(kind)) o_->unplaced.push_back({uint32_t(o_->moves.size() - 1), s_.cause_line});
     s_.pos = target;
@@ -656,7 +656,7 @@ class Interpreter {
     for (uint32_t k = 0; k < j.loops_back_count; ++k) loop_back(s_, j.loops_back[k], p_->blocks[bi].line, sink_);
     if (j.position) forget(kAllAxes & ~(1u << kE), Unfit::UnknownAtEntry, bi);
     s_.forget_modes(j.modes);
-    if (j.loop_entered) enter_loop(s_, j.loop_entered);
+    if (j.loop_entered) enter_loop(s_, j.loop_entered, j.loop_line);
   }
 
   /// Block `bi` inside blocks (BlockNesting), or where blanks open and close them: what it

@@ -70,14 +70,14 @@ void join(JumpEntries::Modes& into, const JumpEntries::Modes& m, uint8_t bits) {
 }
 
 bool is_loop_of_blocks(uint64_t number) { return (number & JumpEntries::kLoopOfBlocks) != 0; }
-uint32_t line_of_loop(uint64_t number) { return uint32_t(number & ~JumpEntries::kLoopOfBlocks); }
 
-/// What a jump back to `number` is called where it runs lines again otherwise: `what` differs.
-std::string refused_jump(uint64_t number, const std::string& what) {
+/// What a jump back to entry `e` is called where it runs lines again otherwise: `what` differs.
+std::string refused_jump(const JumpEntries::Entry& e, const std::string& what) {
+  const uint64_t number = e.number;
   if (is_loop_of_blocks(number))
     return fmt::format("the loop that begins at line {} runs its first lines again in other modes than they were "
                        "read in ({}), which moves there depend on: state them at the loop's start",
-                       line_of_loop(number), what);
+                       e.line, what);
   return fmt::format("the jump back to N{} runs the lines after it again in other modes than they were read in ({}), "
                      "which moves there depend on: state them in block N{}",
                      number, what, number);
@@ -137,18 +137,18 @@ std::pair<uint64_t, std::string> computed_jump(ModalState& s, uint32_t line) {
 void read_jump(ModalState& s, std::string_view line, uint32_t line_number, DiagnosticSink& sink) {
   if (const auto n = jump_named(line)) {
     if (const std::string what = jump_to(s, *n, line_number); !what.empty())
-      sink.error({line_number, 1}, "E-FLOW-LOOP-MODES", refused_jump(*n, what));
+      sink.error({line_number, 1}, "E-FLOW-LOOP-MODES", refused_jump(entry_of(s, *n), what));
   } else if (jump_computed(line)) {
     if (const auto [target, what] = computed_jump(s, line_number); !what.empty())
       sink.error({line_number, 1}, "E-FLOW-LOOP-MODES",
-                 "a jump to a number the program computes, which may be back: " + refused_jump(target, what));
+                 "a jump to a number the program computes, which may be back: " + refused_jump(entry_of(s, target), what));
   }
 }
 
 void loop_back(ModalState& s, uint32_t loop, uint32_t line_number, DiagnosticSink& sink) {
   const uint64_t key = JumpEntries::kLoopOfBlocks | loop;
   if (const std::string what = jump_to(s, key, line_number); !what.empty())
-    sink.error({line_number, 1}, "E-FLOW-LOOP-MODES", refused_jump(key, what));
+    sink.error({line_number, 1}, "E-FLOW-LOOP-MODES", refused_jump(entry_of(s, key), what));
 }
 
 namespace {
@@ -182,8 +182,9 @@ void enter_jumped(ModalState& s, Frame& frame, double number) {
   entered(s, frame, e);
 }
 
-void enter_loop(ModalState& s, uint32_t loop) {
+void enter_loop(ModalState& s, uint32_t loop, uint32_t line) {
   JumpEntries::Entry& e = entry_of(s, JumpEntries::kLoopOfBlocks | loop);
+  e.line = line;
   if (e.loop) s.forget_modes(kStatesAll);
   entered(s, s.frame, e);
 }
@@ -220,7 +221,7 @@ std::string loop_written_as_is(const JumpEntries::Entry& e) {
     return fmt::format("the loop that begins at line {} runs its first lines again in other modes than they were read "
                        "in ({}): its moves are written as they are until the program states those modes (stated at "
                        "the loop's start, they are fitted)",
-                       line_of_loop(e.number), e.refused);
+                       e.line, e.refused);
   return fmt::format("the jump back to N{0} runs the lines after it again in other modes than they were read in ({1}): "
                      "the moves after N{0} are written as they are until the program states those modes (stated in "
                      "block N{0}, they are fitted)",

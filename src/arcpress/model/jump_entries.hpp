@@ -37,10 +37,11 @@ struct JumpEntries {
     int16_t motion = -3;    ///< modal motion x10; -1: not known or differing; -3: none yet
     bool operator==(const Modes&) const = default;
   };
-  /// The number of a loop of blocks' entry: this bit and the line that opens the loop.
+  /// The number of a loop of blocks' entry: this bit and the loop's (BlockNesting::loops).
   static constexpr uint64_t kLoopOfBlocks = uint64_t(1) << 62;
   struct Entry {
-    uint64_t number = 0;  ///< the target's block number, or kLoopOfBlocks | a line
+    uint64_t number = 0;  ///< the target's block number, or kLoopOfBlocks | a loop's number
+    uint32_t line = 0;    ///< a loop of blocks': the line that opens it, where read
     bool read = false;  ///< the target has been read: `modes` are those it was read in
     Modes modes;        ///< the jumps' before it is read; its own after
     uint8_t used = 0;   ///< kStates* (model/subroutines.hpp) its first lines used
@@ -76,8 +77,8 @@ struct JumpEntries {
 /// the target's first lines used a mode that differs here, no output can match both passes:
 /// an error (E-FLOW-LOOP-MODES) to `sink`.
 void read_jump(ModalState& s, std::string_view line, uint32_t line_number, DiagnosticSink& sink);
-/// Line `line_number`, read in state `s`, ends the loop of blocks opened at line `loop` or
-/// runs it again (BlockNesting::Join::loops_back): a jump back to its entry, as read_jump().
+/// Line `line_number`, read in state `s`, ends the loop of blocks numbered `loop` or runs it
+/// again (BlockNesting::Join::loops_back): a jump back to its entry, as read_jump().
 void loop_back(ModalState& s, uint32_t loop, uint32_t line_number, DiagnosticSink& sink);
 /// Block `number`, a jump's target, is entered (a number no jump names: nothing): where the
 /// jumps ahead of it were made in other modes than the text before it leaves, or it is a
@@ -85,9 +86,10 @@ void loop_back(ModalState& s, uint32_t loop, uint32_t line_number, DiagnosticSin
 /// the motion until a block names one); the modes it is read in are kept for the jumps back
 /// to it, and which of them its first lines use (note_entry_use()).
 void enter_jumped(ModalState& s, Frame& frame, double number);
-/// The first lines of the loop of blocks opened at line `loop` begin: its entry, read as
-/// enter_jumped() reads a target no jump ahead names, where G90 or G91 is known and kept.
-void enter_loop(ModalState& s, uint32_t loop);
+/// The first lines of the loop of blocks numbered `loop`, opened at line `line`, begin: its
+/// entry, read as enter_jumped() reads a target no jump ahead names, where G90 or G91 is
+/// known and kept.
+void enter_loop(ModalState& s, uint32_t loop, uint32_t line);
 /// A move from a known place read while modes of targets entered are pending
 /// (ModalState::entry_pending): it uses `modes` of them (kStates*: a feed move all, a rapid
 /// the units and G90 or G91 that place the moves after it), as the targets' first lines read

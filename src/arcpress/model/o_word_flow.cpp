@@ -9,24 +9,22 @@ OWordFlow follow_o_word(ModalState& s, const OWord& w, Frame& frame, uint32_t li
   const BlockNesting::Modes now = s.modes();
   OWordFlow flow;
   switch (w.kind) {
-    case K::If: n.open(w.label, false, 0, now); break;
+    case K::If: n.open(w.label, false, false, now); break;
     case K::Do: case K::Repeat:
-      n.open(w.label, w.kind == K::Do, line, now);
-      flow.join.loop_entered = line;
+      flow.join.loop_entered = n.open(w.label, w.kind == K::Do, true, now), flow.join.loop_line = line;
       break;
     case K::While:  // (the end of a `do`, or a loop of its own)
       if (n.in_do(w.label)) {
         flow.join = n.close(w.label, now);
       } else {
-        n.open(w.label, false, line, now);
-        flow.join.loop_entered = line;
+        flow.join.loop_entered = n.open(w.label, false, true, now), flow.join.loop_line = line;
       }
       break;
     case K::ElseIf: case K::Else:  // (entered from where the `if` began, not from the branch before)
     {
       const BlockNesting::Modes at_if = n.depth > 0 && n.levels[n.depth - 1].label == w.label ? n.levels[n.depth - 1].at_open : now;
       flow.join = n.close(w.label, now);
-      n.open(w.label, false, 0, at_if);
+      n.open(w.label, false, false, at_if);
       break;
     }
     case K::EndIf: case K::EndWhile: case K::EndRepeat: flow.join = n.close(w.label, now); break;

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 
+#include "arcpress/lex/jump_targets.hpp"
 #include "arcpress/model/called_programs.hpp"
 #include "arcpress/model/jump_entries.hpp"
 
@@ -39,7 +40,13 @@ std::vector<KeywordSpelling> keywords_read(const Dialect& dialect) {
 
 LoopsFound loops_in_other_modes(const Program& program, const Dialect& dialect, const ModalState& start) {
   LoopsFound found;
-  if (!program.jumps) return found;
+  // (A program lexed without its jumps read, JumpTargets, may still loop by blocks.)
+  auto loops_by_blocks = [&] {
+    JumpTargets t;
+    t.read(program.text, 1);
+    return t.loops();
+  };
+  if (!program.jumps && !loops_by_blocks()) return found;
   // (A start marked reads the moves after it unplaced, which may leave another loop's jump
   // in a mode not known: read again, a few times at most.)
   constexpr int kRounds = 4;

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "arcpress/core/geometry.hpp"
+#include "arcpress/model/jump_entries.hpp"
 #include "arcpress/model/modal_state.hpp"
 
 namespace arcpress {
@@ -60,6 +61,7 @@ void leave_body(ModalState& s, const Subroutines::Body* body, Frame& frame) {
   if (known & kStatesUnits) frame.unit_mm = body->unit_mm;
   s.stated |= known & (kStatesPlane | kStatesUnits);
   s.unstated &= uint8_t(~known);
+  if (s.entry_pending & known) note_entry_stated(s, known);  // (stated for the entries waiting)
   if (known & kStatesDistance) frame.absolute = body->absolute, s.distance_unknown = false;
   if (known & kStatesMotion) s.motion = body->motion;
   if (unknown & kStatesDistance) s.distance_unknown = true;
