@@ -209,6 +209,14 @@ TEST_CASE("Marlin's repeat marker is a loop, and the moves after M808 L are ente
   REQUIRE(fitted.ok);
   CHECK(count_of(fitted.output, "G3") == 1);
   CHECK(fitted.output.find("M808 L3\nG90\nG1 X0.0000 Y0.0000\n") != std::string::npos);  // its first move as written
+  // Run again in the G18 its end leaves, the quarter is no arc fitted in G17: its moves are
+  // written as they are, unless the loop states its plane at its start.
+  std::string g18 = stated;
+  g18.insert(g18.find("M808\n"), "G18\n");
+  CHECK(count_of(compress_as("marlin", head + g18).output, "G3") == 0);
+  std::string g17 = g18;
+  g17.insert(g17.find("G90\n"), "G17 ");
+  CHECK(count_of(compress_as("marlin", head + g17).output, "G3") == 1);
 }
 
 TEST_CASE("a macro file RepRapFirmware's M98 runs, or a jog M291 allows, may move the tool, and the moves after it start anew", "[jumps]") {

@@ -105,6 +105,7 @@ bool read_line(std::string_view text, size_t start, size_t end, Add& add, AddCom
         size_t j = i + 1;
         while (j < end && (text[j] == ' ' || text[j] == '\t')) ++j;
         ends = ends || m_code_is(text, j, end, 2) || m_code_is(text, j, end, 30) || m_code_is(text, j, end, 99);
+        loops = loops || m_code_is(text, j, end, 808);  // (Marlin's repeat marker)
         while (j + 2 < end && text[j] == '0' && is_digit(text[j + 1]) && is_digit(text[j + 2])) ++j;
         if (j + 1 < end && text[j] == '9' && (text[j + 1] == '7' || text[j + 1] == '8' || text[j + 1] == '9') &&
             (j + 2 >= end || (!is_digit(text[j + 2]) && text[j + 2] != '.')))

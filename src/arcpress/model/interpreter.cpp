@@ -94,9 +94,9 @@ class Interpreter {
       case CodeMeaning::MacroCalls: own |= kOwnCycleCalls | kOwnSettings; return -1;
       case CodeMeaning::CycleCall: own |= kOwnCycleCall; return -1;
       case CodeMeaning::ArcRadius: own |= kOwnArcRadius; return -1;
-      case CodeMeaning::Loop:  // (an L word marks the loop's start: the blocks after it are entered from its end)
+      case CodeMeaning::Loop:  // (M808 L marks a loop's start, entered from its end; M808 alone goes back there)
         if (p_->find(b, 'L')) enter(bi, false);
-        own |= kOwnSettings;
+        own |= kOwnSettings, join(follow_repeat_marker(s_, p_->find(b, 'L') != nullptr, b.line), bi);
         return -1;
       case CodeMeaning::Unmodelled: break;
     }

@@ -3,6 +3,14 @@
 
 namespace arcpress {
 
+BlockNesting::Join follow_repeat_marker(ModalState& s, bool mark, uint32_t line) {
+  constexpr uint32_t kRepeatLabel = 0x4D383038;  // ("M808"; an O-word label, a hash, is another but once in 2^32)
+  BlockNesting::Join j;
+  if (mark) j.loop_entered = s.nesting.open(kRepeatLabel, false, true, s.modes()), j.loop_line = line;
+  else j = s.nesting.close(kRepeatLabel, s.modes());
+  return j;
+}
+
 OWordFlow follow_o_word(ModalState& s, const OWord& w, Frame& frame, uint32_t line) {
   using K = OWord::Kind;
   BlockNesting& n = s.nesting;

@@ -24,6 +24,11 @@ struct OWordFlow {
   std::string problem;
 };
 
+/// A repeat marker (Marlin's M808) at line `line`, read in state `s`: `mark` (M808 L) opens a
+/// loop whose first lines follow; without, the innermost such loop goes back to its start
+/// (BlockNesting, as LinuxCNC's `do` .. `while`). What the interpreter joins.
+BlockNesting::Join follow_repeat_marker(ModalState& s, bool mark, uint32_t line);
+
 /// O-word `w`, line `line`, read in state `s`, whose frame the interpreter sets from `frame`
 /// afterwards.
 OWordFlow follow_o_word(ModalState& s, const OWord& w, Frame& frame, uint32_t line);
