@@ -296,7 +296,7 @@ TEST_CASE("a loop whose end runs its first moves again in other modes writes the
   CHECK(r.within_band);
 }
 
-TEST_CASE("LinuxCNC's and Fanuc's loops run their first moves again in the plane, units, motion and G90 or G91 their end leaves",
+TEST_CASE("LinuxCNC's, Fanuc's and Sinumerik's loops run their first moves again in the plane, units, motion and G90 or G91 their end leaves",
           "[nesting][jumps]") {
   // Each loop's end leaves one mode otherwise than its start was read in.
   const std::string ends[] = {"G91 G1 Z0.2\n", "G18\n", "G20\n", "G0 Z1\n"};
@@ -310,7 +310,9 @@ TEST_CASE("LinuxCNC's and Fanuc's loops run their first moves again in the plane
   };
   for (const Loop& l : {Loop{"linuxcnc", "o1 while [#1 LT 3]", "o1 endwhile"}, Loop{"linuxcnc", "o1 do", "o1 while [#1 LT 3]"},
                         Loop{"linuxcnc", "o1 repeat [3]", "o1 endrepeat"}, Loop{"fanuc", "WHILE [#1 LT 3] DO1", "END1"},
-                        Loop{"fanuc", "DO1", "END1"}})
+                        Loop{"fanuc", "DO1", "END1"}, Loop{"sinumerik", "WHILE R1<3", "ENDWHILE"},
+                        Loop{"sinumerik", "LOOP", "ENDLOOP"}, Loop{"sinumerik", "FOR R1=0 TO 2", "ENDFOR"},
+                        Loop{"sinumerik", "REPEAT", "UNTIL R1>=3"}})
     for (const std::string& end : ends) {
       INFO(l.open << " .. " << end);
       // (A quarter circle before the loop becomes one arc: the output's lines are others than
@@ -366,10 +368,17 @@ TEST_CASE("after a block the modes that differ on its ways out are not known", "
     CHECK(count_of(compress_as("linuxcnc", head + "o1 if [#1 EQ 1]\n" + mode + "\no1 endif\nG21 G17 G1\n" + bare + "M2\n").output, "G3") == 1);
     const std::string back = head + "o1 if [#1 EQ 1]\n" + mode + "\nG21 G17 G1\no1 endif\n" + bare + "M2\n";
     CHECK(count_of(compress_as("linuxcnc", back).output, "G3") == 1);
+    // An `else` that states the modes again leaves the other branch's way out as it was.
+    const std::string branches = head + "o1 if [#1 EQ 1]\n" + mode + "\no1 else\nG21 G17 G1\no1 endif\n" + bare + "M2\n";
+    CHECK(count_of(compress_as("linuxcnc", branches).output, "G3") == 0);
     // ... not where a `break` leaves the loop in it.
     const std::string broken = head + "o2 do\n" + mode + "\no3 if [#1 EQ 1]\no2 break\no3 endif\nG21 G17 G1\no2 while [#1 LT 3]\n" + bare + "M2\n";
     CHECK(count_of(compress_as("linuxcnc", broken).output, "G3") == 0);
   }
+  // Sinumerik's IF .. ELSE .. ENDIF, whose branches leave G18 and G17.
+  const std::string sinumerik = "G71 G17 G90\nG0 X0 Y0\nG1 X0 Y0 F500\nR1=0\nIF R1==1\nG18\nELSE\nG17\nENDIF\n";
+  CHECK(count_of(compress_as("sinumerik", sinumerik + bare + "M30\n").output, "G3") == 0);
+  CHECK(count_of(compress_as("sinumerik", sinumerik + "G17\n" + bare + "M30\n").output, "G3") == 1);
 }
 
 TEST_CASE("Fanuc's macro loops are loops too, WHILE DO1 to END1", "[nesting]") {

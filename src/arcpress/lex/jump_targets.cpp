@@ -60,8 +60,8 @@ bool keyword_at(std::string_view text, size_t i, size_t end, std::string_view wo
 
 /// The jumps in the line text[start, end): `add(number, at, call)` for a block number named
 /// (`call`: by a call, which returns), `add_computed(at)` for a computed one; `loops` set where
-/// it opens or ends a loop of blocks (`do`, `DO1`, `while`, `repeat`). Returns whether the line
-/// ends a program (M2, M30, M99).
+/// it opens or ends a loop of blocks (`do`, `DO1`, `while`, `repeat`, `LOOP`, `FOR`, `UNTIL`, M808).
+/// Returns whether the line ends a program (M2, M30, M99).
 template <class Add, class AddComputed>
 bool read_line(std::string_view text, size_t start, size_t end, Add& add, AddComputed& add_computed, bool& loops) {
   char jump_m = 0;      // M97 ('7') or M99 ('9')
@@ -100,6 +100,9 @@ bool read_line(std::string_view text, size_t start, size_t end, Add& add, AddCom
         break;
       case 'W': case 'w': loops = loops || (starts && keyword_at(text, i, end, "WHILE")); break;
       case 'R': case 'r': loops = loops || (starts && keyword_at(text, i, end, "REPEAT")); break;
+      case 'L': case 'l': loops = loops || (starts && keyword_at(text, i, end, "LOOP")); break;  // (Sinumerik's)
+      case 'F': case 'f': loops = loops || (starts && keyword_at(text, i, end, "FOR")); break;
+      case 'U': loops = loops || (starts && keyword_at(text, i, end, "UNTIL")); break;
       case 'M': case 'm': {
         if (!starts) break;
         size_t j = i + 1;
@@ -176,10 +179,10 @@ size_t JumpTargets::read(std::string_view text, uint32_t first_line, const Passe
     computed_ = true;
   };
   // Only a line with an M or an O (of GOTO), either case, can hold a jump, and a loop only
-  // one with an O (LinuxCNC's O-words, Fanuc's DO1) or RepRapFirmware's `while`: those are
-  // found by memchr, a byte at a time only in such lines.
-  constexpr int kKeyCount = 5;
-  constexpr char kKeys[kKeyCount] = {'M', 'm', 'O', 'o', 'w'};
+  // one with an O (LinuxCNC's O-words, Fanuc's DO1, Sinumerik's LOOP and FOR), a `while` or
+  // Sinumerik's UNTIL: those are found by memchr, a byte at a time only in such lines.
+  constexpr int kKeyCount = 7;
+  constexpr char kKeys[kKeyCount] = {'M', 'm', 'O', 'o', 'w', 'W', 'U'};
   size_t next[kKeyCount];
   const size_t n = text.size();
   auto find = [&](int k, size_t from) {

@@ -158,7 +158,8 @@ class LineLexer {
     for (const KeywordSpelling& k : p_.keywords)
       if (k.name == kw) return dialect_keyword(i, e, k);
     if (kw == "IF" || kw == "WHILE" || kw == "GOTO" || kw == "END" || kw.rfind("END", 0) == 0 ||
-        kw.rfind("DO", 0) == 0 || kw == "THEN") {
+        kw.rfind("DO", 0) == 0 || kw == "THEN" || kw == "ELSE" || kw == "LOOP" || kw == "FOR" || kw == "REPEAT" ||
+        kw == "UNTIL") {
       set_kind(BlockKind::Macro);
       return false;
     }

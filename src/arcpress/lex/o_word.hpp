@@ -20,7 +20,10 @@ struct OWord {
 
 /// The O-word line `line` (a block of kind Control): its keyword and label. Fanuc's and Haas's
 /// macro loops (a block of kind Macro) read as LinuxCNC's: `WHILE [..] DO1` as a `while`, `DO1`
-/// as a `do`, `END1` as the end of either.
-OWord read_o_word(std::string_view line);
+/// as a `do`, `END1` as the end of either; so are Sinumerik's blocks (`WHILE` .. `ENDWHILE`,
+/// `LOOP` .. `ENDLOOP`, `FOR` .. `ENDFOR`, `REPEAT` .. `UNTIL`, `IF` .. `ELSE` .. `ENDIF`),
+/// where `keyword_blocks` (not where indents make the blocks: RepRapFirmware's `if`, `else`
+/// and `while` are not closed by keywords).
+OWord read_o_word(std::string_view line, bool keyword_blocks);
 
 }  // namespace arcpress

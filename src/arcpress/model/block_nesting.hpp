@@ -77,6 +77,11 @@ struct BlockNesting {
     for (uint32_t k = 0; k < depth; ++k)
       if (!levels[k].plain) levels[k].changed |= uint8_t(differing(levels[k].at_open, now) << 1);
   }
+  /// The innermost block, an `else` branch, ends where the branch before it ends too, which
+  /// `j` (its close) says what differs at: a way out of the whole `if` block.
+  void branch_ended(const Join& j) {
+    if (depth > 0) levels[depth - 1].changed |= uint8_t((j.position ? kMoved : 0) | j.modes << 1);
+  }
   /// Whether `line` is RepRapFirmware's `break` or `continue`, which leave their loop's block
   /// at once (a line of flow control the firmware goes on from elsewhere than the next).
   static bool leaves_block(std::string_view line);

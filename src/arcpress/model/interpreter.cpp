@@ -681,7 +681,7 @@ class Interpreter {
   /// LinuxCNC's O-word line `b` (block `bi`), followed as model/o_word_flow.hpp says.
   [[gnu::noinline]] void o_word_line(uint32_t bi, const Block& b) {
     Frame f = s_.frame;
-    const OWordFlow flow = follow_o_word(s_, read_o_word(p_->raw(b)), f, b.line);
+    const OWordFlow flow = follow_o_word(s_, read_o_word(p_->raw(b), !d_.indented_blocks), f, b.line);
     if (flow.enters_body) enter(bi, false), s_.motion = -1;
     if (flow.after_call) forget(kAllAxes & ~(1u << kE), Unfit::UnknownAtEntry, bi);  // one place: G91 floats
     join(flow.join, bi);

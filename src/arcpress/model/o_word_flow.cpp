@@ -33,6 +33,7 @@ OWordFlow follow_o_word(ModalState& s, const OWord& w, Frame& frame, uint32_t li
       const BlockNesting::Modes at_if = n.depth > 0 && n.levels[n.depth - 1].label == w.label ? n.levels[n.depth - 1].at_open : now;
       flow.join = n.close(w.label, now);
       n.open(w.label, false, false, at_if);
+      n.branch_ended(flow.join);
       break;
     }
     case K::EndIf: case K::EndWhile: case K::EndRepeat: flow.join = n.close(w.label, now); break;
