@@ -257,6 +257,26 @@ LoopRun run_loop(const std::string& dialect, const std::string& text) {
   return run;
 }
 
+/// `r` was written, `arcs` arcs, and read back as the input; `as_is`: its loop's moves written
+/// as they are, and refused where read as they come.
+void expect_loop(const LoopRun& r, bool as_is, size_t arcs) {
+  CHECK(r.ok);
+  CHECK(r.written_as_is == as_is);
+  CHECK(r.arcs == arcs);
+  CHECK(r.kept_by_check == 0);
+  CHECK(r.within_band);
+  CHECK(r.refused_as_it_comes == as_is);
+}
+
+/// The quarter circle of quarter() with no motion word (and no E): read in the motion in force.
+std::string bare_quarter() {
+  std::string bare;
+  const std::string q = quarter(0, 30, "");
+  for (size_t at = 0, nl; (nl = q.find('\n', at)) != std::string::npos; at = nl + 1)
+    bare += q.substr(at + 3, nl - at - 9) + "\n";  // (without "G1 " and " E0.05")
+  return bare;
+}
+
 }  // namespace
 
 TEST_CASE("a loop whose end runs its first moves again in other modes writes them as they are", "[nesting][jumps]") {
@@ -265,12 +285,7 @@ TEST_CASE("a loop whose end runs its first moves again in other modes writes the
   // both: read whole, they are written as they are; read as they come (their output gone
   // before the loop's end), the run fails.
   const std::string loop = kHead + "while iterations < 3\n" + quarter(0, 30, "  ") + "  G91\n  G1 Z0.2\nG90\nM400\n";
-  LoopRun r = run_loop("reprapfirmware", loop);
-  CHECK(r.ok);
-  CHECK(r.written_as_is);
-  CHECK(r.arcs == 0);
-  CHECK(r.within_band);
-  CHECK(r.refused_as_it_comes);
+  expect_loop(run_loop("reprapfirmware", loop), true, 0);
   // Restated at the loop's start, or back in G90 at its end, the moves read the same each time.
   std::string stated = loop;
   stated.insert(stated.find("while iterations < 3\n") + 21, "  G90\n");
@@ -279,30 +294,18 @@ TEST_CASE("a loop whose end runs its first moves again in other modes writes the
   // An `if` runs once: its lines are read in order.
   std::string branch = loop;
   branch.replace(branch.find("while iterations < 3"), 20, "if iterations < 3");
-  for (const std::string& text : {stated, restored, branch}) {
-    r = run_loop("reprapfirmware", text);
-    CHECK(r.ok);
-    CHECK_FALSE(r.written_as_is);
-    CHECK(r.arcs == 1);
-    CHECK(r.within_band);
-    CHECK_FALSE(r.refused_as_it_comes);
-  }
+  for (const std::string& text : {stated, restored, branch}) expect_loop(run_loop("reprapfirmware", text), false, 1);
   // A `continue` runs the loop's first lines again from where it stands.
   const std::string skipped = kHead + "while iterations < 3\n" + quarter(0, 30, "  ") +
                               "  if iterations == 1\n    G18\n    continue\n  G17\n  G1 Z0.2\nM400\n";
-  r = run_loop("reprapfirmware", skipped);
-  CHECK(r.written_as_is);
-  CHECK(r.arcs == 0);
-  CHECK(r.within_band);
+  expect_loop(run_loop("reprapfirmware", skipped), true, 0);
 }
 
 TEST_CASE("LinuxCNC's, Fanuc's and Sinumerik's loops run their first moves again in the plane, units, motion and G90 or G91 their end leaves",
           "[nesting][jumps]") {
   // Each loop's end leaves one mode otherwise than its start was read in.
   const std::string ends[] = {"G91 G1 Z0.2\n", "G18\n", "G20\n", "G0 Z1\n"};
-  std::string bare;  // the quarter circle with no motion word: read in the motion in force
-  for (size_t at = 0, nl; (nl = quarter(0, 30, "").find('\n', at)) != std::string::npos; at = nl + 1)
-    bare += quarter(0, 30, "").substr(at + 3, nl - at - 9) + "\n";  // (without "G1 " and " E0.05")
+  const std::string bare = bare_quarter();
   struct Loop {
     const char* dialect;
     const char* open;
@@ -319,45 +322,25 @@ TEST_CASE("LinuxCNC's, Fanuc's and Sinumerik's loops run their first moves again
       // the input's, its loops the same.)
       const std::string head = "G21 G17 G90\nG0 X0 Y0\nG1 X0 Y0 F500\n" + bare + std::string(l.open) + "\nX0 Y0\n";
       const std::string text = head + bare + end + l.close + "\nG21 G17 G90 G1\nM2\n";
-      LoopRun r = run_loop(l.dialect, text);
-      CHECK(r.ok);
-      CHECK(r.written_as_is);
-      CHECK(r.arcs == 1);
-      CHECK(r.kept_by_check == 0);
-      CHECK(r.within_band);
-      CHECK(r.refused_as_it_comes);
+      expect_loop(run_loop(l.dialect, text), true, 1);
       // Stated at the loop's start, the moves are fitted, and read alike each time round.
       std::string stated = text;
       stated.insert(stated.find('\n', stated.find(l.open)) + 1, "G21 G17 G90 G1\n");
-      r = run_loop(l.dialect, stated);
-      CHECK(r.ok);
-      CHECK_FALSE(r.written_as_is);
-      CHECK(r.arcs == 2);
-      CHECK(r.kept_by_check == 0);
-      CHECK(r.within_band);
-      CHECK_FALSE(r.refused_as_it_comes);
+      expect_loop(run_loop(l.dialect, stated), false, 2);
     }
   // LinuxCNC's `continue` runs the loop's first lines again from where it stands.
   const std::string skipped = "G21 G17 G90\nG0 X0 Y0\nG1 F500\n#1=0\no1 do\nX0 Y0\n" + bare +
                               "o3 if [#1 EQ 1]\nG18\no1 continue\no3 endif\nG17\n#1=[#1+1]\no1 while [#1 LT 3]\nM2\n";
-  LoopRun r = run_loop("linuxcnc", skipped);
-  CHECK(r.written_as_is);
-  CHECK(r.arcs == 0);
-  CHECK(r.within_band);
+  expect_loop(run_loop("linuxcnc", skipped), true, 0);
   // A rapid before the loop's G90 places the moves after it: run again in G91, it ends
   // elsewhere, and so does the first move the G90 reads after it.
   const std::string rapid = "G21 G17 G90\nG0 X0 Y0\nG1 F500\n#1=0\no1 do\nG0 X5 Y5\nG90 G1\n" + bare +
                             "G91 G1 Z0.2\n#1=[#1+1]\no1 while [#1 LT 3]\nG90\nM2\n";
-  r = run_loop("linuxcnc", rapid);
-  CHECK(r.written_as_is);
-  CHECK(r.arcs == 0);
-  CHECK(r.within_band);
+  expect_loop(run_loop("linuxcnc", rapid), true, 0);
 }
 
 TEST_CASE("after a block the modes that differ on its ways out are not known", "[nesting]") {
-  std::string bare;  // the quarter circle with no motion word
-  for (size_t at = 0, nl; (nl = quarter(0, 30, "").find('\n', at)) != std::string::npos; at = nl + 1)
-    bare += quarter(0, 30, "").substr(at + 3, nl - at - 9) + "\n";
+  const std::string bare = bare_quarter();
   const std::string head = "G21 G17 G90\nG0 X0 Y0\nG1 X0 Y0 F500\n#1=0\n";
   // A branch that leaves G18, G20 or G0 where it may not run: after it, the moves wait for the
   // program to state the mode; the same mode on every way out is known.
@@ -383,9 +366,7 @@ TEST_CASE("after a block the modes that differ on its ways out are not known", "
 
 TEST_CASE("Fanuc's macro loops are loops too, WHILE DO1 to END1", "[nesting]") {
   const std::string head = "G90 G17 G21\nG0 X0 Y0\nG1 F500\n#1=0\n";
-  std::string after;  // the quarter circle again after the loop, its words bare
-  for (size_t at = 0, nl; (nl = quarter(0, 30, "").find('\n', at)) != std::string::npos; at = nl + 1)
-    after += quarter(0, 30, "").substr(at + 3, nl - at - 9) + "\n";  // (without "G1 " and " E0.05")
+  const std::string after = bare_quarter();  // the quarter circle again after the loop, its words bare
   // A loop that steps down in G91 and cuts in G90: after END1, the modes are the loop's end's
   // or, where it ran no more, the ones before it; here the same on both ways out.
   const std::string loop = head + "WHILE [#1 LT 3] DO1\nG91 G1 Z-1.\nG90\n" + quarter(0, 30, "") + "#1=#1+1\nEND1\n";
