@@ -339,6 +339,25 @@ TEST_CASE("LinuxCNC's, Fanuc's and Sinumerik's loops run their first moves again
   expect_loop(run_loop("linuxcnc", rapid), true, 0);
 }
 
+TEST_CASE("a loop nested deeper than the blocks arcpress follows reads its first moves in modes not known", "[nesting][jumps]") {
+  // Past BlockNesting::kMostLevels blocks, a loop's end is not followed: its first moves wait
+  // for the program to state their modes, as a loop found to run them otherwise does.
+  std::string opens, closes;
+  for (uint32_t k = 1; k <= BlockNesting::kMostLevels; ++k) {
+    opens += fmt::format("o{} if [#2 EQ 0]\n", k);
+    closes = fmt::format("o{} endif\n", k) + closes;
+  }
+  const std::string head = "G21 G17 G90\nG0 X0 Y0\nG1 F500\n#1=0\n#2=0\n" + opens + "o20 do\nX0 Y0\n";
+  const std::string tail = "#1=[#1+1]\no20 while [#1 LT 3]\n" + closes + "M2\n";
+  expect_loop(run_loop("linuxcnc", head + bare_quarter() + "G18\n" + tail), false, 0);
+  std::string stated = head + "G21 G17 G90 G1\n" + bare_quarter() + "G18\n" + tail;
+  expect_loop(run_loop("linuxcnc", stated), false, 1);
+  // One level less, the loop is followed.
+  const std::string followed = head.substr(0, head.find("o8 if")) + "o20 do\nX0 Y0\n" + bare_quarter() + "G18\n" +
+                               "#1=[#1+1]\no20 while [#1 LT 3]\n" + closes.substr(closes.find("o7 endif")) + "M2\n";
+  expect_loop(run_loop("linuxcnc", followed), true, 0);
+}
+
 TEST_CASE("after a block the modes that differ on its ways out are not known", "[nesting]") {
   const std::string bare = bare_quarter();
   const std::string head = "G21 G17 G90\nG0 X0 Y0\nG1 X0 Y0 F500\n#1=0\n";

@@ -60,6 +60,7 @@ BlockNesting::Join BlockNesting::line(std::string_view line, bool opens, uint32_
       j.loop_entered = loop, j.loop_line = last_loop;
     } else {  // merged: it keeps what changed since the outer block began, and is a block where either is
       levels[depth - 1].indent = d, levels[depth - 1].plain = levels[depth - 1].plain && !last_opens;
+      j.loop_unfollowed = last_loop != 0;
     }
   }
   if (opens && is_keyword(line, "continue")) j.back_to(loop_of(0));
@@ -72,7 +73,7 @@ BlockNesting::Join BlockNesting::line(std::string_view line, bool opens, uint32_
 uint32_t BlockNesting::open(uint32_t label, bool do_loop, bool loop, const Modes& now) {
   if (depth == kMostLevels) {
     levels[depth - 1].label = label, levels[depth - 1].do_loop = do_loop;  // merged, as in line()
-    return 0;
+    return loop ? kUnfollowed : 0;
   }
   const uint32_t number = loop ? ++loops : 0;
   levels[depth++] = Level{0, 0, do_loop, label, false, number, now};

@@ -49,6 +49,9 @@ struct BlockNesting {
     /// The loop whose first lines begin after this line, by its number (0: none), and the
     /// line that opens it.
     uint32_t loop_entered = 0, loop_line = 0;
+    /// A loop begins after this line past kMostLevels, whose end is not followed: its first
+    /// lines are read with their modes not known, as a loop found to run them otherwise is.
+    bool loop_unfollowed = false;
     /// Adds loop `loop` (a line; 0: none) to those this jumps back to.
     void back_to(uint32_t loop) {
       if (loop != 0 && loops_back_count < loops_back.size()) loops_back[loops_back_count++] = loop;
@@ -65,9 +68,10 @@ struct BlockNesting {
   /// in one runs it again. `line_number`: the line's; `now`: the modes before it.
   Join line(std::string_view line, bool opens, uint32_t line_number, const Modes& now);
   /// An O-word block labelled `label` opens in modes `now` (`do_loop`: a `do`, which a
-  /// `while` ends; `loop`: it is a loop). Returns the loop's number (0: no loop, or one past
-  /// kMostLevels, which is not followed).
+  /// `while` ends; `loop`: it is a loop). Returns the loop's number (0: no loop;
+  /// kUnfollowed: one past kMostLevels, whose end is not followed).
   uint32_t open(uint32_t label, bool do_loop, bool loop, const Modes& now);
+  static constexpr uint32_t kUnfollowed = UINT32_MAX;
   /// The O-word block labelled `label` ends (and those opened in it), in modes `now`: what may
   /// differ after it. Where none is open with that label, nothing is known to end.
   Join close(uint32_t label, const Modes& now);

@@ -655,7 +655,7 @@ class Interpreter {
   void join(const BlockNesting::Join& j, uint32_t bi) {
     for (uint32_t k = 0; k < j.loops_back_count; ++k) loop_back(s_, j.loops_back[k], p_->blocks[bi].line, sink_);
     if (j.position) forget(kAllAxes & ~(1u << kE), Unfit::UnknownAtEntry, bi);
-    s_.forget_modes(j.modes);
+    s_.forget_modes(uint8_t(j.modes | (j.loop_unfollowed ? kStatesAll : 0)));
     if (j.loop_entered) enter_loop(s_, j.loop_entered, j.loop_line);
   }
 

@@ -5,9 +5,11 @@ namespace arcpress {
 
 BlockNesting::Join follow_repeat_marker(ModalState& s, bool mark, uint32_t line) {
   constexpr uint32_t kRepeatLabel = 0x4D383038;  // ("M808"; an O-word label, a hash, is another but once in 2^32)
+  if (!mark) return s.nesting.close(kRepeatLabel, s.modes());
   BlockNesting::Join j;
-  if (mark) j.loop_entered = s.nesting.open(kRepeatLabel, false, true, s.modes()), j.loop_line = line;
-  else j = s.nesting.close(kRepeatLabel, s.modes());
+  const uint32_t number = s.nesting.open(kRepeatLabel, false, true, s.modes());
+  if (number == BlockNesting::kUnfollowed) j.loop_unfollowed = true;
+  else j.loop_entered = number, j.loop_line = line;
   return j;
 }
 
@@ -16,16 +18,19 @@ OWordFlow follow_o_word(ModalState& s, const OWord& w, Frame& frame, uint32_t li
   BlockNesting& n = s.nesting;
   const BlockNesting::Modes now = s.modes();
   OWordFlow flow;
+  auto open_loop = [&](bool do_loop) {
+    const uint32_t number = n.open(w.label, do_loop, true, now);
+    if (number == BlockNesting::kUnfollowed) flow.join.loop_unfollowed = true;
+    else flow.join.loop_entered = number, flow.join.loop_line = line;
+  };
   switch (w.kind) {
     case K::If: n.open(w.label, false, false, now); break;
-    case K::Do: case K::Repeat:
-      flow.join.loop_entered = n.open(w.label, w.kind == K::Do, true, now), flow.join.loop_line = line;
-      break;
+    case K::Do: case K::Repeat: open_loop(w.kind == K::Do); break;
     case K::While:  // (the end of a `do`, or a loop of its own)
       if (n.in_do(w.label)) {
         flow.join = n.close(w.label, now);
       } else {
-        flow.join.loop_entered = n.open(w.label, false, true, now), flow.join.loop_line = line;
+        open_loop(false);
       }
       break;
     case K::ElseIf: case K::Else:  // (entered from where the `if` began, not from the branch before)
