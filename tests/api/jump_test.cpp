@@ -519,6 +519,10 @@ TEST_CASE("a jump's target is read in the modes of every way in, and a loop back
   CHECK(run(back("G90 ", "G18\n", "#2=10\nIF [#1 LT 3] GOTO #2")) == std::pair(size_t(0), true));
   CHECK(run(back("G17 G90 ", "G18\n", "#2=10\nIF [#1 LT 3] GOTO #2")) == std::pair(size_t(1), false));
   CHECK(run(back("G90 ", "G18\nG17\n", "#2=10\nIF [#1 LT 3] GOTO #2")) == std::pair(size_t(1), false));
+  // (It names a numbered block: a loop of blocks before it is no target of it.)
+  const std::string unnumbered = from("G90 ").substr(4);  // (without "N10 ")
+  CHECK(run(head + "#1=0\nWHILE [#1 LT 2] DO1\n" + unnumbered + "#1=#1+1\nEND1\nG18\n#2=10\nIF [#1 LT 3] GOTO #2\nM30\n") ==
+        std::pair(size_t(1), false));
   // Pushed as it comes, its text not read ahead, such a loop is found only at its jump back,
   // after its moves were written: the program fails (E-FLOW-LOOP-MODES).
   {

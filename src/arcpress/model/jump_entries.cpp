@@ -113,8 +113,9 @@ std::string jump_to(ModalState& s, uint64_t number, uint32_t line) {
 }
 
 /// A jump at line `line` to a number state `s` computes: ahead, the numbered blocks read after
-/// it are read in its modes too; back, each target read whose first moves used a mode that
-/// differs here is refused. The first refused and what differed there, else nothing.
+/// it are read in its modes too; back, each numbered target read whose first moves used a mode
+/// that differs here is refused (`used`, joined over all entries, says first whether any may
+/// be). The first refused and what differed there, else nothing.
 std::pair<uint64_t, std::string> computed_jump(ModalState& s, uint32_t line) {
   const JumpEntries::Modes here = modes_of(s, s.frame);
   JumpEntries& all = own_entries(s);
@@ -127,7 +128,7 @@ std::pair<uint64_t, std::string> computed_jump(ModalState& s, uint32_t line) {
     return {};
   std::pair<uint64_t, std::string> first;
   for (JumpEntries::Entry& e : all.entries)
-    if (e.read)
+    if (e.read && !is_loop_of_blocks(e.number))  // (a number names no loop of blocks' start)
       if (std::string what = refusal(e, here, line); !what.empty() && first.second.empty()) first = {e.number, what};
   return first;
 }
