@@ -44,11 +44,11 @@ OWord read_keyword_block(std::string_view line, size_t i) {
     std::string_view name;
     K kind;
     uint32_t label;
-  } kEnds[] = {{"ENDWHILE", K::EndWhile, kSinumerikWhile}, {"ENDLOOP", K::EndWhile, kSinumerikLoop},
+  } kKeywords[] = {{"ENDWHILE", K::EndWhile, kSinumerikWhile}, {"ENDLOOP", K::EndWhile, kSinumerikLoop},
                {"ENDFOR", K::EndWhile, kSinumerikFor},     {"UNTIL", K::EndRepeat, kSinumerikRepeat},
                {"ENDIF", K::EndIf, kSinumerikIf},          {"ELSE", K::Else, kSinumerikIf},
                {"LOOP", K::Repeat, kSinumerikLoop},        {"FOR", K::Repeat, kSinumerikFor}};
-  for (const auto& k : kEnds)
+  for (const auto& k : kKeywords)
     if (is(k.name)) return {k.kind, k.label};
   const size_t after = line.find_first_not_of(" \t\r", std::min(line.size(), i + 6));
   if (is("REPEAT") && (after == std::string_view::npos || line[after] == ';'))  // (`REPEAT LABEL1 P=2`: a section)

@@ -666,7 +666,7 @@ class Interpreter {
     const BlockNesting::Modes now = s_.modes();
     const std::string_view raw = p_->raw(b);
     if (d_.indented_blocks) join(s_.nesting.line(raw, b.kind != BlockKind::Code && b.kind != BlockKind::Empty, b.line, now), bi);
-    if (b.kind == BlockKind::Control || b.kind == BlockKind::Macro || (d_.indented_blocks && BlockNesting::leaves_block(raw)))
+    if (b.kind == BlockKind::Control || b.kind == BlockKind::Macro || (b.kind == BlockKind::HostCommand && BlockNesting::leaves_block(raw)))
       s_.nesting.way_out(now);
     const uint32_t known = s_.known;
     const size_t frames = o_->frames.size();
