@@ -214,7 +214,7 @@ std::string text_promise(const std::string& text, const Dialect& dialect) {
                          fmt::join(r.check.findings, "; "));
   }
   DiagnosticSink sa("a.nc"), sb("b.nc");
-  const Program pa = lex("a.nc", text, sa, keywords_read(dialect)), pb = lex("b.nc", text, sb, keywords_read(dialect));
+  const Program pa = lex("a.nc", text, sa, lex_rules(dialect)), pb = lex("b.nc", text, sb, lex_rules(dialect));
   const Interpretation ia = interpret(pa, sa, dialect), ib = interpret(pb, sb, dialect);
   DiffOptions dopt;
   dopt.threads = 1;

@@ -35,7 +35,7 @@ size_t count_of(const std::string& text, const std::string& what) {
 
 ProgramDiff diff_texts(const std::string& a, const std::string& b, const DiffOptions& opt, const Dialect& dialect) {
   DiagnosticSink sa("a.nc"), sb("b.nc");
-  const Program pa = lex("a.nc", a, sa, keywords_read(dialect)), pb = lex("b.nc", b, sb, keywords_read(dialect));
+  const Program pa = lex("a.nc", a, sa, lex_rules(dialect)), pb = lex("b.nc", b, sb, lex_rules(dialect));
   const Interpretation ia = interpret(pa, sa, dialect), ib = interpret(pb, sb, dialect);
   return diff_programs(pa, ia, pb, ib, opt);
 }

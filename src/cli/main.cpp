@@ -164,8 +164,8 @@ int run_diff(const DiffArgs& d) {
   Dialect dialect = cli::dialect_for(d.dialect, d.dialect_given, d.dialect_file, text_a, d.a == "-" ? "" : d.a);
   cli::set_start_units(dialect, d.units);
   DiagnosticSink sa(d.a), sb(d.b);
-  Program pa = lex(d.a, std::move(text_a), sa, keywords_read(dialect));
-  Program pb = lex(d.b, std::move(text_b), sb, keywords_read(dialect));
+  Program pa = lex(d.a, std::move(text_a), sa, lex_rules(dialect));
+  Program pb = lex(d.b, std::move(text_b), sb, lex_rules(dialect));
   // Each read with the blocks its jumps enter (JumpTargets), as the compressor reads them.
   for (Program* p : {&pa, &pb}) {
     auto jumps = std::make_shared<JumpTargets>();

@@ -595,7 +595,7 @@ TEST_CASE("a code that switches a mode shares its block with a move, which is re
     INFO(name << " " << code);
     const std::string t = fmt::format("G21 G90 G17\nG0 X0. Y0. Z0.\nG1 X1. F100.\n{} G1 X10. Y5. F500.\nG1 X11. Y6.\nM30\n", code);
     DiagnosticSink sink("m.nc");
-    const Program p = lex("m.nc", t, sink, keywords_read(shipped(name)));
+    const Program p = lex("m.nc", t, sink, lex_rules(shipped(name)));
     const Interpretation in = interpret(p, sink, shipped(name));
     REQUIRE(in.moves.size() == 4);
     CHECK(in.moves[2].to[kX] == 10);
@@ -605,7 +605,7 @@ TEST_CASE("a code that switches a mode shares its block with a move, which is re
   // A code read as settings holds values: Sinumerik's dwell G4 F2 (seconds) leaves the feed.
   const std::string dwell = "G71 G90 G17\nG0 X0 Y0 Z0\nG1 X1 F500\nG4 F2\nG1 X2\n";
   DiagnosticSink sink("d.mpf");
-  const Program p = lex("d.mpf", dwell, sink, keywords_read(shipped("sinumerik")));
+  const Program p = lex("d.mpf", dwell, sink, lex_rules(shipped("sinumerik")));
   const Interpretation in = interpret(p, sink, shipped("sinumerik"));
   REQUIRE(in.moves.size() == 3);
   CHECK(in.moves[2].feed_mm_min == 500);

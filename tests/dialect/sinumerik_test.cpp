@@ -50,7 +50,7 @@ struct Read {
 
 std::unique_ptr<Read> read_as(const Dialect& d, const std::string& text) {
   auto r = std::make_unique<Read>();
-  r->program = lex("part.mpf", text, r->sink, keywords_read(d));
+  r->program = lex("part.mpf", text, r->sink, lex_rules(d));
   r->in = interpret(r->program, r->sink, d);
   return r;
 }
@@ -121,6 +121,59 @@ TEST_CASE("a Sinumerik keyword is read bare, in any case, or with a number after
     CHECK(call->in.moves[1].known == known);
     CHECK((call->program.blocks[1].kind == BlockKind::Opaque) == (std::string(line).rfind("POCKET9", 0) == 0));
   }
+}
+
+TEST_CASE("a Sinumerik line of R-parameter assignments is a macro line, X=10 is X10, and X=R1 or X=IC(5) is an X word "
+          "whose value is not known",
+          "[dialect]") {
+  const auto r = read_as(sinumerik(), "N10 R1=5 R2=R1*2\nR[R1]=4\nN20 G0 X=10 Y = -2.5 Z5\nN30 G18 X=R1 Z=IC(5)\n"
+                                      "T=\"DRILL 10\" D1\nM2=3 S2=1000\nN40 G1 X10 R1=5\n");
+  const Program& p = r->program;
+  CHECK(p.blocks[0].kind == BlockKind::Macro);
+  CHECK(p.blocks[1].kind == BlockKind::Macro);
+  auto words = [&](size_t b) {
+    std::string out;
+    for (const Word* w = p.words_begin(p.blocks[b]); w != p.words_end(p.blocks[b]); ++w)
+      out += fmt::format("{}{} ", w->letter, w->is_expr ? "?" : fmt::format("{:g}", w->value));
+    return out;
+  };
+  CHECK(words(2) == "N20 G0 X10 Y-2.5 Z5 ");
+  CHECK(words(3) == "N30 G18 X? Z? ");
+  CHECK(p.raw(p.blocks[3], p.words_begin(p.blocks[3])[3]) == "Z=IC(5)");
+  CHECK(words(4) == "T? D1 ");  // (the blank in the quoted name is the name's)
+  CHECK(words(5) == "M? S? ");
+  CHECK(p.blocks[6].kind == BlockKind::Opaque);  // an assignment after a move is not read
+  CHECK(r->sink.warning_count("E-LEX-ASSIGN") == 1);
+  CHECK(r->sink.warning_count("E-LEX-CHAR") + r->sink.warning_count("E-LEX-NUMBER") == 0);
+  REQUIRE(r->in.moves.size() == 2);
+  CHECK(r->in.moves[0].to[kX] == 10.0);
+  CHECK(r->in.moves[0].to[kY] == -2.5);
+  CHECK_FALSE(r->in.moves[1].known);  // X and Z not known
+  // Elsewhere an `=` after an address is no word: the line is not read.
+  const auto iso = read_as(rs274(), "R1=5\nG0 X=10\n");
+  CHECK(iso->program.blocks[0].kind == BlockKind::Opaque);
+  CHECK(iso->program.blocks[1].kind == BlockKind::Opaque);
+}
+
+TEST_CASE("a Sinumerik G18 on a line with an expression is read: a contour in XY after it is written in G17, and G18 "
+          "stated again after it",
+          "[dialect]") {
+  // Once, the `=` left the line unread, and the arcs went out in the plane the program had
+  // before it, which the control then reads in XZ.
+  const CompressResult res = compress_as(sinumerik(), half_circle("N10 G17 G90 G71\nN15 R1=0\nN16 G18 X=R1\n", 2.0, 4), 0.01);
+  CHECK(test::broken_promise(res) == "");
+  CHECK(res.stats.arcs_out > 0);
+  DiagnosticSink sink;
+  const Program out = lex("out.mpf", res.output, sink, lex_rules(sinumerik()));
+  const Interpretation in = interpret(out, sink, sinumerik());
+  size_t arcs = 0;
+  for (const Move& m : in.moves) {
+    if (!is_arc(m.kind)) continue;
+    ++arcs;
+    CHECK(m.plane == Plane::XY);
+  }
+  CHECK(arcs == res.stats.arcs_out);
+  CHECK(res.output.find("G18\nN500 G0 Z1") != std::string::npos);
 }
 
 TEST_CASE("Sinumerik's modal call keeps every move it calls at, and its frames, subprogram calls and tangential arcs "
@@ -223,7 +276,7 @@ TEST_CASE("a dialect's [codes] take keywords and the letters T, D and L, with wh
   CHECK(d.keyword_meaning("BRISK") == nullptr);
   REQUIRE(d.meaning_of('D', 0));
   CHECK(*d.meaning_of('D', 0) == CodeMeaning::Moves);
-  const std::vector<KeywordSpelling> k = keywords_read(d);
+  const std::vector<KeywordSpelling> k = lex_rules(d).keywords;
   REQUIRE(k.size() == 3);  // (in the order of the names)
   CHECK(k[0].name == "DIAMON");
   CHECK(k[1].name == "MCALL");

@@ -337,3 +337,36 @@ TEST_CASE("after M2 or M30 the program goes on in G1, G17, G90 and G94, as Linux
   REQUIRE(r.in.moves.size() == 2);
   CHECK_FALSE(r.in.moves[1].known);
 }
+
+TEST_CASE("a line not read sets the plane, units, G90/G91 and motion its G words name, as far as arcpress knows",
+          "[model]") {
+  // The controller reads `G18` and `G91` on lines arcpress does not: the moves after them are
+  // not placed until the program states those modes again, where they once were read in G17
+  // and G90.
+  for (const char* unread : {"G18 X1 Y{depth}", "G91 X1 Y{depth}", "G20 X1 Y{depth}", "G#1 X1 Y2", "G[10+8] X1 Y2"}) {
+    INFO(unread);
+    auto r = run(std::string("G17 G21 G90\nG0 X0 Y0 Z1\n") + unread + "\nG1 X2 Y1 Z1 F100\nX3 Y2\nG17 G21 G90\nG1 X4 Y2 Z1\nX5 Y3\n");
+    const std::vector<Move>& m = r.in.moves;
+    REQUIRE(m.size() >= 5);
+    CHECK_FALSE(m[m.size() - 4].known);
+    CHECK_FALSE(m[m.size() - 3].known);
+    CHECK(m.back().known);  // from a place after the modes were stated again
+    CHECK(m.back().to[kX] == 5.0);
+  }
+  // A line whose G words set none of them leaves the moves after it placed once an axis word
+  // places them; so do the letters G of names and of comments.
+  for (const char* unread : {"G4 X1 Y{depth}", "M117 {depth} G18", "X1 Y{depth} (G18)", "X1 Y{depth} ; G91",
+                             "MSG(\"G18\") X{1}", "T{next} GOTOF END"}) {
+    INFO(unread);
+    auto r = run(std::string("G17 G21 G90\nG0 X0 Y0 Z1\n") + unread + "\nG1 X2 Y1 Z1 F100\nX3 Y2\n");
+    REQUIRE(r.in.moves.size() >= 3);
+    CHECK(r.in.moves[r.in.moves.size() - 1].known);
+    CHECK(r.in.moves[r.in.moves.size() - 1].to[kX] == 3.0);
+  }
+  // Bare moves after a line whose motion is not known are placed nowhere, and say why.
+  auto bare = run("G17 G21 G90\nG0 X0 Y0 Z1\nG1 X1 Y{depth}\nX2 Y1 Z1\nX3 Y2\nG1 X4\n");
+  REQUIRE(bare.in.moves.size() == 4);
+  CHECK(bare.in.moves[1].kind == MoveKind::Other);
+  CHECK_FALSE(bare.in.moves[2].known);
+  CHECK(bare.in.moves[2].unfit == Unfit::UnknownDistanceMode);
+}

@@ -47,8 +47,8 @@ Checked compressed_and_measured(const std::string& text, const CompressOptions& 
   Checked c;
   c.result = compress("in", text, opt, sink);
   DiagnosticSink read_sink("in");
-  const Program a = lex("in", text, read_sink, keywords_read(opt.dialect)),
-                b = lex("out", c.result.output, read_sink, keywords_read(opt.dialect));
+  const Program a = lex("in", text, read_sink, lex_rules(opt.dialect)),
+                b = lex("out", c.result.output, read_sink, lex_rules(opt.dialect));
   const Interpretation ia = interpret(a, read_sink, opt.dialect), ib = interpret(b, read_sink, opt.dialect);
   DiffOptions dopt;
   dopt.tolerance_mm = opt.fit.tolerance_mm;
@@ -61,7 +61,7 @@ Checked compressed_and_measured(const std::string& text, const CompressOptions& 
 /// The check of `output` against `text`, as compress() checks its own.
 CompressResult checked(const std::string& text, const std::string& output, const CompressOptions& opt) {
   DiagnosticSink sink("in");
-  const Program in = lex("in", text, sink, keywords_read(opt.dialect));
+  const Program in = lex("in", text, sink, lex_rules(opt.dialect));
   const Interpretation ii = interpret(in, sink, opt.dialect);
   CompressResult r;
   r.output = output;

@@ -66,7 +66,7 @@ struct Compressor::Impl {
 
   Impl(std::string n, const CompressOptions& o, DiagnosticSink& s)
       : name(std::move(n)), opt(o), sink(s), reader(opt.dialect, s, initial_state(opt.dialect)),
-        keywords(keywords_read(opt.dialect)) {
+        rules(lex_rules(opt.dialect)) {
     const size_t threads = worker_count(opt.threads, size_t(-1));
     limit = kPiecesInFlight * threads;
     total.ok = true;
@@ -217,7 +217,7 @@ struct Compressor::Impl {
     if (!jumps || failed || program.size() > kLoopsAheadBytes) return;
     if (after_end_found) called_ahead();
     DiagnosticSink quiet(name);
-    Program p = lex(name, std::string(program), quiet, keywords);
+    Program p = lex(name, std::string(program), quiet, rules);
     p.jumps = jumps;
     ModalState s = reader.state();
     const LoopsFound loops = loops_in_other_modes(p, opt.dialect, s);
@@ -234,7 +234,7 @@ struct Compressor::Impl {
     after_end_found = false;
     ModalState s = reader.state();
     DiagnosticSink quiet(name);  // (the blocks are read again in their turn, and told then)
-    if (after_end_whole) s.called = read_called_programs(lex(name, std::move(after_end), quiet, keywords), 0, opt.dialect);
+    if (after_end_whole) s.called = read_called_programs(lex(name, std::move(after_end), quiet, rules), 0, opt.dialect);
     after_end = std::string();
     reader.reset(s);
   }
@@ -334,7 +334,7 @@ struct Compressor::Impl {
     cur->index = pieces++;
     gather_bytes = piece_bytes(cur->index);
     cur->program.name = name;
-    cur->program.keywords = keywords;
+    cur->program.rules = rules;
     cur->program.jumps = jumps;
     reserve_piece(cur->program, cur->in);
     cur->start = reader.state();
@@ -496,7 +496,7 @@ struct Compressor::Impl {
   CompressOptions opt;
   DiagnosticSink& sink;
   ModalInterpreter reader;
-  const std::vector<KeywordSpelling> keywords;  // those the dialect reads, each piece's program's
+  const LexRules rules;  // how the dialect's lines are lexed, each piece's program's
   std::shared_ptr<const JumpTargets> jumps;      // the blocks the program's jumps read so far enter
   PassedNumbers passed;                          // block numbers read as no jump's target
   bool jumps_ahead = false;                      // the jumps were read before the program was pushed

@@ -418,7 +418,7 @@ void compress_piece(Piece& piece, const CompressOptions& options) {
     piece.untimed_in = timed_blocks(prog, in, piece.timed_in);
     if (!r.verified) {  // (else the check timed the output as it read it back)
       DiagnosticSink out_sink(prog.name + " (output)");
-      Program out_prog = lex(out_sink.file(), r.output, out_sink, prog.keywords);
+      Program out_prog = lex(out_sink.file(), r.output, out_sink, prog.rules);
       out_prog.jumps = prog.jumps;
       ModalState out_state = piece.start;
       piece.timed_out.clear();

@@ -159,6 +159,9 @@ struct Dialect {
   /// A line's leading blanks open and close blocks ([lines] indented_blocks): RepRapFirmware
   /// 3 runs the lines indented below an `if`, `else` or `while` as its block (BlockNesting).
   bool indented_blocks = false;
+  /// Lines assign to parameters and addresses with `=` ([lines] assignments): Sinumerik's
+  /// `R1=5`, `X=R1*2`, `X=IC(5)` (LexRules::assignments).
+  bool assignments = false;
   /// Extended commands (Klipper's `NAME ARG=...` lines, by their name in capitals) that move
   /// nothing ([printer] position_keeping_commands): the position stays known across them.
   /// Any other such command, a user's macro among them, may move anything.

@@ -84,14 +84,25 @@ struct KeywordSpelling {
   bool takes_call = false; ///< the rest of its line is a call it makes (`MCALL CYCLE81(10,0,2,-5)`), not words
 };
 
+/// What a dialect's lines hold beyond RS274's words (Program::rules).
+struct LexRules {
+  /// The keywords the dialect reads (none: a multi-letter word leaves its line unread).
+  std::vector<KeywordSpelling> keywords;
+  /// Sinumerik's assignments: `R1=5` (and `R[R2]=5`) sets a parameter, and a line of them is a
+  /// Macro line; `X=10` is X10; `X=R1*2`, `X=IC(5)` give an address an expression's value and
+  /// `M2=3`, `X1=10` an address with an extension, both read as expression words. Elsewhere
+  /// an `=` after an address leaves its line unread.
+  bool assignments = false;
+};
+
 /// A lexed program: the bytes, the blocks and all words (blocks index into `words`).
 struct Program {
   std::string name;  ///< file name for diagnostics
   std::string text;
   std::vector<Block> blocks;
   std::vector<Word> words;
-  /// The keywords its dialect reads (none: a multi-letter word leaves its line unread).
-  std::vector<KeywordSpelling> keywords;
+  /// How its dialect's lines are lexed.
+  LexRules rules;
   /// The blocks its jumps may enter (null: none known), read from its whole text before its
   /// blocks are read: a block a jump enters goes on from where the jump was made.
   std::shared_ptr<const JumpTargets> jumps;

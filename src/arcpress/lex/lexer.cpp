@@ -91,6 +91,15 @@ class LineLexer {
       }
       // A letter: an address word, or the start of a multi-letter keyword.
       size_t j = skip_space(i + 1);
+      if (p_.rules.assignments) {
+        const int read = assignment(i);
+        if (read < 0) return;
+        if (read > 0) {
+          first_token = false;
+          i = after_;
+          continue;
+        }
+      }
       if (i + 1 < n_ && (is_alpha(s_[i + 1]) || s_[i + 1] == '_')) {
         if (!keyword(i, first_token)) return;
         first_token = false;
@@ -155,7 +164,7 @@ class LineLexer {
     while (e < n_ && (is_alpha(s_[e]) || is_digit(s_[e]) || s_[e] == '_')) ++e;
     std::string kw;
     for (size_t k = i; k < e; ++k) kw += upper(s_[k]);
-    for (const KeywordSpelling& k : p_.keywords)
+    for (const KeywordSpelling& k : p_.rules.keywords)
       if (k.name == kw) return dialect_keyword(i, e, k);
     if (kw == "IF" || kw == "WHILE" || kw == "GOTO" || kw == "END" || kw.rfind("END", 0) == 0 ||
         kw.rfind("DO", 0) == 0 || kw == "THEN" || kw == "ELSE" || kw == "LOOP" || kw == "FOR" || kw == "REPEAT" ||
@@ -200,6 +209,61 @@ class LineLexer {
     if (ends_word(e)) return push(i, e, kKeywordLetter, 0, false, 0, false, true);
     opaque(e, "E-LEX-KEYWORD", fmt::format("'{}' followed by '{}' is not read", k.name, printable(s_[e])));
     return false;
+  }
+
+  /// The assignment at `i` where the dialect writes them (LexRules::assignments): 0 where the
+  /// address there is not followed by `=`; 1 where it was read as a word (lexing goes on at
+  /// after_); -1 where the line is done: a parameter's assignment (`R1=5`, `R[R2]=5`) after
+  /// nothing but a block number makes a Macro line, and after other words leaves it unread.
+  int assignment(size_t i) {
+    const char letter = upper(s_[i]);
+    size_t k = i + 1;
+    if (k < n_ && s_[k] == '[') {
+      for (int depth = 0; k < n_; ++k) {
+        if (s_[k] == '[') ++depth;
+        if (s_[k] == ']' && --depth == 0) break;
+      }
+      if (k < n_) ++k;
+    } else {
+      while (k < n_ && is_digit(s_[k])) ++k;
+    }
+    const bool extension = k > i + 1;  // R1=, X1=, M2=: the address's number before the `=`
+    k = skip_space(k);
+    if (k >= n_ || s_[k] != '=') return 0;
+    if (letter == 'R' && extension) {
+      for (uint32_t w = 0; w < b_.word_count; ++w)
+        if (p_.words[b_.first_word + w].letter != 'N') {
+          opaque(i, "E-LEX-ASSIGN", "a parameter's assignment after other words is not read");
+          return -1;
+        }
+      set_kind(BlockKind::Macro);
+      return -1;
+    }
+    size_t q = skip_space(k + 1);
+    if (!extension) {  // X=10, X=-2.5: the word X10, X-2.5
+      size_t v = q;
+      const bool negative = v < n_ && s_[v] == '-';
+      if (v < n_ && (s_[v] == '-' || s_[v] == '+')) ++v;
+      const size_t start = v;
+      const Number n = scan_plain_number(v);
+      if (n.digits > 0 && !n.rescan && (v >= n_ || is_space(s_[v]) || s_[v] == ';')) {
+        const double value = value_of(n, start, v);
+        return push(i, v, letter, negative ? -value : value, false, n.decimals, n.point, false) ? 1 : -1;
+      }
+    }
+    // An expression (R1*2, IC(5), AC(R3), "DRILL"): up to the first blank outside its
+    // brackets and quotes.
+    int depth = 0;
+    for (bool quoted = false; q < n_; ++q) {
+      const char c = s_[q];
+      if (c == '"') quoted = !quoted;
+      if (quoted) continue;
+      if (c == '(' || c == '[') ++depth;
+      if (c == ')' || c == ']') --depth;
+      if (depth <= 0 && (is_space(c) || c == ';')) break;
+    }
+    b_.has_expr = true;
+    return push(i, q, letter, 0, true, 0, false, false) ? 1 : -1;
   }
 
   /// Lexes the word whose letter is at `i`; `j` is the first non-space after the letter.
@@ -426,9 +490,9 @@ void lex_line(Program& p, size_t begin, size_t end, uint32_t line, DiagnosticSin
   LineLexer(p, p.blocks.back(), sink).run();
 }
 
-Program lex(std::string name, std::string text, DiagnosticSink& sink, std::vector<KeywordSpelling> keywords) {
+Program lex(std::string name, std::string text, DiagnosticSink& sink, LexRules rules) {
   Program source;
-  source.keywords = std::move(keywords);
+  source.rules = std::move(rules);
   return lex(std::move(name), std::move(text), sink, source, {});
 }
 
@@ -437,7 +501,7 @@ Program lex(std::string name, std::string text, DiagnosticSink& sink, const Prog
   Program p;
   p.name = std::move(name);
   p.text = std::move(text);
-  p.keywords = source.keywords;
+  p.rules = source.rules;
   p.jumps = source.jumps;
   p.blocks.reserve(p.text.size() / 24 + 1);
   p.words.reserve(p.text.size() / 6 + 1);

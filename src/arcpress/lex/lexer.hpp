@@ -12,16 +12,16 @@
 namespace arcpress {
 
 /// Lexes `text` (any line endings: LF, CRLF, none at the end) into a Program.
-/// Diagnostics (codes E-LEX-*) go to `sink`; lexing always completes. `keywords`: those the
-/// program's dialect reads (keywords_read()), kept as Program::keywords.
-Program lex(std::string name, std::string text, DiagnosticSink& sink, std::vector<KeywordSpelling> keywords = {});
+/// Diagnostics (codes E-LEX-*) go to `sink`; lexing always completes. `rules`: what the
+/// program's dialect's lines hold (lex_rules()), kept as Program::rules.
+Program lex(std::string name, std::string text, DiagnosticSink& sink, LexRules rules = {});
 
 /// lex(), where the lines `copies` names (in order of their offsets) are said to be byte
 /// copies of blocks of `source`: each such line whose bytes are that block's takes over its
 /// words, kind and flags instead of being lexed again. Lexing reads nothing but a line's own
 /// bytes, so the program is the one lex() makes; the lines not copied, those whose bytes
 /// differ, blocks whose lexing reported a problem (so that every diagnostic is reported
-/// again) and first lines (a byte-order mark) are lexed. It reads `source`'s keywords, and takes its jumps.
+/// again) and first lines (a byte-order mark) are lexed. It reads `source`'s rules, and takes its jumps.
 Program lex(std::string name, std::string text, DiagnosticSink& sink, const Program& source,
             std::span<const CopiedLine> copies);
 

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <bit>
 #include <bitset>
-#include <cctype>
 #include <cmath>
 #include <optional>
 
@@ -15,6 +14,7 @@
 #include "arcpress/model/called_programs.hpp"
 #include "arcpress/model/jump_entries.hpp"
 #include "arcpress/model/o_word_flow.hpp"
+#include "arcpress/model/unread_line.hpp"
 
 namespace arcpress {
 namespace {
@@ -29,8 +29,6 @@ constexpr auto kOncePerBlock = [] {
 
 constexpr uint32_t kAllAxes = (1u << kAxisCount) - 1;
 constexpr uint32_t kXyzMask = (1u << kX) | (1u << kY) | (1u << kZ);
-/// The S in force after an S word that is an expression: constant until the next S word.
-constexpr double kSpindleUnknown = -1;
 
 class Interpreter {
  public:
@@ -167,9 +165,9 @@ class Interpreter {
         // Flow control, macros and unread lines may move anything, and may turn about the
         // centre I/J/K left in force (Heidenhain's polar moves, PR/PA words, are unread lines).
         // A line not understood at all may also go on from the move before it, as a block
-        // with a code arcpress does not model may (not_modelled()).
+        // with a code arcpress does not model may (not_modelled()), and set the modes its G words name.
         if (d_.centre_modal) note_pole_read(bi);
-        if (b.kind == BlockKind::Opaque) keep_last_move();
+        if (b.kind == BlockKind::Opaque) keep_last_move(), s_.forget_modes(modes_named(p_->raw(b), d_));
         forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterControl, bi);
         if (b.kind == BlockKind::Control || b.kind == BlockKind::Macro) o_word_line(bi, b);
         if (p_->jumps) read_jump(s_, p_->raw(b), b.line, sink_);
@@ -229,8 +227,9 @@ class Interpreter {
       }
       if (w->is_expr) {
         if (L == 'G' || L == 'M') other_words = true, forget(kAllAxes & ~(1u << kE), Unfit::UnknownAfterExpression, bi);
+        if (L == 'G') s_.forget_modes(kStatesAll);  // (G#1 may be G18, G91, G20, G2)
         if (L == 'F') s_.feed_known = false;
-        if (L == 'S') s_.spindle = kSpindleUnknown;
+        if (L == 'S') s_.spindle = ModalState::kSpindleUnknown;
         continue;
       }
       switch (L) {
@@ -571,9 +570,9 @@ class Interpreter {
         if (ax != kE && ((known_after >> ax) & 1u)) set_why(ax, s_.why[ax].reason);
       known_after &= 1u << kE;
     }
-    if (kind == MoveKind::Other && (s_.motion != 0 || skip)) {  // cycles and skip moves end where they like
+    if (kind == MoveKind::Other && (s_.motion != 0 || skip)) {  // cycles, skip moves and motions not known
       for (int ax : {kX, kY, kZ})
-        if ((known_after >> ax) & 1u) set_why(ax, Unfit::UnknownAfterCycle);
+        if ((known_after >> ax) & 1u) set_why(ax, s_.motion < 0 ? Unfit::UnknownDistanceMode : Unfit::UnknownAfterCycle);
       known_after &= ~kXyzMask;
     }
     if (is_arc(kind) && !r_seen && !s_.centre_told && d_.centre == CentreReading::Incremental && known) {

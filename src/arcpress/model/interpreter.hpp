@@ -45,9 +45,9 @@ class ModalInterpreter {
   std::unique_ptr<Impl> impl_;
 };
 
-/// The keywords a program in `dialect` is lexed with (Program::keywords): those its [codes]
-/// give a meaning, a modal call's taking the call after it.
-std::vector<KeywordSpelling> keywords_read(const Dialect& dialect);
+/// How a program in `dialect` is lexed (Program::rules): the keywords its [codes] give a
+/// meaning, a modal call's taking the call after it, and its assignments ([lines] assignments).
+LexRules lex_rules(const Dialect& dialect);
 
 /// Reads `program` as `dialect`'s controller would (centre form, G18 direction, numbers
 /// without a decimal point); the default is generic RS274. With `state`, reading starts

@@ -29,6 +29,8 @@ struct ModalState {
   };
   std::array<Why, kAxisCount> why{};
   uint32_t cause_line = 0;          ///< of the last unplaced move
+  /// The S in force after an S word that is an expression: constant until the next S word.
+  static constexpr double kSpindleUnknown = -1;
   double spindle = 0;               ///< S in force
   int motion = 0;                   ///< modal motion G-code x10; G0 at power-up
   double feed_mm = 0;               ///< F in force, mm/min (or inverse time)

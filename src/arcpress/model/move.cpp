@@ -23,8 +23,8 @@ const char* describe(Unfit why) {
              "line that ends an if, else or loop block)";
     case Unfit::UnknownDistanceMode:
       return "position unknown: moved after such an entry before the program stated G90 or G91 (after a call of a "
-             "subroutine not read, at a jump's target or loop's start entered in other modes, or after a block that "
-             "changed them, also G17/G18/G19 and G20/G21)";
+             "subroutine not read, at a jump's target or loop's start entered in other modes, after a block that "
+             "changed them, a line not read or a G word with an expression; also G17/G18/G19, G20/G21 and G0/G1)";
     case Unfit::UnknownAfterUnmodelled: return "position unknown after a G-code arcpress does not model";
     case Unfit::UnreadableArc: return "an arc the controller cannot run: no centre, or R too short for its chord";
     case Unfit::RepeatedWord: return "a word repeated in the block";

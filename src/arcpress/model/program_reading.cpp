@@ -31,10 +31,12 @@ std::string start_units_warning(const Dialect& dialect) {
                      g_name(dialect.code_for(CodeMeaning::Inch, 200)), g_name(dialect.code_for(CodeMeaning::Mm, 210)));
 }
 
-std::vector<KeywordSpelling> keywords_read(const Dialect& dialect) {
-  std::vector<KeywordSpelling> out;
+LexRules lex_rules(const Dialect& dialect) {
+  LexRules out;
   for (const CodeReading& c : dialect.codes)
-    if (c.letter == '&') out.push_back({c.keyword, c.meaning == CodeMeaning::CycleCalls || c.meaning == CodeMeaning::MacroCalls});
+    if (c.letter == '&')
+      out.keywords.push_back({c.keyword, c.meaning == CodeMeaning::CycleCalls || c.meaning == CodeMeaning::MacroCalls});
+  out.assignments = dialect.assignments;
   return out;
 }
 

@@ -37,7 +37,7 @@ constexpr size_t kShareSegments = 65536;
 /// Whether block `b` holds a keyword of its dialect (Sinumerik's `G642 SOFT`, `TRANS X10`,
 /// `MCALL CYCLE81(...)`, whose call is in no word).
 bool has_keyword(const Program& p, const Block& b) {
-  if (p.keywords.empty()) return false;
+  if (p.rules.keywords.empty()) return false;
   for (auto* w = p.words_begin(b); w != p.words_end(b); ++w)
     if (w->letter == kKeywordLetter) return true;
   return false;
