@@ -50,6 +50,10 @@ TEST_CASE("the blocks a program's jumps name are read from its text, comments an
   for (double n : {100, 200, 300, 400, 500, 600, 700, 800, 900}) CHECK(j.enters(n));
   for (double n : {11, 12, 13, 14, 15, 16, 17, 1, 2000}) CHECK_FALSE(j.enters(n));
   CHECK_FALSE(jumps_of("G1 X10 Y10 M3\nM99\nM30\n").any());
+  // Sinumerik's jumps to a label name it, in any case; a label no jump names is no target.
+  CHECK(j.enters(kLabelKey | label_hash("label1")));
+  CHECK_FALSE(j.enters(kLabelKey | label_hash("LABEL2")));
+  CHECK_FALSE(j.enters(kLabelKey | label_hash("LABEL")));
   // A number the program computes may be any block's.
   CHECK(jumps_of("GOTO #1\n").enters(12345));
   CHECK(jumps_of("M99 P[#2+10]\n").enters(7));
@@ -239,11 +243,18 @@ TEST_CASE("a macro file RepRapFirmware's M98 runs, or a jog M291 allows, may mov
 }
 
 TEST_CASE("a jump back read after its target was read fails a program pushed as it comes, not one whose jumps were read ahead", "[jumps]") {
-  const std::string text = "G90 G17 G21\nG0 X0 Y0\nG1 F500\n" + quarter(15) + "G1 X1 Y30\nIF [#1 LT 3] GOTO 100\nM30\n";
+  std::string text = "G90 G17 G21\nG0 X0 Y0\nG1 F500\n" + quarter(15) + "G1 X1 Y30\nIF [#1 LT 3] GOTO 100\nM30\n";
+  std::string dialect = "fanuc";
+  SECTION("a block number") {}
+  SECTION("a label") {  // (Sinumerik's)
+    text.replace(text.find("N100 "), 5, "LOOP1: ");
+    text.replace(text.find("IF [#1 LT 3] GOTO 100"), 21, "IF R1<3 GOTOB LOOP1");
+    dialect = "sinumerik";
+  }
   auto run = [&](bool ahead) {
     DiagnosticSink sink;
     CompressOptions opt;
-    opt.dialect = shipped_dialect("fanuc");
+    opt.dialect = shipped_dialect(dialect);
     opt.fit.tolerance_mm = 0.01;
     Compressor c("part.nc", opt, sink);
     if (ahead) c.read_jumps(text, 1);
@@ -265,7 +276,7 @@ TEST_CASE("a jump back read after its target was read fails a program pushed as 
   const auto [ahead_ok, ahead_out] = run(true);
   CHECK(ahead_ok);
   CHECK(ahead_out.find("no error") == 0);
-  CHECK(ahead_out.find("\nN100 G1 X") != std::string::npos);
+  CHECK(ahead_out.find(dialect == "fanuc" ? "\nN100 G1 X" : "\nLOOP1: G1 X") != std::string::npos);
 }
 
 namespace {
@@ -345,6 +356,16 @@ TEST_CASE("arcpress diff holds B to the blocks A's jumps enter", "[jumps][cli]")
   const Command differs = run_arcpress("diff " + files + " --tolerance 0.01");
   CHECK(differs.exit_code == 1);
   CHECK(differs.out.find("block N100 (A line 19), which a jump enters, is not in B") != std::string::npos);
+  // So with a label: B without it runs no loop.
+  std::string la = a;
+  la.replace(la.find("N100 "), 5, "LOOP1: ");
+  la.replace(la.find("IF [#1 LT 3] GOTO 100"), 21, "IF R1<3 GOTOB LOOP1");
+  write_file(dir / "la.mpf", la);
+  write_file(dir / "lb.mpf", b);
+  const Command label = run_arcpress(fmt::format("diff '{}' '{}' --tolerance 0.01 --dialect sinumerik",
+                                                 (dir / "la.mpf").string(), (dir / "lb.mpf").string()));
+  CHECK(label.exit_code == 1);
+  CHECK(label.out.find("block LOOP1: (A line 19), which a jump enters, is not in B") != std::string::npos);
 }
 
 TEST_CASE("a subprogram's caller goes on in the modes its body leaves, and the body runs in those of its calls", "[jumps][subprograms]") {
@@ -509,6 +530,18 @@ TEST_CASE("a jump's target is read in the modes of every way in, and a loop back
     CHECK(run(head + from("G90 ") + "G18\n" + jump + "\nM30\n", dialect) == std::pair(size_t(0), true));
     CHECK(run(head + from("G17 G90 ") + "G18\n" + jump + "\nM30\n", dialect) == std::pair(size_t(1), false));
   }
+  // Sinumerik's jumps to a label: back (GOTOB) and ahead (GOTOF), the label alone on its
+  // line or before the block's words, after a block number or not.
+  auto labelled = [&](const std::string& label, const std::string& target) { return label + from(target).substr(4); };
+  for (const std::string label : {"LOOP1: ", "LOOP1:\n", "N5 loop1: "}) {
+    INFO(label);
+    CHECK(run(head + labelled(label, "G90 ") + "G18\nGOTOB LOOP1\nM30\n", "sinumerik") == std::pair(size_t(0), true));
+    CHECK(run(head + labelled(label, "G17 G90 ") + "G18\nGOTOB LOOP1\nM30\n", "sinumerik") == std::pair(size_t(1), false));
+    CHECK(run(head + "GOTOF LOOP1\nG18\n" + labelled(label, "G90 ") + "M30\n", "sinumerik").first == 0);
+    CHECK(run(head + "GOTOF LOOP1\nG18\n" + labelled(label, "G17 G90 ") + "M30\n", "sinumerik").first == 1);
+  }
+  // (A jump to another label leaves it a line like any other.)
+  CHECK(run(head + labelled("LOOP1: ", "G90 ") + "G18\nGOTOB LOOP2\nM30\n", "sinumerik") == std::pair(size_t(1), false));
   // A jump to a number the program computes (`GOTO #2`) may enter any numbered block: ahead,
   // the blocks after it are read in its modes too; back, it is checked against every target
   // read.

@@ -155,6 +155,23 @@ TEST_CASE("a Sinumerik line of R-parameter assignments is a macro line, X=10 is 
   CHECK(iso->program.blocks[1].kind == BlockKind::Opaque);
 }
 
+TEST_CASE("a Sinumerik label is a word at its block's start, after its number at most, and elsewhere no label", "[dialect]") {
+  const auto r = read_as(sinumerik(), "LOOP1:\nN10 _Start2: G1 X0 Y0\nN20 G1 X10 AB:\nA:\n");
+  const Program& p = r->program;
+  REQUIRE(p.blocks[0].kind == BlockKind::Code);
+  REQUIRE(p.blocks[0].word_count == 1);
+  const Word& loop1 = *p.words_begin(p.blocks[0]);
+  CHECK(loop1.letter == kLabelLetter);
+  CHECK(loop1.target_key() == (kLabelKey | label_hash("loop1")));
+  REQUIRE(p.blocks[1].kind == BlockKind::Code);
+  CHECK(p.words_begin(p.blocks[1])[1].letter == kLabelLetter);
+  CHECK(p.raw(p.blocks[1], p.words_begin(p.blocks[1])[1]) == "_Start2:");
+  CHECK(p.blocks[1].word_count == 5);  // N10 _Start2: G1 X0 Y0
+  CHECK(p.blocks[2].kind == BlockKind::Opaque);  // (after a move's words: no label)
+  CHECK(p.blocks[3].kind == BlockKind::Opaque);  // (one letter: no name)
+  CHECK(read_as(rs274(), "LOOP1:\n")->program.blocks[0].kind == BlockKind::Opaque);
+}
+
 TEST_CASE("a Sinumerik G18 on a line with an expression is read: a contour in XY after it is written in G17, and G18 "
           "stated again after it",
           "[dialect]") {

@@ -201,10 +201,10 @@ struct Compressor::Impl {
                                               "blocks that were read as no jump's target: their moves may have been "
                                               "joined with others; give arcpress the program as a file, whose jumps "
                                               "it reads before its blocks")
-                                : fmt::format("a jump back to N{}, a block read before as no jump's target: its "
+                                : fmt::format("a jump back to {}, a block read before as no jump's target: its "
                                               "moves may have been joined with others; give arcpress the program "
                                               "as a file, whose jumps it reads before its blocks",
-                                              late->number));
+                                              late->number & kLabelKey ? std::string("a label") : fmt::format("N{}", late->number)));
       failed = true;
       total.ok = false;
       ready.clear();
@@ -258,8 +258,9 @@ struct Compressor::Impl {
     lex_line(p, begin, p.text.size(), ++line, sink);
     const uint32_t bi = uint32_t(p.blocks.size() - 1);
     // (Where the jumps were read ahead, none can come late: nothing to note.)
-    if (const Block& b = p.blocks[bi]; !jumps_ahead && b.word_count > 0 && p.words[b.first_word].letter == 'N')
-      if (const double n = p.words[b.first_word].value; !jumps || !jumps->enters(n)) passed.pass(n);
+    if (const Block& b = p.blocks[bi]; !jumps_ahead)
+      for (const Word* w = p.words_begin(b); w != p.words_end(b) && (w->letter == 'N' || w->letter == kLabelLetter); ++w)
+        if (const auto key = w->target_key(); key && (!jumps || !jumps->enters(*key))) passed.pass(*key);
     reader.step(bi);
     if (sink.error_count() > 0) {  // strict mode: nothing more is written
       failed = true;

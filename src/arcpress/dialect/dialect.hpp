@@ -162,6 +162,9 @@ struct Dialect {
   /// Lines assign to parameters and addresses with `=` ([lines] assignments): Sinumerik's
   /// `R1=5`, `X=R1*2`, `X=IC(5)` (LexRules::assignments).
   bool assignments = false;
+  /// Blocks begin with labels, the targets of jumps by name ([lines] labels): Sinumerik's
+  /// `LOOP1:`, named by `GOTOB LOOP1` (LexRules::labels).
+  bool labels = false;
   /// Extended commands (Klipper's `NAME ARG=...` lines, by their name in capitals) that move
   /// nothing ([printer] position_keeping_commands): the position stays known across them.
   /// Any other such command, a user's macro among them, may move anything.

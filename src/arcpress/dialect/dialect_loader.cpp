@@ -340,6 +340,7 @@ Dialect parse_dialect(const std::string& text, const std::string& path) {
     r.strings("refused", d.refused);
     r.boolean("indented_blocks", d.indented_blocks);
     r.boolean("assignments", d.assignments);
+    r.boolean("labels", d.labels);
     r.finish();
   }
   if (const toml::table* t = top.table("throughput")) {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -18,7 +19,11 @@ namespace arcpress {
 /// Sinumerik's `SOFT`, `TRANS`, `ADIS=0.05`. Its value is the number after `=`, else 0.
 inline constexpr char kKeywordLetter = '&';
 
-/// One address word: a letter and its value. `letter` is upper case (or kKeywordLetter).
+/// The letter of a word that is a label, where the dialect writes them ([lines] labels):
+/// Sinumerik's `LOOP1:` at a block's start. Its value is label_hash() of its name.
+inline constexpr char kLabelLetter = ':';
+
+/// One address word: a letter and its value. `letter` is upper case (or kKeywordLetter, kLabelLetter).
 struct Word {
   double value = 0;      ///< meaningless when is_expr
   uint32_t col = 0;      ///< 1-based column of the letter
@@ -38,6 +43,12 @@ struct Word {
     const double t = v * 10.0;
     constexpr double kLimit = 1e9;  // far past any code, inside int
     return t >= kLimit ? int(kLimit) : t <= -kLimit ? -int(kLimit) : int(t < 0 ? t - 0.5 : t + 0.5);
+  }
+  /// The key by which jumps name the block this word numbers or labels (JumpTargets): an N
+  /// word's number_key(), a label's kLabelKey and hash; none for any other word.
+  std::optional<uint64_t> target_key() const {
+    if (letter == kLabelLetter) return kLabelKey | uint64_t(value);
+    return letter == 'N' ? number_key(value) : std::nullopt;
   }
 };
 
@@ -93,6 +104,10 @@ struct LexRules {
   /// `M2=3`, `X1=10` an address with an extension, both read as expression words. Elsewhere
   /// an `=` after an address leaves its line unread.
   bool assignments = false;
+  /// Sinumerik's labels: a name and a colon at a block's start, after its number at most
+  /// (`LOOP1:`, `N10 _START: G1 X0`), are a word of kLabelLetter, the target of the jumps
+  /// that name it (`GOTOB LOOP1`). Elsewhere such a line is not read.
+  bool labels = false;
 };
 
 /// A lexed program: the bytes, the blocks and all words (blocks index into `words`).

@@ -13,6 +13,15 @@ namespace {
 
 bool is_letter(char c) { return is_alpha(c) || c == '_'; }
 
+/// The name at text[i, end) after blanks (a letter or `_`, then letters, digits and `_`), or empty.
+std::string_view name_at(std::string_view text, size_t i, size_t end) {
+  while (i < end && (text[i] == ' ' || text[i] == '\t')) ++i;
+  size_t e = i;
+  if (e < end && is_letter(text[e]))
+    while (e < end && (is_letter(text[e]) || is_digit(text[e]))) ++e;
+  return text.substr(i, e - i);
+}
+
 /// What a jump names, read from `i` on: a block number (N100, or 100), a number the program
 /// computes (#1, [#1+10]), or neither (a label's name, nothing).
 struct Named {
@@ -91,6 +100,8 @@ bool read_line(std::string_view text, size_t start, size_t end, Add& add, AddCom
         const Named t = named_at(text.substr(0, end), j, true);
         if (t.kind == Named::Number) add(t.number, i, false);
         if (t.kind == Named::Computed) add_computed(i);
+        if (const std::string_view label = name_at(text, j, end); t.kind == Named::Nothing && !label.empty())
+          add(kLabelKey | label_hash(label), i, false);
         i = j - 1;
         break;
       }
@@ -135,6 +146,17 @@ bool read_line(std::string_view text, size_t start, size_t end, Add& add, AddCom
 }
 
 }  // namespace
+
+uint64_t label_hash(std::string_view name) {
+  uint64_t h = 14695981039346656037ull;  // FNV-1a
+  for (const char c : name) h = (h ^ uint8_t(upper(c))) * 1099511628211ull;
+  return h & ((uint64_t(1) << 52) - 1);
+}
+
+std::optional<uint64_t> number_key(double n) {
+  if (!(n >= 0) || n != std::floor(n) || n >= 1e15) return std::nullopt;
+  return uint64_t(n);
+}
 
 std::optional<uint64_t> jump_named(std::string_view line) {
   std::optional<uint64_t> named;
@@ -222,31 +244,28 @@ void JumpTargets::merge(const JumpTargets& other) {
   }
 }
 
-bool JumpTargets::only_called(double n) const {
-  return !computed_ && enters(n) && !std::binary_search(jumped_.begin(), jumped_.end(), uint64_t(n));
+bool JumpTargets::only_called(uint64_t key) const {
+  return !computed_ && enters(key) && !std::binary_search(jumped_.begin(), jumped_.end(), key);
 }
 
-bool JumpTargets::enters(double n) const {
-  if (computed_) return true;
-  if (numbers_.empty() || !(n >= 0) || n != std::floor(n) || n >= 1e15) return false;
-  return std::binary_search(numbers_.begin(), numbers_.end(), uint64_t(n));
+bool JumpTargets::enters(uint64_t key) const {
+  if (computed_ && !(key & kLabelKey)) return true;  // (a computed jump names a number)
+  return std::binary_search(numbers_.begin(), numbers_.end(), key);
 }
 
-void PassedNumbers::pass(double n) {
-  if (!(n >= 0) || n != std::floor(n)) return;
-  any_ = true;
-  if (n >= double(kBits)) {
+void PassedNumbers::pass(uint64_t key) {
+  if (!(key & kLabelKey)) any_ = true;  // (what a computed jump may name)
+  if (key >= kBits) {
     high_ = true;
     return;
   }
-  const uint64_t k = uint64_t(n);
-  if (bits_.size() <= k / 64) bits_.resize(k / 64 + 1);
-  bits_[k / 64] |= uint64_t(1) << (k % 64);
+  if (bits_.size() <= key / 64) bits_.resize(key / 64 + 1);
+  bits_[key / 64] |= uint64_t(1) << (key % 64);
 }
 
-bool PassedNumbers::passed(uint64_t n) const {
-  if (n >= kBits) return high_;
-  return n / 64 < bits_.size() && (bits_[n / 64] >> (n % 64)) & 1u;
+bool PassedNumbers::passed(uint64_t key) const {
+  if (key >= kBits) return high_;
+  return key / 64 < bits_.size() && (bits_[key / 64] >> (key % 64)) & 1u;
 }
 
 }  // namespace arcpress

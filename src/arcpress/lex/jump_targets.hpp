@@ -12,13 +12,23 @@
 
 namespace arcpress {
 
-/// Block numbers read so far as no jump's target, for a program read as it comes: a jump
-/// read later that names one of them comes too late for it (JumpTargets::Late).
+/// Jumps name their targets by key: a block number (an N word's value, whole, below 10^15),
+/// or this bit and the hash of a label's name (Sinumerik's `LOOP1:`, named by `GOTOB LOOP1`).
+inline constexpr uint64_t kLabelKey = uint64_t(1) << 61;
+/// The hash of label `name` (any case; 52 bits, so a double holds it exactly): the value of
+/// its label word, and with kLabelKey the key of the jumps to it.
+uint64_t label_hash(std::string_view name);
+/// The key of block number `n` (an N word's value): none where no jump can name it.
+std::optional<uint64_t> number_key(double n);
+
+/// Targets read so far as no jump's, for a program read as it comes: a jump read later that
+/// names one of them comes too late for it (JumpTargets::Late).
 class PassedNumbers {
  public:
-  /// Block number `n` (an N word's value) was read as no target.
-  void pass(double n);
-  bool passed(uint64_t n) const;
+  /// The target of key `key` (a block number, or a label's) was read as no jump's.
+  void pass(uint64_t key);
+  bool passed(uint64_t key) const;
+  /// Whether a numbered block was read as no jump's target (a computed jump may name it).
   bool any() const { return any_; }
 
  private:
@@ -28,9 +38,9 @@ class PassedNumbers {
   bool any_ = false, high_ = false;
 };
 
-/// The block number the jump in `line` names (`GOTO 100`, `IF [..] GOTO 100`, `M99 P100`;
-/// not a call, which returns), read as JumpTargets::read() reads it; none where the line
-/// holds no such jump or the program computes the number.
+/// The key of the block the jump in `line` names (`GOTO 100`, `IF [..] GOTO 100`, `M99 P100`,
+/// `GOTOB LOOP1`; not a call, which returns), read as JumpTargets::read() reads it; none where
+/// the line holds no such jump or the program computes the number.
 std::optional<uint64_t> jump_named(std::string_view line);
 /// Whether `line` jumps to a block number the program computes (`GOTO #1`, `M99 P#5`), which
 /// may be any numbered block's.
@@ -44,8 +54,7 @@ class JumpTargets {
   /// block n, or a jump there), `M97 Pn` (Haas's call of block n of the same program) and
   /// `M98 P.. Qn` (a call of a program from its block n, Mitsubishi's and Okuma's). A
   /// number computed by the program (`GOTO #1`, `M99 P#5`) may be any block's. A jump to a
-  /// label (`GOTOB LOOP1`) names no number: a label's line is one arcpress does not read.
-  /// Comments and quoted text are skipped. A line that opens or ends a loop of blocks
+  /// label (`GOTOB LOOP1`, Sinumerik's) names the label's key. Comments and quoted text are skipped. A line that opens or ends a loop of blocks
   /// (`do`, `DO1`, `while`, `repeat`) is noted too (loops()). With `passed`, a jump to a block among them is
   /// noted as late(). Returns where in `text` the first line holding a program end (M2, M30,
   /// M99) ends, after which a file holds the subprograms its calls run, else npos.
@@ -59,15 +68,15 @@ class JumpTargets {
   bool any() const { return computed_ || loops_ || !numbers_.empty(); }
   /// Whether the program has loops of blocks.
   bool loops() const { return loops_; }
-  /// Whether a jump may enter the block numbered `n` (the value of its N word).
-  bool enters(double n) const;
+  /// Whether a jump may enter the block of key `key` (its number's, number_key(), or its label's).
+  bool enters(uint64_t key) const;
   /// Whether only calls enter it (M97 Pn, M98 P.. Qn), which return: no jump (GOTO, M99 P) does.
-  bool only_called(double n) const;
+  bool only_called(uint64_t key) const;
 
   /// The first jump read after the block it names had been read as no target.
   struct Late {
     uint32_t line = 0;       ///< the jump's
-    uint64_t number = 0;     ///< the block's number (0 with `computed`)
+    uint64_t number = 0;     ///< the block's key (0 with `computed`)
     bool computed = false;   ///< a computed jump, read after numbered blocks
   };
   const std::optional<Late>& late() const { return late_; }

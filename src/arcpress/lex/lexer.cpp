@@ -85,6 +85,11 @@ class LineLexer {
         set_kind(BlockKind::HostCommand);
         return;
       }
+      if (p_.rules.labels && (is_alpha(c) || c == '_') && label(i)) {
+        first_token = false;
+        i = after_;
+        continue;
+      }
       if (!is_alpha(c)) {
         opaque(i, "E-LEX-CHAR", fmt::format("unexpected character '{}' (byte 0x{:02X})", printable(c), uint8_t(c)));
         return;
@@ -231,11 +236,10 @@ class LineLexer {
     k = skip_space(k);
     if (k >= n_ || s_[k] != '=') return 0;
     if (letter == 'R' && extension) {
-      for (uint32_t w = 0; w < b_.word_count; ++w)
-        if (p_.words[b_.first_word + w].letter != 'N') {
-          opaque(i, "E-LEX-ASSIGN", "a parameter's assignment after other words is not read");
-          return -1;
-        }
+      if (!numbered_only()) {
+        opaque(i, "E-LEX-ASSIGN", "a parameter's assignment after other words is not read");
+        return -1;
+      }
       set_kind(BlockKind::Macro);
       return -1;
     }
@@ -264,6 +268,23 @@ class LineLexer {
     }
     b_.has_expr = true;
     return push(i, q, letter, 0, true, 0, false, false) ? 1 : -1;
+  }
+
+  /// The label at `i` where the dialect writes them (LexRules::labels): a name of two
+  /// characters or more and a colon, after nothing but a block number, is read as a word of
+  /// kLabelLetter (true: lexing goes on at after_).
+  bool label(size_t i) {
+    size_t e = i;
+    while (e < n_ && (is_alpha(s_[e]) || is_digit(s_[e]) || s_[e] == '_')) ++e;
+    if (e >= n_ || s_[e] != ':' || e - i < 2 || !numbered_only()) return false;
+    return push(i, e + 1, kLabelLetter, double(label_hash(std::string_view(s_ + i, e - i))), false, 0, false, false);
+  }
+
+  /// Whether the block's words so far are block numbers only.
+  bool numbered_only() const {
+    for (uint32_t w = 0; w < b_.word_count; ++w)
+      if (p_.words[b_.first_word + w].letter != 'N') return false;
+    return true;
   }
 
   /// Lexes the word whose letter is at `i`; `j` is the first non-space after the letter.

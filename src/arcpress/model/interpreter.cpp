@@ -362,9 +362,9 @@ class Interpreter {
         case 'S':  // spindle speed, or laser power on a feed move: a fitted block carries it
           s_.spindle = w->value;
           break;
-        case 'N':
-          if (p_->jumps && p_->jumps->enters(w->value))
-            enter(bi, p_->jumps->only_called(w->value), CalledPrograms::key_of(*w), w->value);
+        case 'N': case kLabelLetter:
+          if (const auto key = p_->jumps ? w->target_key() : std::nullopt; key && p_->jumps->enters(*key))
+            enter(bi, p_->jumps->only_called(*key), CalledPrograms::key_of(*w), key);
           break;
         case 'T':
           other_words = true;
@@ -630,12 +630,13 @@ class Interpreter {
   /// Block `bi` may be entered from elsewhere (JumpTargets, a program number after an end), or
   /// the blocks after it only so (M99): the position and G90 or G91 are not known; where only
   /// calls enter it (`called`, at label `key`), the modes of the calls (enter_called()).
-  [[gnu::noinline]] void enter(uint32_t bi, bool called, uint64_t key = CalledPrograms::kNoLabel, double number = -1) {
+  [[gnu::noinline]] void enter(uint32_t bi, bool called, uint64_t key = CalledPrograms::kNoLabel,
+                               std::optional<uint64_t> target = std::nullopt) {
     forget(kAllAxes & ~(1u << kE), Unfit::UnknownAtEntry, bi);
     s_.distance_unknown = true;
     Frame f = s_.frame;
     if (called) enter_called(s_, key, f);
-    else if (number >= 0) enter_jumped(s_, f, number);
+    else if (target) enter_jumped(s_, f, *target, p_->blocks[bi].line);
     set_frame(f);
   }
 

@@ -46,7 +46,7 @@ class ModalInterpreter {
 };
 
 /// How a program in `dialect` is lexed (Program::rules): the keywords its [codes] give a
-/// meaning, a modal call's taking the call after it, and its assignments ([lines] assignments).
+/// meaning, a modal call's taking the call after it, and its assignments and labels ([lines]).
 LexRules lex_rules(const Dialect& dialect);
 
 /// Reads `program` as `dialect`'s controller would (centre form, G18 direction, numbers

@@ -71,16 +71,20 @@ void join(JumpEntries::Modes& into, const JumpEntries::Modes& m, uint8_t bits) {
 
 bool is_loop_of_blocks(uint64_t number) { return (number & JumpEntries::kLoopOfBlocks) != 0; }
 
+/// The block entry `e` names: `N100`, or its label's line.
+std::string target_name(const JumpEntries::Entry& e) {
+  return e.number & kLabelKey ? fmt::format("the label at line {}", e.line) : fmt::format("N{}", e.number);
+}
+
 /// What a jump back to entry `e` is called where it runs lines again otherwise: `what` differs.
 std::string refused_jump(const JumpEntries::Entry& e, const std::string& what) {
-  const uint64_t number = e.number;
-  if (is_loop_of_blocks(number))
+  if (is_loop_of_blocks(e.number))
     return fmt::format("the loop that begins at line {} runs its first lines again in other modes than they were "
                        "read in ({}), which moves there depend on: state them at the loop's start",
                        e.line, what);
-  return fmt::format("the jump back to N{} runs the lines after it again in other modes than they were read in ({}), "
-                     "which moves there depend on: state them in block N{}",
-                     number, what, number);
+  return fmt::format("the jump back to {0} runs the lines after it again in other modes than they were read in ({1}), "
+                     "which moves there depend on: state them in that block",
+                     target_name(e), what);
 }
 
 /// What differs between modes `here` and those entry `e` was read in that its first moves
@@ -128,7 +132,7 @@ std::pair<uint64_t, std::string> computed_jump(ModalState& s, uint32_t line) {
     return {};
   std::pair<uint64_t, std::string> first;
   for (JumpEntries::Entry& e : all.entries)
-    if (e.read && !is_loop_of_blocks(e.number))  // (a number names no loop of blocks' start)
+    if (e.read && !is_loop_of_blocks(e.number) && !(e.number & kLabelKey))  // (a number names neither a loop's start nor a label)
       if (std::string what = refusal(e, here, line); !what.empty() && first.second.empty()) first = {e.number, what};
   return first;
 }
@@ -168,10 +172,10 @@ void entered(ModalState& s, const Frame& frame, JumpEntries::Entry& e) {
 
 }  // namespace
 
-void enter_jumped(ModalState& s, Frame& frame, double number) {
-  if (!(number >= 0) || number != std::floor(number) || number >= 1e15) return;
+void enter_jumped(ModalState& s, Frame& frame, uint64_t key, uint32_t line) {
   const JumpEntries::Modes here = modes_of(s, frame);
-  JumpEntries::Entry& e = entry_of(s, uint64_t(number));
+  JumpEntries::Entry& e = entry_of(s, key);
+  e.line = line;
   if (!e.read) {
     JumpEntries::Modes in = e.modes;  // the jumps' ahead of it (none: as here)
     if (s.jump_entries->computed_jumps) join(in, s.jump_entries->computed, kStatesAll);
@@ -223,10 +227,10 @@ std::string loop_written_as_is(const JumpEntries::Entry& e) {
                        "in ({}): its moves are written as they are until the program states those modes (stated at "
                        "the loop's start, they are fitted)",
                        e.line, e.refused);
-  return fmt::format("the jump back to N{0} runs the lines after it again in other modes than they were read in ({1}): "
-                     "the moves after N{0} are written as they are until the program states those modes (stated in "
-                     "block N{0}, they are fitted)",
-                     e.number, e.refused);
+  return fmt::format("the jump back to {0} runs the lines after it again in other modes than they were read in ({1}): "
+                     "the moves after it are written as they are until the program states those modes (stated in "
+                     "that block, they are fitted)",
+                     target_name(e), e.refused);
 }
 
 std::vector<JumpEntries::Entry> refused_loops(const ModalState& s) {

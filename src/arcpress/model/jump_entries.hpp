@@ -40,8 +40,8 @@ struct JumpEntries {
   /// The number of a loop of blocks' entry: this bit and the loop's (BlockNesting::loops).
   static constexpr uint64_t kLoopOfBlocks = uint64_t(1) << 62;
   struct Entry {
-    uint64_t number = 0;  ///< the target's block number, or kLoopOfBlocks | a loop's number
-    uint32_t line = 0;    ///< a loop of blocks': the line that opens it, where read
+    uint64_t number = 0;  ///< the target's key (a block number, kLabelKey | a label's hash), or kLoopOfBlocks | a loop's number
+    uint32_t line = 0;    ///< a loop of blocks': the line that opens it, a label's: its line, where read
     bool read = false;  ///< the target has been read: `modes` are those it was read in
     Modes modes;        ///< the jumps' before it is read; its own after
     uint8_t used = 0;   ///< kStates* (model/subroutines.hpp) its first lines used
@@ -80,12 +80,12 @@ void read_jump(ModalState& s, std::string_view line, uint32_t line_number, Diagn
 /// Line `line_number`, read in state `s`, ends the loop of blocks numbered `loop` or runs it
 /// again (BlockNesting::Join::loops_back): a jump back to its entry, as read_jump().
 void loop_back(ModalState& s, uint32_t loop, uint32_t line_number, DiagnosticSink& sink);
-/// Block `number`, a jump's target, is entered (a number no jump names: nothing): where the
-/// jumps ahead of it were made in other modes than the text before it leaves, or it is a
-/// loop's start seed_loops() marked, those are not known (the plane and units until stated,
-/// the motion until a block names one); the modes it is read in are kept for the jumps back
-/// to it, and which of them its first lines use (note_entry_use()).
-void enter_jumped(ModalState& s, Frame& frame, double number);
+/// The block of key `key` (JumpTargets: a block number, or a label's), a jump's target, is
+/// entered at line `line`: where the jumps ahead of it were made in other modes than the text
+/// before it leaves, or it is a loop's start seed_loops() marked, those are not known (the
+/// plane and units until stated, the motion until a block names one); the modes it is read in
+/// are kept for the jumps back to it, and which of them its first lines use (note_entry_use()).
+void enter_jumped(ModalState& s, Frame& frame, uint64_t key, uint32_t line);
 /// The first lines of the loop of blocks numbered `loop`, opened at line `line`, begin: its
 /// entry, read as enter_jumped() reads a target no jump ahead names, where G90 or G91 is
 /// known and kept.

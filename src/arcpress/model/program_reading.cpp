@@ -37,6 +37,7 @@ LexRules lex_rules(const Dialect& dialect) {
     if (c.letter == '&')
       out.keywords.push_back({c.keyword, c.meaning == CodeMeaning::CycleCalls || c.meaning == CodeMeaning::MacroCalls});
   out.assignments = dialect.assignments;
+  out.labels = dialect.labels;
   return out;
 }
 

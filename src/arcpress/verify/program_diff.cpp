@@ -595,25 +595,30 @@ ProgramDiff diff_programs(const Program& a, const Interpretation& ia, const Prog
                                      opt.comments ? ", comments" : "", na.count(), nb.count()));
   }
   // The blocks A's jumps enter (JumpTargets), in order: each must be a block of B, with its
-  // number, or the jump finds another place, or none.
+  // number or label, or the jump finds another place, or none.
   if (a.jumps) {
+    struct Entered {
+      uint64_t key;
+      uint32_t line;
+      std::string_view name;  // `N100`, `LOOP1:`
+    };
     auto entered = [&](const Program& p) {
-      std::vector<std::pair<double, uint32_t>> out;  // the block's number, its line
+      std::vector<Entered> out;
       for (const Block& blk : p.blocks)
-        if (blk.word_count > 0 && p.words[blk.first_word].letter == 'N' && a.jumps->enters(p.words[blk.first_word].value))
-          out.push_back({p.words[blk.first_word].value, blk.line});
+        for (const Word* w = p.words_begin(blk); w != p.words_end(blk) && (w->letter == 'N' || w->letter == kLabelLetter); ++w)
+          if (const auto key = w->target_key(); key && a.jumps->enters(*key)) out.push_back({*key, blk.line, p.raw(blk, *w)});
       return out;
     };
     const auto ea = entered(a), eb = entered(b);
     for (size_t k = 0; k < std::max(ea.size(), eb.size()); ++k) {
-      if (k < ea.size() && k < eb.size() && ea[k].first == eb[k].first) continue;
+      if (k < ea.size() && k < eb.size() && ea[k].key == eb[k].key) continue;
       d.findings.push_back(k < ea.size()
-                               ? fmt::format("block N{} (A line {}), which a jump enters, is not in B{}", ea[k].first,
-                                             ea[k].second,
-                                             k < eb.size() ? fmt::format(" (B line {} is N{})", eb[k].second, eb[k].first)
+                               ? fmt::format("block {} (A line {}), which a jump enters, is not in B{}", ea[k].name,
+                                             ea[k].line,
+                                             k < eb.size() ? fmt::format(" (B line {} is {})", eb[k].line, eb[k].name)
                                                            : std::string())
-                               : fmt::format("B line {} is a block N{}, which a jump of A enters, where A has none",
-                                             eb[k].second, eb[k].first));
+                               : fmt::format("B line {} is a block {}, which a jump of A enters, where A has none",
+                                             eb[k].line, eb[k].name));
       break;
     }
   }
