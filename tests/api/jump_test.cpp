@@ -340,6 +340,36 @@ TEST_CASE("the command reads a program's jumps before its blocks, from a pipe to
         std::string::npos);
 }
 
+TEST_CASE("Heidenhain's repeat runs the lines after its label again, and the lines a call runs return in the modes they leave",
+          "[jumps]") {
+  // What compress() makes of `text` under heidenhain-iso: the arcs it wrote, and whether it
+  // told that a loop runs its first moves in other modes (W-FLOW-LOOP-MODES).
+  auto run = [](const std::string& text) {
+    DiagnosticSink sink;
+    CompressOptions opt;
+    opt.dialect = shipped_dialect("heidenhain-iso");
+    opt.fit.tolerance_mm = 0.01;
+    const CompressResult r = compress("part.h", text, opt, sink);
+    CHECK(r.ok);
+    CHECK(sink.warning_count("E-LEX-CHAR") == 0);
+    return std::pair(count_of(r.output, "G03") + count_of(r.output, "G3 "), sink.warning_count("W-FLOW-LOOP-MODES") > 0);
+  };
+  const std::string head = "%P G71 *\nN10 G17 G90 *\nN20 G00 X0 Y0 Z0 *\nN25 G01 F500 *\n";
+  // `L1,2` after a G18 runs the quarter again in G18: written as it is, and told; with the
+  // plane stated after the label, one arc. (A label is entered from elsewhere: the position
+  // and G90 or G91 are not known there until stated.)
+  const std::string label = "N30 G98 L1 *\nN35 G90 G00 X0 Y0 Z0 *\nN36 G01 *\n";
+  CHECK(run(head + label + quarter() + "N900 G18 *\nN910 L1,2 *\nN920 M30 *\n") == std::pair(size_t(0), true));
+  CHECK(run(head + label + "N37 G17 *\n" + quarter() + "N900 G18 *\nN910 L1,2 *\nN920 M30 *\n") ==
+        std::pair(size_t(1), false));
+  CHECK(run(head + label + quarter() + "N900 G18 *\nN905 G17 *\nN910 L1,2 *\nN920 M30 *\n") == std::pair(size_t(1), false));
+  // `L5,0` calls the lines after label 5, which leave G18: the quarter after the call is read
+  // with the plane not known until the program states it.
+  const std::string body = "N920 M30 *\nN930 G98 L5 *\nN940 G18 *\nN950 G98 L0 *\n";
+  CHECK(run(head + "N30 L5,0 *\nN35 G00 X0 Y0 Z0 *\nN36 G01 *\n" + quarter() + body).first == 0);
+  CHECK(run(head + "N30 L5,0 *\nN35 G17 G90 G71 G00 X0 Y0 Z0 *\nN36 G01 *\n" + quarter() + body).first == 1);
+}
+
 TEST_CASE("arcpress diff holds B to the blocks A's jumps enter", "[jumps][cli]") {
   // (The jump's block states G90: the moves after it are placed, so A is SAME as itself.)
   std::string a = "G90 G17 G21\nG0 X0 Y0\nG1 F500\n" + quarter(15) + "IF [#1 LT 3] GOTO 100\nM30\n";

@@ -165,6 +165,9 @@ struct Dialect {
   /// Blocks begin with labels, the targets of jumps by name ([lines] labels): Sinumerik's
   /// `LOOP1:`, named by `GOTOB LOOP1` (LexRules::labels).
   bool labels = false;
+  /// Numbered labels and their repeats and calls ([lines] numbered_labels): Heidenhain ISO's
+  /// `G98 L1`, `L1,2`, `L1,0` (LexRules::numbered_labels).
+  bool numbered_labels = false;
   /// Extended commands (Klipper's `NAME ARG=...` lines, by their name in capitals) that move
   /// nothing ([printer] position_keeping_commands): the position stays known across them.
   /// Any other such command, a user's macro among them, may move anything.

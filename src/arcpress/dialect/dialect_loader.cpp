@@ -341,6 +341,7 @@ Dialect parse_dialect(const std::string& text, const std::string& path) {
     r.boolean("indented_blocks", d.indented_blocks);
     r.boolean("assignments", d.assignments);
     r.boolean("labels", d.labels);
+    r.boolean("numbered_labels", d.numbered_labels);
     r.finish();
   }
   if (const toml::table* t = top.table("throughput")) {

@@ -108,6 +108,10 @@ struct LexRules {
   /// (`LOOP1:`, `N10 _START: G1 X0`), are a word of kLabelLetter, the target of the jumps
   /// that name it (`GOTOB LOOP1`). Elsewhere such a line is not read.
   bool labels = false;
+  /// Heidenhain ISO's numbered labels: `G98 L1` sets label 1, its L word read as a label word
+  /// (`G98 L0`, a subprogram's end, sets none); `L1,2` repeats the lines after label 1 twice
+  /// and `L1,0` calls them, each a Control line. Elsewhere a comma leaves its line unread.
+  bool numbered_labels = false;
 };
 
 /// A lexed program: the bytes, the blocks and all words (blocks index into `words`).

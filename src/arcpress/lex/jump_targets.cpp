@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <charconv>
 #include <cstring>
 
 #include "arcpress/lex/characters.hpp"
@@ -45,6 +46,16 @@ Named named_at(std::string_view s, size_t i, bool n_allowed) {
       if (s[i] != '0') return {};
   }
   return {Named::Number, n};
+}
+
+/// Heidenhain's `Ln,m` at text[i, end) (i at the L): label n and the count m, else none.
+std::optional<std::pair<uint64_t, uint64_t>> label_repeat_at(std::string_view text, size_t i, size_t end) {
+  size_t j = i + 1;
+  uint64_t n = 0, m = 0;
+  for (; j < end && is_digit(text[j]) && n < (uint64_t(1) << 40); ++j) n = n * 10 + uint64_t(text[j] - '0');
+  if (j == i + 1 || j + 1 >= end || text[j] != ',' || !is_digit(text[j + 1])) return std::nullopt;
+  for (++j; j < end && is_digit(text[j]) && m < (uint64_t(1) << 40); ++j) m = m * 10 + uint64_t(text[j] - '0');
+  return std::pair(n, m);
 }
 
 /// Whether M-code text[j, end) is `code` (M2, M02, M2.0; not M20).
@@ -111,7 +122,11 @@ bool read_line(std::string_view text, size_t start, size_t end, Add& add, AddCom
         break;
       case 'W': case 'w': loops = loops || (starts && keyword_at(text, i, end, "WHILE")); break;
       case 'R': case 'r': loops = loops || (starts && keyword_at(text, i, end, "REPEAT")); break;
-      case 'L': case 'l': loops = loops || (starts && keyword_at(text, i, end, "LOOP")); break;  // (Sinumerik's)
+      case 'L': case 'l':
+        loops = loops || (starts && keyword_at(text, i, end, "LOOP"));  // (Sinumerik's)
+        if (const auto r = starts ? label_repeat_at(text, i, end) : std::nullopt)  // (Heidenhain's L1,2)
+          add(kLabelKey | numbered_label_hash(r->first), i, false);
+        break;
       case 'F': case 'f': loops = loops || (starts && keyword_at(text, i, end, "FOR")); break;
       case 'U': loops = loops || (starts && keyword_at(text, i, end, "UNTIL")); break;
       case 'M': case 'm': {
@@ -151,6 +166,19 @@ uint64_t label_hash(std::string_view name) {
   uint64_t h = 14695981039346656037ull;  // FNV-1a
   for (const char c : name) h = (h ^ uint8_t(upper(c))) * 1099511628211ull;
   return h & ((uint64_t(1) << 52) - 1);
+}
+
+uint64_t numbered_label_hash(uint64_t n) {
+  char name[24] = {'L'};
+  const std::to_chars_result r = std::to_chars(name + 1, name + sizeof name, n);
+  return label_hash(std::string_view(name, size_t(r.ptr - name)));
+}
+
+bool calls_label(std::string_view line) {
+  for (size_t i = 0; i < line.size(); ++i)
+    if (upper(line[i]) == 'L' && (i == 0 || !is_letter(line[i - 1])))
+      if (const auto r = label_repeat_at(line, i, line.size())) return r->second == 0;
+  return false;
 }
 
 std::optional<uint64_t> number_key(double n) {
@@ -200,11 +228,12 @@ size_t JumpTargets::read(std::string_view text, uint32_t first_line, const Passe
     if (!late_ && !computed_ && passed && passed->any()) late_ = Late{line, 0, true};
     computed_ = true;
   };
-  // Only a line with an M or an O (of GOTO), either case, can hold a jump, and a loop only
-  // one with an O (LinuxCNC's O-words, Fanuc's DO1, Sinumerik's LOOP and FOR), a `while` or
-  // Sinumerik's UNTIL: those are found by memchr, a byte at a time only in such lines.
-  constexpr int kKeyCount = 7;
-  constexpr char kKeys[kKeyCount] = {'M', 'm', 'O', 'o', 'w', 'W', 'U'};
+  // Only a line with an M or an O (of GOTO), either case, or a comma (Heidenhain's L1,2) can
+  // hold a jump, and a loop only one with an O (LinuxCNC's O-words, Fanuc's DO1, Sinumerik's
+  // LOOP and FOR), a `while` or Sinumerik's UNTIL: those are found by memchr, a byte at a time
+  // only in such lines.
+  constexpr int kKeyCount = 8;
+  constexpr char kKeys[kKeyCount] = {'M', 'm', 'O', 'o', 'w', 'W', 'U', ','};
   size_t next[kKeyCount];
   const size_t n = text.size();
   auto find = [&](int k, size_t from) {

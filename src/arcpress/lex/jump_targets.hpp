@@ -45,6 +45,11 @@ std::optional<uint64_t> jump_named(std::string_view line);
 /// Whether `line` jumps to a block number the program computes (`GOTO #1`, `M99 P#5`), which
 /// may be any numbered block's.
 bool jump_computed(std::string_view line);
+/// The key of the label Heidenhain's `G98 Ln` sets (label_hash() of `Ln`), for label number `n`.
+uint64_t numbered_label_hash(uint64_t n);
+/// Whether `line` calls the lines after a numbered label (Heidenhain's `L1,0`), which return
+/// to the line after it in the modes they leave.
+bool calls_label(std::string_view line);
 
 class JumpTargets {
  public:
@@ -54,7 +59,9 @@ class JumpTargets {
   /// block n, or a jump there), `M97 Pn` (Haas's call of block n of the same program) and
   /// `M98 P.. Qn` (a call of a program from its block n, Mitsubishi's and Okuma's). A
   /// number computed by the program (`GOTO #1`, `M99 P#5`) may be any block's. A jump to a
-  /// label (`GOTOB LOOP1`, Sinumerik's) names the label's key. Comments and quoted text are skipped. A line that opens or ends a loop of blocks
+  /// label (`GOTOB LOOP1`, Sinumerik's) names the label's key, as do Heidenhain's repeat of the
+  /// lines after label n (`Ln,m`, m times) and call of them (`Ln,0`), which enter it from
+  /// elsewhere. Comments and quoted text are skipped. A line that opens or ends a loop of blocks
   /// (`do`, `DO1`, `while`, `repeat`) is noted too (loops()). With `passed`, a jump to a block among them is
   /// noted as late(). Returns where in `text` the first line holding a program end (M2, M30,
   /// M99) ends, after which a file holds the subprograms its calls run, else npos.

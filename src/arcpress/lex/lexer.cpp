@@ -3,7 +3,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cstdlib>
 #include <string>
 
@@ -133,6 +135,7 @@ class LineLexer {
       }
     }
     if (b_.word_count > 0 && b_.kind == BlockKind::Empty) b_.kind = BlockKind::Code;
+    if (p_.rules.numbered_labels && b_.kind == BlockKind::Code) numbered_label();
   }
 
  private:
@@ -280,6 +283,19 @@ class LineLexer {
     return push(i, e + 1, kLabelLetter, double(label_hash(std::string_view(s_ + i, e - i))), false, 0, false, false);
   }
 
+  /// Where the block sets a numbered label (`G98 L1`, LexRules::numbered_labels), its L word
+  /// becomes a label word.
+  void numbered_label() {
+    Word* const first = p_.words.data() + b_.first_word;
+    Word* const end = first + b_.word_count;
+    const bool g98 = std::any_of(first, end, [](const Word& w) { return w.letter == 'G' && !w.is_expr && w.value == 98; });
+    for (Word* w = first; g98 && w != end; ++w)
+      if (w->letter == 'L' && !w->is_expr && w->value >= 1 && w->value == std::floor(w->value) && w->value < 1e12) {
+        w->letter = kLabelLetter;
+        w->value = double(numbered_label_hash(uint64_t(w->value)));
+      }
+  }
+
   /// Whether the block's words so far are block numbers only.
   bool numbered_only() const {
     for (uint32_t w = 0; w < b_.word_count; ++w)
@@ -339,6 +355,10 @@ class LineLexer {
       return false;
     }
     const double value = value_of(n, start, k);
+    if (letter == 'L' && p_.rules.numbered_labels && k + 1 < n_ && s_[k] == ',' && is_digit(s_[k + 1])) {
+      set_kind(BlockKind::Control);  // L1,2: a repeat or call of the lines after label 1
+      return false;
+    }
     if (!push(i, k, letter, negative ? -value : value, false, n.decimals, n.point, false)) return false;
     p_.words.back().plus = plus;
     return true;

@@ -143,6 +143,7 @@ void read_jump(ModalState& s, std::string_view line, uint32_t line_number, Diagn
   if (const auto n = jump_named(line)) {
     if (const std::string what = jump_to(s, *n, line_number); !what.empty())
       sink.error({line_number, 1}, "E-FLOW-LOOP-MODES", refused_jump(entry_of(s, *n), what));
+    if (calls_label(line)) s.forget_modes(kStatesAll);  // (the lines called return in the modes they leave)
   } else if (jump_computed(line)) {
     if (const auto [target, what] = computed_jump(s, line_number); !what.empty())
       sink.error({line_number, 1}, "E-FLOW-LOOP-MODES",

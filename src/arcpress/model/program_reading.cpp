@@ -38,6 +38,7 @@ LexRules lex_rules(const Dialect& dialect) {
       out.keywords.push_back({c.keyword, c.meaning == CodeMeaning::CycleCalls || c.meaning == CodeMeaning::MacroCalls});
   out.assignments = dialect.assignments;
   out.labels = dialect.labels;
+  out.numbered_labels = dialect.numbered_labels;
   return out;
 }
 
