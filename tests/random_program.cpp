@@ -182,9 +182,11 @@ std::string broken_promise(const CompressResult& r) {
 }
 
 std::string text_promise(const std::string& text) {
-  // Read as RS274, and as a controller whose keywords are words of a block (the Sinumerik's).
+  // Read as RS274, as a controller whose keywords, assignments and labels are words of a
+  // block (the Sinumerik's), and as one with numbered labels (Heidenhain ISO's).
   static const Dialect sinumerik = find_dialect("sinumerik", dialect_search_path(""));
-  for (const Dialect& d : {Dialect{}, sinumerik})
+  static const Dialect heidenhain = find_dialect("heidenhain-iso", dialect_search_path(""));
+  for (const Dialect& d : {Dialect{}, sinumerik, heidenhain})
     if (std::string broken = text_promise(text, d); !broken.empty()) return d.name + ": " + broken;
   return {};
 }

@@ -23,7 +23,9 @@ std::string random_text(std::mt19937& rng) {
       "(note)", "; note", "#1=2", "O100 sub", "%", "/", "*12", "$H", "F600", "S300", "P2", "T1", "N10",
       // The Sinumerik language's keywords, which text_promise() reads under its dialect too.
       "SOFT", "ADIS=0.5", "G70", "G71", "MCALL CYCLE81(1,2)", "MCALL", "TRANS", "CR=5", "CT", "DIAMON", "L10", "D1",
-      "CYCLE832(0.01,_FINISH,1)", "MSG(\"a (b)\")", "CYCLE81(10,0,2,-5)", "CYCLE800("};
+      "CYCLE832(0.01,_FINISH,1)", "MSG(\"a (b)\")", "CYCLE81(10,0,2,-5)", "CYCLE800(",
+      // Its assignments and labels, and Heidenhain ISO's numbered labels (text_promise() reads those too).
+      "R1=2", "X=R1", "X=IC(5)", "LOOP1:", "GOTOB LOOP1", "GOTOF LOOP1", "G98 L1", "L1,2", "L1,0", "G98 L0"};
   static const char axes[] = "XYZAEIJKRF";
   std::uniform_int_distribution<int> pick(0, 99), word(0, int(words.size()) - 1), axis(0, 9), lines(1, 60);
   std::uniform_real_distribution<double> small(-20, 20);
