@@ -170,6 +170,10 @@ TEST_CASE("a Sinumerik label is a word at its block's start, after its number at
   CHECK(p.blocks[2].kind == BlockKind::Opaque);  // (after a move's words: no label)
   CHECK(p.blocks[3].kind == BlockKind::Opaque);  // (one letter: no name)
   CHECK(read_as(rs274(), "LOOP1:\n")->program.blocks[0].kind == BlockKind::Opaque);
+  // Its jumps are flow control, after a block number too.
+  const auto jumps = read_as(sinumerik(), "N10 GOTOB LOOP1\nGOTOF N20\nN30 IF R1<2 GOTOC LOOP1\n");
+  for (const Block& b : jumps->program.blocks) CHECK(b.kind == BlockKind::Macro);
+  CHECK(jumps->sink.reported() == 0);
 }
 
 TEST_CASE("a Sinumerik G18 on a line with an expression is read: a contour in XY after it is written in G17, and G18 "

@@ -48,7 +48,7 @@ struct Word {
   /// word's number_key(), a label's kLabelKey and hash; none for any other word.
   std::optional<uint64_t> target_key() const {
     if (letter == kLabelLetter) return kLabelKey | uint64_t(value);
-    return letter == 'N' ? number_key(value) : std::nullopt;
+    return letter == 'N' && !is_expr ? number_key(value) : std::nullopt;
   }
 };
 

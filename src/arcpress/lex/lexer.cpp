@@ -174,9 +174,9 @@ class LineLexer {
     for (size_t k = i; k < e; ++k) kw += upper(s_[k]);
     for (const KeywordSpelling& k : p_.rules.keywords)
       if (k.name == kw) return dialect_keyword(i, e, k);
-    if (kw == "IF" || kw == "WHILE" || kw == "GOTO" || kw == "END" || kw.rfind("END", 0) == 0 ||
-        kw.rfind("DO", 0) == 0 || kw == "THEN" || kw == "ELSE" || kw == "LOOP" || kw == "FOR" || kw == "REPEAT" ||
-        kw == "UNTIL") {
+    if (kw == "IF" || kw == "WHILE" || kw == "GOTO" || kw == "GOTOB" || kw == "GOTOF" || kw == "GOTOC" ||
+        kw.rfind("END", 0) == 0 || kw.rfind("DO", 0) == 0 || kw == "THEN" || kw == "ELSE" || kw == "LOOP" ||
+        kw == "FOR" || kw == "REPEAT" || kw == "UNTIL") {
       set_kind(BlockKind::Macro);
       return false;
     }
