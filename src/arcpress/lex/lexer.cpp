@@ -87,26 +87,19 @@ class LineLexer {
         set_kind(BlockKind::HostCommand);
         return;
       }
-      if (p_.rules.labels && (is_alpha(c) || c == '_') && label(i)) {
-        first_token = false;
-        i = after_;
-        continue;
-      }
       if (!is_alpha(c)) {
+        if (const int read = unexpected(i); read > 0) {
+          first_token = false;
+          i = after_;
+          continue;
+        } else if (read < 0) {
+          return;
+        }
         opaque(i, "E-LEX-CHAR", fmt::format("unexpected character '{}' (byte 0x{:02X})", printable(c), uint8_t(c)));
         return;
       }
       // A letter: an address word, or the start of a multi-letter keyword.
       size_t j = skip_space(i + 1);
-      if (p_.rules.assignments) {
-        const int read = assignment(i);
-        if (read < 0) return;
-        if (read > 0) {
-          first_token = false;
-          i = after_;
-          continue;
-        }
-      }
       if (i + 1 < n_ && (is_alpha(s_[i + 1]) || s_[i + 1] == '_')) {
         if (!keyword(i, first_token)) return;
         first_token = false;
@@ -170,6 +163,7 @@ class LineLexer {
   bool keyword(size_t i, bool first_token) {
     size_t e = i;
     while (e < n_ && (is_alpha(s_[e]) || is_digit(s_[e]) || s_[e] == '_')) ++e;
+    if (p_.rules.labels && e < n_ && s_[e] == ':' && label(i)) return true;
     std::string kw;
     for (size_t k = i; k < e; ++k) kw += upper(s_[k]);
     for (const KeywordSpelling& k : p_.rules.keywords)
@@ -217,6 +211,28 @@ class LineLexer {
     if (ends_word(e)) return push(i, e, kKeywordLetter, 0, false, 0, false, true);
     opaque(e, "E-LEX-KEYWORD", fmt::format("'{}' followed by '{}' is not read", k.name, printable(s_[e])));
     return false;
+  }
+
+  /// What the dialect reads at `i` where RS274 has no word (an unexpected character): a label
+  /// that begins with `_` (LexRules::labels), the `=` after an address and its number or
+  /// brackets (`R1=5`, `R[R1]=4`, `X1=10`: assignment()), the comma of Heidenhain's `L1,2`
+  /// (LexRules::numbered_labels, a Control line). As assignment(): 0 where it is none of them.
+  int unexpected(size_t i) {
+    const char c = s_[i];
+    if (c == '_' && p_.rules.labels) return label(i) ? 1 : 0;
+    if (b_.word_count == 0) return 0;
+    const Word last = p_.words.back();
+    if (c == ',' && p_.rules.numbered_labels && last.letter == 'L' && i + 1 < n_ && is_digit(s_[i + 1])) {
+      set_kind(BlockKind::Control);  // L1,2: a repeat or call of the lines after label 1
+      return -1;
+    }
+    if (c != '=' || !p_.rules.assignments || skip_space(last.col - 1 + last.length) != i) return 0;
+    p_.words.pop_back();  // read again as an assignment
+    --b_.word_count;
+    if (const int read = assignment(last.col - 1)) return read;
+    p_.words.push_back(last);
+    ++b_.word_count;
+    return 0;
   }
 
   /// The assignment at `i` where the dialect writes them (LexRules::assignments): 0 where the
@@ -347,6 +363,7 @@ class LineLexer {
       set_kind(BlockKind::HostCommand);  // firmware string argument: M862.3 P "MINI"
       return false;
     }
+    if (n.digits == 0 && k < n_ && s_[k] == '=' && p_.rules.assignments) return assignment(i) > 0;  // X=R1
     if (n.digits == 0 && (i + 1 >= n_ || is_space(s_[i + 1]) || s_[i + 1] == ';') && allows_flags())
       return push(i, k, letter, 0, false, 0, false, true);  // Marlin-style axis flag: M84 X Y E, G28 X Y
     if (n.digits == 0) {
@@ -355,10 +372,6 @@ class LineLexer {
       return false;
     }
     const double value = value_of(n, start, k);
-    if (letter == 'L' && p_.rules.numbered_labels && k + 1 < n_ && s_[k] == ',' && is_digit(s_[k + 1])) {
-      set_kind(BlockKind::Control);  // L1,2: a repeat or call of the lines after label 1
-      return false;
-    }
     if (!push(i, k, letter, negative ? -value : value, false, n.decimals, n.point, false)) return false;
     p_.words.back().plus = plus;
     return true;
