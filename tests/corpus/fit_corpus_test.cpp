@@ -19,9 +19,9 @@ using namespace arcpress;
 namespace {
 
 /// The raw text of every block that does not move an axis, in order.
-/// The lines of a program that do not move, without the bare G17/G18/G19 blocks (counted in
-/// `plane_lines`), which arcpress writes around runs it fits in another plane, and without
-/// its header comment (after a slicer's first line).
+/// The lines of a program that do not move, without the bare G17/G18/G19 blocks (after a
+/// block number at most; counted in `plane_lines`), which arcpress writes around runs it fits
+/// in another plane, and without its header comment (after a slicer's first line).
 std::vector<std::string> non_motion_lines(const std::string& text, size_t& plane_lines) {
   DiagnosticSink sink;
   Program p = lex("x", text, sink);
@@ -33,7 +33,9 @@ std::vector<std::string> non_motion_lines(const std::string& text, size_t& plane
       moves |= std::string_view("XYZABCUVWEIJKR").find(w->letter) != std::string_view::npos && !w->flag;
     std::string_view raw = p.raw(b);
     if (is_arcpress_header(raw)) continue;
-    if (raw == "G17" || raw == "G18" || raw == "G19") {
+    const Word* g = b.word_count == 2 && p.words_begin(b)->letter == 'N' ? p.words_begin(b) + 1 : p.words_begin(b);
+    if (!b.has_comment && (b.word_count == 1 || g != p.words_begin(b)) && g->letter == 'G' && !g->is_expr &&
+        (g->value == 17 || g->value == 18 || g->value == 19)) {
       ++plane_lines;
       continue;
     }

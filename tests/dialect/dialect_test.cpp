@@ -989,3 +989,44 @@ TEST_CASE("ARCPRESS_DIALECT_PATH is a list of folders split as the system splits
   CHECK_FALSE(platform::own_folder().empty());
   CHECK(platform::own_folder() == platform::program_folder());
 }
+
+TEST_CASE("a block arcpress adds to select a plane takes a number the program's blocks leave free, where they are "
+          "numbered",
+          "[dialect][heidenhain]") {
+  // A quarter circle in XZ under G17, numbered N30 to N330: one G02 in G18 between a G18
+  // block and a G17 block, every block numbered, the numbers ascending.
+  std::string text = "%P G71 *\nN10 G17 G90 *\nN20 G00 X+0 Y+0 Z+0 *\nN25 G01 F500 *\n";
+  for (int i = 0; i <= 30; ++i)
+    text += fmt::format("N{} G01 X{:+.4f} Y+0 Z{:+.4f} *\n", 30 + 10 * i, 20 * std::sin(M_PI / 60 * i),
+                        20 - 20 * std::cos(M_PI / 60 * i));
+  text += "N400 G00 Z+50 *\nN410 M30 *\nN99999999 %P G71 *\n";
+  const CompressResult r = compress_as(shipped("heidenhain-iso"), text);
+  CHECK(test::broken_promise(r) == "");
+  CHECK(r.stats.plane_words_added == 2);
+  CHECK(r.stats.arcs_out >= 1);
+  std::istringstream lines(r.output);
+  std::string line;
+  long previous = -1;
+  size_t numbered = 0;
+  std::getline(lines, line);  // (%P G71 *)
+  while (std::getline(lines, line)) {
+    INFO(line);
+    REQUIRE(line.size() > 1);
+    REQUIRE(line[0] == 'N');
+    const long n = std::stol(line.substr(1));
+    CHECK(n > previous);
+    previous = n;
+    ++numbered;
+  }
+  CHECK(numbered == 3 + r.stats.arcs_out + r.stats.lines_out + 2 + 3);
+  CHECK(r.output.find("G18 *\n") != std::string::npos);
+  CHECK(r.output.find("G17 *\nN400 G00") != std::string::npos);
+  // A program without numbers gets none.
+  std::string bare;
+  for (std::istringstream in(text); std::getline(in, line);)
+    bare += (line[0] == 'N' && line[1] != '9' ? line.substr(line.find(' ') + 1) : line) + "\n";
+  const CompressResult b = compress_as(shipped("heidenhain-iso"), bare);
+  CHECK(test::broken_promise(b) == "");
+  CHECK(b.output.find("\nG18 *\n") != std::string::npos);
+  CHECK(b.output.find("\nG17 *\n") != std::string::npos);
+}

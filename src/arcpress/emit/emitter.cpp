@@ -242,6 +242,7 @@ class Emitter {
       stats_->rule_joints.push_back(run.first_move + e);
     };
     ArcScratch scratch;
+    bool last_number_free = false;  // the last block's number, where its block took its first's (compose())
     for (size_t i = 0; i < fit.prims.size(); ++i) {
       const Primitive& pr = fit.prims[i];
       uint32_t e = pr.end_vertex;
@@ -270,7 +271,7 @@ class Emitter {
           header_done_ = true;
         }
         if (arc && run.plane != own && !plane_selected) {
-          write_plane(run, a, run.plane);
+          write_plane(run, a, run.plane, number_taken(run, a, e) > a);
           plane_selected = true;
         }
         const Block& last = p_.blocks[in_.moves[run.first_move + e - 1].block];
@@ -283,7 +284,9 @@ class Emitter {
         out_motion_ = arc ? (pr.ccw != flip(run.plane) ? 30 : 20) : 10;
         if (stats_) ++(arc ? stats_->arcs_out : stats_->lines_out);
         if (arc && text->loose) rule_joints(e);
+        last_number_free = number_taken(run, a, e) < e - 1;
       } else {
+        last_number_free = false;
         // The input's own blocks: always readable, always on the path.
         for (uint32_t k = a; k < e; ++k) {
           copy_block(p_.blocks[in_.moves[run.first_move + k].block]);
@@ -292,15 +295,26 @@ class Emitter {
       }
       a = e;
     }
-    if (plane_selected) write_plane(run, run.move_count - 1, own);
+    if (plane_selected) write_plane(run, run.move_count - 1, own, last_number_free);
+  }
+
+  /// The move whose block number the block over moves [a, e) of `run` takes: the last one's;
+  /// the one before it for a run's last block in another plane than the program's, whose
+  /// last number the block after it that selects the program's plane again takes (write_plane()).
+  uint32_t number_taken(const Run& run, uint32_t a, uint32_t e) const {
+    return e - a >= 2 && e == run.move_count && run.plane != in_.moves[run.first_move].plane ? e - 2 : e - 1;
   }
 
   /// A block of its own selecting `plane` (G17/G18/G19), styled and ended like the run's
-  /// block of move k.
-  void write_plane(const Run& run, uint32_t k, Plane plane) {
+  /// block of move k, and with its block number where `numbered` (no block written takes it):
+  /// a program that numbers its blocks numbers these too (Heidenhain ISO's).
+  void write_plane(const Run& run, uint32_t k, Plane plane, bool numbered) {
     const Block& b = p_.blocks[in_.moves[run.first_move + k].block];
     out_ += indent_of(b);
-    out_ += style_of(b).letter('G');
+    const BlockStyle st = style_of(b);
+    if (const Word* n = p_.find(b, 'N'); numbered && n && n == p_.words_begin(b))
+      out_ += p_.raw(b, *n), out_ += st.spaced ? " " : "";
+    out_ += st.letter('G');
     out_ += std::to_string(plane_gcode(plane));
     end_block(out_);
     out_.append(p_.eol(b));
@@ -334,7 +348,7 @@ class Emitter {
   std::optional<Composed> compose(const Run& run, const Frame& fr, uint32_t a, const Primitive& pr, bool compact,
                                   ArcScratch& scratch) const {
     uint32_t e = pr.end_vertex;
-    const Block& last = p_.blocks[in_.moves[run.first_move + e - 1].block];
+    const Block& numbered = p_.blocks[in_.moves[run.first_move + number_taken(run, a, e)].block];
     BlockStyle st = style_of(p_.blocks[in_.moves[run.first_move + a].block]);
     st.keep_point = st.keep_point || d().decimal_point;
     const std::string sep = st.spaced && !compact ? " " : "";
@@ -363,7 +377,7 @@ class Emitter {
     std::string& s = out.text;
     const std::string_view indent = indent_of(p_.blocks[in_.moves[run.first_move + a].block]);
     s = indent;
-    if (const Word* n = p_.find(last, 'N'); n && n == p_.words_begin(last)) s += p_.raw(last, *n);
+    if (const Word* n = p_.find(numbered, 'N'); n && n == p_.words_begin(numbered)) s += p_.raw(numbered, *n);
     out.motion_at = uint32_t(s.size());
     if (out.motion_at > indent.size()) s += sep;
     s += st.motion(out.g);
