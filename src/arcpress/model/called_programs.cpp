@@ -51,6 +51,18 @@ void note_g(int g, Effect& e) {
   }
 }
 
+/// Notes G-code `g` (times ten) as dialect `d` reads it into `e`.
+void note_g(int g, const Dialect& d, Effect& e) {
+  if (const CodeMeaning* m = d.meaning_of('G', g)) {
+    if (*m == CodeMeaning::Inch || *m == CodeMeaning::Mm) note_g(*m == CodeMeaning::Inch ? 200 : 210, e);
+    if (*m == CodeMeaning::Unmodelled || *m == CodeMeaning::Moves) e.flow = true;
+  } else if (d.turn_reading(g) || d.turn_set_by(g)) {
+    e.sets.motion = -1, e.sets.states |= kStatesMotion;  // (the way the last arc turned: not read here)
+  } else {
+    note_g(g, e);
+  }
+}
+
 Effect effect_of(const Program& p, const Block& b, const Dialect& d) {
   Effect e;
   if (b.kind == BlockKind::Control || b.kind == BlockKind::Macro || b.kind == BlockKind::Opaque) e.flow = true;
@@ -61,15 +73,7 @@ Effect effect_of(const Program& p, const Block& b, const Dialect& d) {
         e.flow = true;
         continue;
       }
-      const int g = w->code10();
-      if (const CodeMeaning* m = d.meaning_of('G', g)) {
-        if (*m == CodeMeaning::Inch || *m == CodeMeaning::Mm) note_g(*m == CodeMeaning::Inch ? 200 : 210, e);
-        if (*m == CodeMeaning::Unmodelled || *m == CodeMeaning::Moves) e.flow = true;
-      } else if (d.turn_reading(g) || d.turn_set_by(g)) {
-        e.sets.motion = -1, e.sets.states |= kStatesMotion;  // (the way the last arc turned: not read here)
-      } else {
-        note_g(g, e);
-      }
+      note_g(w->code10(), d, e);
     } else if (w->letter == 'M') {
       const int m = w->code10();
       if (w->is_expr || m == 970 || m == 980) e.flow = true;
@@ -116,6 +120,12 @@ uint64_t CalledPrograms::key_of(const Word& w) {
 }
 
 uint8_t modes_stated(const Program& p, const Block& b, const Dialect& d) { return effect_of(p, b, d).sets.states; }
+
+uint8_t modes_set_by(int code10, const Dialect& d) {
+  Effect e;
+  note_g(code10, d, e);
+  return e.sets.states;
+}
 
 const CalledPrograms::Entry* CalledPrograms::find(uint64_t key) const {
   const auto at = std::lower_bound(entries.begin(), entries.end(), key, [](const Entry& e, uint64_t k) { return e.key < k; });

@@ -53,6 +53,8 @@ std::shared_ptr<const CalledPrograms> called_programs_of(const Program& program,
 /// The modes block `b` states (kStates*: G17..G19, G20/G21 and `dialect`'s own codes for them,
 /// G90/G91, a motion code).
 uint8_t modes_stated(const Program& program, const Block& b, const Dialect& dialect);
+/// The modes G-code `code10` (the code times ten) sets as `dialect` reads it, as modes_stated().
+uint8_t modes_set_by(int code10, const Dialect& dialect);
 
 /// The call in block `b` (its code times ten: 970, 980 or 650): the label its P names and
 /// how many times it runs (L or K; Fanuc's `M98 P30002000` runs O2000 three times).
