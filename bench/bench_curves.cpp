@@ -409,6 +409,7 @@ int main(int argc, char** argv) {
       {"branch 2", [](FitOptions& o) { o.beam_branch = 2; }},
       {"no merging", [](FitOptions& o) { o.merge = false; }},
       {"width 4, branch 2, no merging", [](FitOptions& o) { o.beam_width = 4; o.beam_branch = 2; o.merge = false; }},
+      {"no search at the count first", [](FitOptions& o) { o.bound_search = false; }},
   };
   for (const auto& f : files) {
     const std::string text = file_text(f);

@@ -154,6 +154,28 @@ TEST_CASE("the global method keeps the band on every corpus file and is never wo
   CHECK(better > 0);
 }
 
+TEST_CASE("the default's first search, for a chain of as few primitives as a chain with a corner at every joint "
+          "needs, costs no corpus file a block or a forced kink, and saves blocks on some",
+          "[corpus][fit][search]") {
+  ARCPRESS_CORPUS_FILES_OR_SKIP(files)
+  size_t saved = 0;
+  for (const auto& f : files) {
+    INFO(f.string());
+    const std::string text = test::read_file(f);
+    DiagnosticSink sink(f.string());
+    CompressOptions with, without;
+    with.fit.tolerance_mm = without.fit.tolerance_mm = 0.05;
+    without.fit.bound_search = false;
+    const CompressResult w = compress(f.string(), text, with, sink), o = compress(f.string(), text, without, sink);
+    REQUIRE(w.within_band());
+    const size_t blocks_w = w.stats.lines_out + w.stats.arcs_out, blocks_o = o.stats.lines_out + o.stats.arcs_out;
+    CHECK(w.forced_kinks <= o.forced_kinks);
+    CHECK(blocks_w <= blocks_o);
+    saved += blocks_o - std::min(blocks_o, blocks_w);
+  }
+  CHECK(saved > 0);
+}
+
 TEST_CASE("runs fitted, and their blocks composed, on several threads give the same program as on one thread",
           "[corpus][fit][emit][threads]") {
   ARCPRESS_CORPUS_FILES_OR_SKIP(files)

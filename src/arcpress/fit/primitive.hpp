@@ -62,6 +62,9 @@ struct FitOptions {
   uint32_t beam_width = 8;         ///< Arcs and Global methods: chains kept per primitive count
   int beam_branch = 3;             ///< Arcs and Global methods: checked primitives per chain and start tangent
   bool merge = true;               ///< Arcs and Global methods: merge neighbouring primitives after the search
+  /// Arcs and Global methods: look first, depth first, for a chain of as few primitives as a
+  /// chain that may break its tangent at every joint needs (fit/bound_search.cpp)
+  bool bound_search = true;
   uint32_t stream_window = 256;    ///< Stream method: most moves one primitive may replace
   /// How much the extrusion (E) or an extra axis per mm of path may differ between two
   /// neighbouring moves inside one primitive, as a share of the larger rate: a primitive

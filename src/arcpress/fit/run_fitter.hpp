@@ -13,6 +13,7 @@
 #include <optional>
 #include <span>
 #include <tuple>
+#include <unordered_map>
 #include <unordered_set>
 
 #include "arcpress/core/deviation.hpp"
@@ -90,6 +91,11 @@ constexpr size_t kRangeChecksPerPrimitive = 256;
 /// Chains of shorter primitives, as printers' perimeters and most CAM passes come out, are
 /// left to the beam; with fewer primitives the merges after the beam already try the other
 /// joints; and the limit on primitives bounds the search's work.
+/// bound_chain(): exact checks per primitive at most, and the most primitives it looks for:
+/// the longer the chain, the less often one of just the count passes, and the search that
+/// fails before the beam costs more than the one that passes saves (docs/benchmarks.md).
+constexpr size_t kBoundChecksPerPrimitive = 8;
+constexpr uint32_t kBoundMaxPrimitives = 3;
 constexpr size_t kRangeMinPrimitives = 4;
 constexpr size_t kRangeMaxPrimitives = 64;
 constexpr double kRangeMovesPerPrimitive = 25;
@@ -507,6 +513,11 @@ class RunFitter : private FitAngles {
   /// offers it (not yet checked exactly), or nothing. A test of the one end that fails at the
   /// first vertex off the circle, where the scan would go on to the last end allowed.
   std::optional<Candidate> finish_from(uint32_t v, const Vec2& T, uint32_t limit) const;
+  /// A candidate of bound_chain(): `c` along `T`, from a node left along `from`.
+  struct BoundTry {
+    Candidate c;
+    Vec2 T, from;
+  };
   /// A chain a beam layer keeps: its end vertex and tangent, and the tangent's bin once needed.
   struct SeenEnd {
     uint32_t v;
@@ -526,6 +537,12 @@ class RunFitter : private FitAngles {
     std::vector<FixedMove> fixed;
     std::vector<double> extra_values, e_values, e_rate;
     std::vector<uint8_t> spike, nowhere, alone, none;  // the constructor's
+  };
+  /// roots()' start tangents at a free start, for the stretch, start and limit read.
+  struct RootsRead {
+    uint64_t stretch = 0;  // 0: none
+    uint32_t a = 0, limit = 0;
+    std::vector<Vec2> tangents;
   };
   /// Buffers the searches reuse from call to call, and from run to run on one thread, so
   /// that once warm they allocate nothing. Each belongs to one function; none of those
@@ -559,6 +576,12 @@ class RunFitter : private FitAngles {
     std::vector<std::pair<int, uint32_t>> root_seeds;  // beam_chain(): (root node, its Seed)
     std::vector<size_t> chain_length;                  // kink_seeds(), per node
     std::vector<int> root_of, shortest;                // kink_seeds(), per node and per vertex
+    uint32_t bound_a = 0;                                 // bound_start()
+    std::vector<uint32_t> bound_h;                        // bound_start(), per vertex from bound_a
+    std::unordered_map<uint64_t, uint32_t> bound_failed;  // bound_chain()
+    std::vector<std::vector<BoundTry>> bound_tries;       // bound_chain(), per depth
+    std::vector<Vec2> bound_roots;                        // bound_chain()
+    RootsRead roots_read;                                 // roots()
     // The greedy steps' latest scans (GuideScan), in turn, and whether best_near() is taking one.
     std::array<GuideScan, 9> guide_scans;
     size_t guide_next = 0;
@@ -590,6 +613,24 @@ class RunFitter : private FitAngles {
   /// vertices.
   std::vector<Chosen> beam_chain(uint32_t a, uint32_t limit, GreedyWalk* greedy,
                                  std::span<const Seed> seeds = {}) const;
+  /// The fewest primitives from `a` to `limit` of a chain that may break its tangent at every
+  /// joint, each no further than some circle from its start reaches with its vertices in the
+  /// band (start_reaches()), where reaching further never costs; and the same from each
+  /// vertex between, kept in s_.bound_h for bound_chain(). kBoundMaxPrimitives + 1 where it
+  /// is more than that.
+  uint32_t bound_start(uint32_t a, uint32_t limit) const;
+  /// Whether the scan lets one primitive from vertex v reach `limit` along T, or along T
+  /// turned as the beam turns it at a joint (not yet checked exactly).
+  bool finishes(uint32_t v, const Vec2& T, uint32_t limit) const;
+  /// A G1 chain from `a` to `limit` of as few primitives as bound_start() counts, at most
+  /// kBoundMaxPrimitives, found depth first with the beam's turns at each joint, ends
+  /// furthest first, each end taken only where the count from it leaves room: where the
+  /// count is met, the chain has the fewest primitives there are, and the search costs a
+  /// few scans a primitive, where the beam scores some 25 candidates a primitive by a scan
+  /// each. Empty where the stretch's ends have fixed directions or it closes a loop (the
+  /// count says too little there), or no such chain is found within
+  /// kBoundChecksPerPrimitive exact checks a primitive.
+  std::vector<Chosen> bound_chain(uint32_t a, uint32_t limit) const;
   /// Whether the input runs straight from vertex v for kStraightAheadMm (or to `limit`): every
   /// vertex up to there within the band of the chord there.
   bool straight_ahead(uint32_t v, uint32_t limit) const;
@@ -697,6 +738,21 @@ class RunFitter : private FitAngles {
   /// are kept as directions and compared as pseudo-angles; only the result's are angles.
   /// The band is the in-plane share once a vertex climbs, as in the scan.
   std::pair<double, double> start_range(uint32_t a, uint32_t e) const;
+  /// Whether some start at vertex a whose circle through vertex e keeps the vertices, and
+  /// with `middles` the move middles, between inside the band lies within the largest sweep.
+  /// Each point's starts in the band lie around two zeros half a turn apart, and
+  /// start_range() keeps those around one; where a point's starts span much of a half turn
+  /// (it lies near the chord's line, close to an end), those around the other reach into the
+  /// sweep too, and the starts that reach e may lie only there: on the FreeCAD program at
+  /// 0.05 mm, an arc of 143° whose range came out empty. This keeps both, so that false
+  /// shows that no start reaches e.
+  bool start_reaches(uint32_t a, uint32_t e, bool middles) const;
+  /// start_range()'s and start_reaches()'s walk over the points between a and e: for each
+  /// point not within the band of `a`, `point(low, high)` gets the edges of the starts
+  /// around its first zero, as directions of the tangent-chord angle (of any length);
+  /// false when `point` returns false or the chord has no length.
+  template <class Point>
+  bool start_bounds(uint32_t a, uint32_t e, bool middles, Point&& point) const;
   /// The input's own directions at `a` (input_tangents()), each also turned by 0.5°, 1°, 2°
   /// and 4° either way; appended to `out`. The layered search's starts where the tangent is
   /// free.

@@ -100,7 +100,20 @@ void RunFitter::input_tangents(uint32_t a, uint32_t limit, std::vector<Vec2>& ou
 /// G1 angle), else start_tangents().
 void RunFitter::roots(uint32_t a, uint32_t limit, std::vector<Vec2>& out) const {
   out.clear();
-  if (!arrives_along(a)) return start_tangents(a, limit, out);
+  if (!arrives_along(a)) {
+    // The bound's search and the beam after it start from the same free start: its
+    // tangents are read once.
+    RootsRead& read = s_.roots_read;
+    if (read.stretch != stretch_id_ || read.a != a || read.limit != limit) {
+      read.tangents.clear();
+      start_tangents(a, limit, read.tangents);
+      read.stretch = stretch_id_;
+      read.a = a;
+      read.limit = limit;
+    }
+    out = read.tangents;
+    return;
+  }
   out.push_back(*in_tangent_);
   for (const Turn& turn : root_turns_) out.push_back(turn(*in_tangent_));
 }
@@ -206,21 +219,19 @@ uint32_t RunFitter::furthest_line_end(uint32_t a, uint32_t limit) const {
 /// around the zero of R·sin(α + β) (R² = P² + Q²) asin(ε / R) wide each way. The bounds
 /// are kept as directions and compared as pseudo-angles; only the result's are angles.
 /// The band is the in-plane share once a vertex climbs, as in the scan.
-std::pair<double, double> RunFitter::start_range(uint32_t a, uint32_t e) const {
+template <class Point>
+bool RunFitter::start_bounds(uint32_t a, uint32_t e, bool middles, Point&& point) const {
   const Vec2 chord = q(e) - q(a);
   const double length = chord.norm();
-  if (length <= kLengthEpsMm) return {1, -1};
+  if (length <= kLengthEpsMm) return false;
   const Vec2 c = chord / length;
   const double inv_length = 1 / length;
   bool flat = true;
   for (uint32_t m = a + 1; m <= e && flat && !level_; ++m) flat = std::abs(p_[m].z() - p_[a].z()) <= kLengthEpsMm;
   const double eps = flat ? eps_ : eps_ * kPlaneShare;
-  // Directions (cos α, sin α) in (−π, π), ordered by their pseudo-angle turned half a turn.
-  auto order = [](const Vec2& d) { return pseudo_angle(-d.x(), -d.y()); };
-  Vec2 lo(start_sweep_.c, -start_sweep_.s), hi(start_sweep_.c, start_sweep_.s);
-  double lo_order = order(lo), hi_order = order(hi);
   // Points 2a+1, 2a+2, ..., 2e-1: odd ones the move middles, even ones the vertices.
-  for (uint32_t j = 2 * a + 1; j < 2 * e; ++j) {
+  const uint32_t step = middles ? 1 : 2;
+  for (uint32_t j = 2 * a + step; j < 2 * e; j += step) {
     const Vec2 u = ((j & 1) ? middle_[j / 2] : q(j / 2)) - q(a);
     const double w = u.squaredNorm() - eps * eps;
     if (w <= 0) continue;  // within the band of `a` itself
@@ -232,18 +243,72 @@ std::pair<double, double> RunFitter::start_range(uint32_t a, uint32_t e) const {
     // pseudo-angle, and atan2, take directions of any length).
     const Vec2 zero = P > 0 || (P == 0 && Q <= 0) ? Vec2(P, -Q) : Vec2(-P, Q);
     const double cos_half = std::sqrt(R2 - eps * eps);
-    const Vec2 low = Turn::by(cos_half, -eps)(zero), high = Turn::by(cos_half, eps)(zero);
-    if (const double o = order(low); o > lo_order) {
+    if (!point(Turn::by(cos_half, -eps)(zero), Turn::by(cos_half, eps)(zero))) return false;
+  }
+  return true;
+}
+
+/// Directions (cos α, sin α) in (−π, π), ordered by their pseudo-angle turned half a turn.
+static double start_order(const Vec2& d) { return pseudo_angle(-d.x(), -d.y()); }
+
+std::pair<double, double> RunFitter::start_range(uint32_t a, uint32_t e) const {
+  Vec2 lo(start_sweep_.c, -start_sweep_.s), hi(start_sweep_.c, start_sweep_.s);
+  double lo_order = start_order(lo), hi_order = start_order(hi);
+  const bool met = start_bounds(a, e, true, [&](const Vec2& low, const Vec2& high) {
+    if (const double o = start_order(low); o > lo_order) {
       lo = low;
       lo_order = o;
     }
-    if (const double o = order(high); o < hi_order) {
+    if (const double o = start_order(high); o < hi_order) {
       hi = high;
       hi_order = o;
     }
-    if (lo_order > hi_order) return {1, -1};
-  }
+    return lo_order <= hi_order;
+  });
+  if (!met) return {1, -1};
   return {std::atan2(lo.y(), lo.x()), std::atan2(hi.y(), hi.x())};
+}
+
+bool RunFitter::start_reaches(uint32_t a, uint32_t e, bool middles) const {
+  // The starts kept, as pseudo-angle intervals inside the largest sweep: a point's starts
+  // are an interval around its first zero and one around the other, half a turn (2 in
+  // pseudo-angle) away, which may wrap past it (that part lies outside the sweep). Where
+  // more than four pieces would be kept, the last two become the one that spans both: more
+  // starts than reach, never fewer, so that false still shows that none reaches.
+  constexpr size_t kPieces = 4;
+  double from[kPieces], to[kPieces];
+  size_t count = 1;
+  const double first = start_order(Vec2(start_sweep_.c, -start_sweep_.s));
+  const double last = start_order(Vec2(start_sweep_.c, start_sweep_.s));
+  from[0] = first;
+  to[0] = last;
+  return start_bounds(a, e, middles, [&](const Vec2& low, const Vec2& high) {
+    const double lo = start_order(low), hi = start_order(high);
+    const double other_lo = lo < 2 ? lo + 2 : lo - 2, other_hi = hi < 2 ? hi + 2 : hi - 2;
+    double own_from[3] = {lo, other_lo, first}, own_to[3] = {hi, other_hi, other_hi};
+    size_t owned = 2;
+    if (other_lo > other_hi) {  // wrapped: [other_lo, 4) and [0, other_hi]
+      own_to[1] = last;
+      owned = 3;
+    }
+    double next_from[kPieces], next_to[kPieces];
+    size_t made = 0;
+    for (size_t i = 0; i < count; ++i)
+      for (size_t k = 0; k < owned; ++k) {
+        const double f = std::max(from[i], own_from[k]), t = std::min(to[i], own_to[k]);
+        if (f > t) continue;
+        if (made < kPieces) {
+          next_from[made] = f, next_to[made++] = t;
+        } else {
+          next_from[kPieces - 1] = std::min(next_from[kPieces - 1], f);
+          next_to[kPieces - 1] = std::max(next_to[kPieces - 1], t);
+        }
+      }
+    std::copy(next_from, next_from + made, from);
+    std::copy(next_to, next_to + made, to);
+    count = made;
+    return count > 0;
+  });
 }
 
 /// The input's own directions at `a` (input_tangents()), each also turned by 0.5°, 1°, 2°
