@@ -45,6 +45,8 @@ std::vector<Chosen> RunFitter::bound_chain(uint32_t a, uint32_t limit) const {
   // close a loop tangentially each turn half of it, joined exactly across the loop from its
   // start, where the input seldom has a vertex.
   if (in_tangent_ || out_tangent_ || (q(limit) - q(a)).squaredNorm() <= eps_ * eps_) return chain;
+  // (Where one primitive may do, the greedy step finds it at no more cost, with the arc
+  // through the input's own directions.)
   const size_t target = bound_start(a, limit);
   if (target < 2 || target > kBoundMaxPrimitives) return chain;
   const double bin_rad = deg_to_rad(std::min(o_.g1_angle_deg, 2 * kFinestJointTurnDeg)) / 8;

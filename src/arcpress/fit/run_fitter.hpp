@@ -622,7 +622,7 @@ class RunFitter : private FitAngles {
   /// Whether the scan lets one primitive from vertex v reach `limit` along T, or along T
   /// turned as the beam turns it at a joint (not yet checked exactly).
   bool finishes(uint32_t v, const Vec2& T, uint32_t limit) const;
-  /// A G1 chain from `a` to `limit` of as few primitives as bound_start() counts, at most
+  /// A G1 chain from `a` to `limit` of as few primitives as bound_start() counts, 2 to
   /// kBoundMaxPrimitives, found depth first with the beam's turns at each joint, ends
   /// furthest first, each end taken only where the count from it leaves room: where the
   /// count is met, the chain has the fewest primitives there are, and the search costs a
