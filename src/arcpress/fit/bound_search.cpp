@@ -31,11 +31,16 @@ uint32_t RunFitter::bound_start(uint32_t a, uint32_t limit) const {
   return count;
 }
 
-bool RunFitter::finishes(uint32_t v, const Vec2& T, uint32_t limit) const {
-  if (finish_from(v, T, limit)) return true;
+template <class Try>
+bool RunFitter::any_joint_turn(uint32_t v, const Vec2& T, uint32_t limit, Try&& try_along) const {
+  if (try_along(T)) return true;
   for (const Turn& turn : joint_turns_)
-    if (finish_from(v, turn(T), limit)) return true;
-  return straight_ahead(v, limit) && (finish_from(v, half_left_(T), limit) || finish_from(v, half_right_(T), limit));
+    if (try_along(turn(T))) return true;
+  return straight_ahead(v, limit) && (try_along(half_left_(T)) || try_along(half_right_(T)));
+}
+
+bool RunFitter::finishes(uint32_t v, const Vec2& T, uint32_t limit) const {
+  return any_joint_turn(v, T, limit, [&](const Vec2& Ti) { return finish_from(v, Ti, limit).has_value(); });
 }
 
 std::vector<Chosen> RunFitter::bound_chain(uint32_t a, uint32_t limit) const {
@@ -81,13 +86,10 @@ std::vector<Chosen> RunFitter::bound_chain(uint32_t a, uint32_t limit) const {
       roots(a, limit, s_.bound_roots);
       for (const Vec2& R : s_.bound_roots) collect(R, R);
     } else {
-      // The beam's turns at a joint (beam_chain()).
-      collect(T, T);
-      for (const Turn& turn : joint_turns_) collect(T, turn(T));
-      if (straight_ahead(v, limit)) {
-        collect(T, half_left_(T));
-        collect(T, half_right_(T));
-      }
+      any_joint_turn(v, T, limit, [&](const Vec2& Ti) {
+        collect(T, Ti);
+        return false;
+      });
     }
     // Furthest end first, of two to one end a line first (where the straight side is a line,
     // an arc of large radius over it would bend the joint after it), else in the order found.
