@@ -14,7 +14,8 @@
 # --instructions under valgrind, a few minutes), and printers-vs-arcwelder in
 # docs/printers.md (bench_vs_arcwelder --printers, about a minute): with ARCWELDER set to
 # the path of ArcWelder's console program, built from its source in a folder of your own;
-# not among the defaults.
+# grbl in docs/dialects.md (tests/integration/grbl_accepts.sh, under a minute): with
+# GRBL_VALIDATOR set to grbl-sim's validator, built likewise. Neither is among the defaults.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 [ -x build/bench/bench_throughput ] || { echo "docs_figures: build with 'bash scripts/build.sh --test' first" >&2; exit 2; }
@@ -61,9 +62,12 @@ for name in "${wanted[@]}"; do
       [ -x "${ARCWELDER:-}" ] || { echo "docs_figures: set ARCWELDER to ArcWelder's console program" >&2; exit 2; }
       command -v valgrind >/dev/null || { echo "docs_figures: vs-arcwelder-instructions needs valgrind" >&2; exit 2; }
       ./build/bench/bench_vs_arcwelder "$ARCWELDER" --instructions | replace docs/benchmarks.md vs-arcwelder-instructions ;;
+    grbl)
+      [ -x "${GRBL_VALIDATOR:-}" ] || { echo "docs_figures: set GRBL_VALIDATOR to grbl-sim's gvalidate.exe" >&2; exit 2; }
+      bash tests/integration/grbl_accepts.sh ./build/arcpress "$GRBL_VALIDATOR" ../shared/corpus | as_text | replace docs/dialects.md grbl ;;
     printers-vs-arcwelder)
       [ -x "${ARCWELDER:-}" ] || { echo "docs_figures: set ARCWELDER to ArcWelder's console program" >&2; exit 2; }
       ./build/bench/bench_vs_arcwelder "$ARCWELDER" --printers | replace docs/printers.md printers-vs-arcwelder ;;
-    *) echo "docs_figures: no table '$name' (corpus, throughput, stages, memory, curves, diff, pathological, printers, printer-causes, band-side, vs-arcwelder, vs-arcwelder-instructions, printers-vs-arcwelder)" >&2; exit 2 ;;
+    *) echo "docs_figures: no table '$name' (corpus, throughput, stages, memory, curves, diff, pathological, printers, printer-causes, band-side, vs-arcwelder, vs-arcwelder-instructions, printers-vs-arcwelder, grbl)" >&2; exit 2 ;;
   esac
 done
