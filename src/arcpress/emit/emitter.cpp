@@ -362,6 +362,9 @@ class Emitter {
     for (uint32_t k = a; k < e; ++k) {
       const Block& b = p_.blocks[in_.moves[run.first_move + k].block];
       for (auto* w = p_.words_begin(b); w != p_.words_end(b); ++w) {
+        // (A label, `LOOP1:`, or a keyword is no letter's word: the block's number, whether
+        // jumps may enter it, is read elsewhere.)
+        if (w->letter < 'A' || w->letter > 'Z') continue;
         int li = w->letter - 'A';
         last_word[li] = w;
         last_block[li] = &b;
