@@ -14,8 +14,9 @@
 # --instructions under valgrind, a few minutes), and printers-vs-arcwelder in
 # docs/printers.md (bench_vs_arcwelder --printers, about a minute): with ARCWELDER set to
 # the path of ArcWelder's console program, built from its source in a folder of your own;
-# grbl in docs/dialects.md (tests/integration/grbl_accepts.sh, under a minute): with
-# GRBL_VALIDATOR set to grbl-sim's validator, built likewise. Neither is among the defaults.
+# grbl and klipper in docs/dialects.md (tests/integration/grbl_accepts.sh and
+# klipper_executed.sh, a minute each): with GRBL_VALIDATOR set to grbl-sim's validator,
+# built likewise, and KLIPPER_SOURCE to a clone of Klipper. None is among the defaults.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 [ -x build/bench/bench_throughput ] || { echo "docs_figures: build with 'bash scripts/build.sh --test' first" >&2; exit 2; }
@@ -65,9 +66,12 @@ for name in "${wanted[@]}"; do
     grbl)
       [ -x "${GRBL_VALIDATOR:-}" ] || { echo "docs_figures: set GRBL_VALIDATOR to grbl-sim's gvalidate.exe" >&2; exit 2; }
       bash tests/integration/grbl_accepts.sh ./build/arcpress "$GRBL_VALIDATOR" ../shared/corpus | as_text | replace docs/dialects.md grbl ;;
+    klipper)
+      [ -f "${KLIPPER_SOURCE:-}/klippy/extras/gcode_arcs.py" ] || { echo "docs_figures: set KLIPPER_SOURCE to a clone of Klipper3d/klipper" >&2; exit 2; }
+      bash tests/integration/klipper_executed.sh ./build/arcpress "$KLIPPER_SOURCE" ../shared/corpus | as_text | replace docs/dialects.md klipper ;;
     printers-vs-arcwelder)
       [ -x "${ARCWELDER:-}" ] || { echo "docs_figures: set ARCWELDER to ArcWelder's console program" >&2; exit 2; }
       ./build/bench/bench_vs_arcwelder "$ARCWELDER" --printers | replace docs/printers.md printers-vs-arcwelder ;;
-    *) echo "docs_figures: no table '$name' (corpus, throughput, stages, memory, curves, diff, pathological, printers, printer-causes, band-side, vs-arcwelder, vs-arcwelder-instructions, printers-vs-arcwelder, grbl)" >&2; exit 2 ;;
+    *) echo "docs_figures: no table '$name' (corpus, throughput, stages, memory, curves, diff, pathological, printers, printer-causes, band-side, vs-arcwelder, vs-arcwelder-instructions, printers-vs-arcwelder, grbl, klipper)" >&2; exit 2 ;;
   esac
 done
