@@ -16,7 +16,8 @@
 # the path of ArcWelder's console program, built from its source in a folder of your own;
 # grbl and klipper in docs/dialects.md (tests/integration/grbl_accepts.sh and
 # klipper_executed.sh, a minute each): with GRBL_VALIDATOR set to grbl-sim's validator,
-# built likewise, and KLIPPER_SOURCE to a clone of Klipper. None is among the defaults.
+# built likewise (and GRBL_TRACE to it linked with tests/integration/grbl_trace.c, for the
+# paths Grbl plans), and KLIPPER_SOURCE to a clone of Klipper. None is among the defaults.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 [ -x build/bench/bench_throughput ] || { echo "docs_figures: build with 'bash scripts/build.sh --test' first" >&2; exit 2; }
@@ -65,7 +66,8 @@ for name in "${wanted[@]}"; do
       ./build/bench/bench_vs_arcwelder "$ARCWELDER" --instructions | replace docs/benchmarks.md vs-arcwelder-instructions ;;
     grbl)
       [ -x "${GRBL_VALIDATOR:-}" ] || { echo "docs_figures: set GRBL_VALIDATOR to grbl-sim's gvalidate.exe" >&2; exit 2; }
-      bash tests/integration/grbl_accepts.sh ./build/arcpress "$GRBL_VALIDATOR" ../shared/corpus | as_text | replace docs/dialects.md grbl ;;
+      bash tests/integration/grbl_accepts.sh ./build/arcpress "$GRBL_VALIDATOR" ../shared/corpus ${GRBL_TRACE:-} |
+        as_text | replace docs/dialects.md grbl ;;
     klipper)
       [ -f "${KLIPPER_SOURCE:-}/klippy/extras/gcode_arcs.py" ] || { echo "docs_figures: set KLIPPER_SOURCE to a clone of Klipper3d/klipper" >&2; exit 2; }
       bash tests/integration/klipper_executed.sh ./build/arcpress "$KLIPPER_SOURCE" ../shared/corpus | as_text | replace docs/dialects.md klipper ;;

@@ -10,13 +10,22 @@
 # it, summed a row per unit and plane. Prints the blocks and arcs written and the lines
 # refused (scripts/docs_figures.sh grbl puts the table in docs/verification.md); exit 1
 # where Grbl refuses a line of an output that it reads in the input.
-#   grbl_accepts.sh ARCPRESS GVALIDATE CORPUS_DIR
+# With GTRACE, the validator linked with grbl_trace.c, the path Grbl plans for the output
+# (its arcs cut by its own mc_arc()) must also lie within the band of the one it plans for
+# the input (`arcpress diff`), and the table has the largest distance between them.
+#   grbl_accepts.sh ARCPRESS GVALIDATE CORPUS_DIR [GTRACE]
 # GVALIDATE is grbl-sim's validator built against Grbl 1.1, in a folder of your own:
 #   git clone https://github.com/gnea/grbl && cd grbl/grbl
 #   git clone https://github.com/grbl/grbl-sim && cd grbl-sim
 #   make gvalidate FLAGS='-O2 -fcommon'        # -> gvalidate.exe
+#   o="validator.o overridden_report.o avr/interrupt.o avr/pgmspace.o avr/io.o avr/eeprom.o"
+#   o="$o grbl_eeprom_extensions.o system_declares.o"
+#   for m in protocol planner settings print nuts_bolts stepper gcode spindle_control \
+#     motion_control limits coolant_control probe system jog; do o="$o ../$m.o"; done
+#   cc -O2 -fcommon -DF_CPU=16000000 -include config.h -I. -DPLAT_LINUX -o gtrace.exe \
+#     ARCPRESS_SOURCE/tests/integration/grbl_trace.c $o -lm -lrt -pthread -Wl,--wrap=plan_buffer_line
 set -euo pipefail
-arcpress=$1 validator=$(realpath "$2") corpus=$3
+arcpress=$1 validator=$(realpath "$2") corpus=$3 tracer=${4:+$(realpath "$4")}
 [ -x "$validator" ] || { echo "grbl_accepts: no validator at '$validator'" >&2; exit 2; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -36,6 +45,12 @@ refused() {
     [ "$err" = timeout ] && return 0
     sed -i "${n}s/.*//" "$work/judged.nc"
   done
+}
+
+# planned OUT: the path Grbl plans for the program refused() read last, its refused lines
+# blanked, as G-code (grbl_trace.c).
+planned() {
+  { echo "G21 G90"; (cd "$work" && timeout 60 "$tracer" judged.nc 2>&1 > /dev/null) || true; } > "$1"
 }
 
 # Test programs: circles and a helix sampled into moves 0.001 mm off the circle at most,
@@ -75,7 +90,7 @@ PY
 status=0
 declare -A sums=()
 order=()
-printf '%-44s %6s %7s %6s %14s %15s\n' program band "blocks" arcs "refused, input" "refused, output"
+printf '%-44s %6s %7s %6s %14s %15s %12s\n' program band "blocks" arcs "refused, input" "refused, output" "planned mm"
 for f in "$corpus"/*/* "$work"/G2*.nc; do
   case $f in *.md) continue ;; esac
   name=$(basename "$f")
@@ -84,6 +99,7 @@ for f in "$corpus"/*/* "$work"/G2*.nc; do
   refused "$f" > "$work/input-refused.txt"
   [ "$(wc -l < "$work/input-refused.txt")" -gt 20 ] && continue
   grep -q '^timeout' "$work/input-refused.txt" && continue
+  [ -z "$tracer" ] || planned "$work/input-planned.nc"
   for band in 0.05 0.01 0.005 0.001; do
     "$arcpress" "$f" -o "$work/out.nc" --dialect grbl --tolerance "$band" --stats 2> "$work/stats.txt" ||
       { echo "FAIL: $name at $band: arcpress exit $?: $(tail -2 "$work/stats.txt")"; status=1; continue; }
@@ -91,15 +107,26 @@ for f in "$corpus"/*/* "$work"/G2*.nc; do
     refused "$work/out.nc" > "$work/output-refused.txt"
     # Refusals of the output that the input does not have, line for line.
     new=$(sort "$work/output-refused.txt" | comm -23 - <(sort "$work/input-refused.txt"))
+    executed=-
+    if [ -n "$tracer" ]; then
+      planned "$work/output-planned.nc"
+      if ! "$arcpress" diff "$work/input-planned.nc" "$work/output-planned.nc" --tolerance "$band" --dialect grbl \
+        > "$work/diff.txt" 2>&1; then
+        echo "  planned paths: $(grep -E '^(DIFFERENT|INCOMPLETE)' "$work/diff.txt" || tail -1 "$work/diff.txt")"
+        status=1
+      fi
+      executed=$(sed -n 's/^max deviation \([0-9.]*\) mm.*/\1/p' "$work/diff.txt")
+    fi
     row=("$band" "$(awk '{print $1 + $2}' <<< "$written")" "$(awk '{print $2}' <<< "$written")"
-      "$(wc -l < "$work/input-refused.txt")" "$(grep -c . <<< "$new" || true)")
+      "$(wc -l < "$work/input-refused.txt")" "$(grep -c . <<< "$new" || true)" "$executed")
     if [[ $f == "$work"/* ]]; then  # a test program: summed over its unit and plane
       key="test circles ${name:0:7} $band"
-      read -r b a i o <<< "${sums[$key]:-0 0 0 0}"
-      sums[$key]="$((b + row[1])) $((a + row[2])) $((i + row[3])) $((o + row[4]))"
+      read -r b a i o x <<< "${sums[$key]:-0 0 0 0 -}"
+      [ "$x" = - ] || [ "${row[5]}" != - ] && x=$(awk -v x="$x" -v y="${row[5]}" 'BEGIN { print (x == "-" || y + 0 > x + 0) ? y : x }')
+      sums[$key]="$((b + row[1])) $((a + row[2])) $((i + row[3])) $((o + row[4])) $x"
       [[ " ${order[*]-} " == *" $key "* ]] || order+=("$key")
     else
-      printf '%-44s %6s %7s %6s %14s %15s\n' "$name" "${row[@]}"
+      printf '%-44s %6s %7s %6s %14s %15s %12s\n' "$name" "${row[@]}"
     fi
     if [ -n "$new" ]; then
       sed 's/^/  refused: /' <<< "$new" | head -5
@@ -108,6 +135,6 @@ for f in "$corpus"/*/* "$work"/G2*.nc; do
   done
 done
 for key in "${order[@]}"; do
-  printf '%-44s %6s %7s %6s %14s %15s\n' "${key% *}" "${key##* }" ${sums[$key]}
+  printf '%-44s %6s %7s %6s %14s %15s %12s\n' "${key% *}" "${key##* }" ${sums[$key]}
 done
 exit $status
