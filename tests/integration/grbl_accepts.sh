@@ -30,9 +30,9 @@ arcpress=$1 validator=$(realpath "$2") corpus=$3 tracer=${4:+$(realpath "$4")}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-# refused FILE: the lines Grbl refuses, as "error:N: text", after the first at most 20. The
-# validator stops at the first refusal; that line is blanked and the rest read again. A run
-# of more than 10 s counts as a refusal of the line it stopped at and ends the reading.
+# refused FILE: the lines Grbl refuses, 21 at most, as "error:N: text". The validator stops
+# at the first refusal; that line is blanked and the rest read again. A run of more than
+# 10 s counts as a refusal of the line it stopped at and ends the reading.
 refused() {
   tr -d '\r' < "$1" > "$work/judged.nc"
   local out n err
@@ -107,7 +107,7 @@ for f in "$corpus"/*/* "$work"/G2*.nc; do
     refused "$work/out.nc" > "$work/output-refused.txt"
     # Refusals of the output that the input does not have, line for line.
     new=$(sort "$work/output-refused.txt" | comm -23 - <(sort "$work/input-refused.txt"))
-    executed=-
+    planned_mm=-
     if [ -n "$tracer" ]; then
       planned "$work/output-planned.nc"
       if ! "$arcpress" diff "$work/input-planned.nc" "$work/output-planned.nc" --tolerance "$band" --dialect grbl \
@@ -115,14 +115,14 @@ for f in "$corpus"/*/* "$work"/G2*.nc; do
         echo "  planned paths: $(grep -E '^(DIFFERENT|INCOMPLETE)' "$work/diff.txt" || tail -1 "$work/diff.txt")"
         status=1
       fi
-      executed=$(sed -n 's/^max deviation \([0-9.]*\) mm.*/\1/p' "$work/diff.txt")
+      planned_mm=$(sed -n 's/^max deviation \([0-9.]*\) mm.*/\1/p' "$work/diff.txt")
     fi
     row=("$band" "$(awk '{print $1 + $2}' <<< "$written")" "$(awk '{print $2}' <<< "$written")"
-      "$(wc -l < "$work/input-refused.txt")" "$(grep -c . <<< "$new" || true)" "$executed")
+      "$(wc -l < "$work/input-refused.txt")" "$(grep -c . <<< "$new" || true)" "$planned_mm")
     if [[ $f == "$work"/* ]]; then  # a test program: summed over its unit and plane
       key="test circles ${name:0:7} $band"
       read -r b a i o x <<< "${sums[$key]:-0 0 0 0 -}"
-      [ "$x" = - ] || [ "${row[5]}" != - ] && x=$(awk -v x="$x" -v y="${row[5]}" 'BEGIN { print (x == "-" || y + 0 > x + 0) ? y : x }')
+      x=$(awk -v x="$x" -v y="${row[5]}" 'BEGIN { print (x == "-" || y + 0 > x + 0) ? y : x }')  # the largest
       sums[$key]="$((b + row[1])) $((a + row[2])) $((i + row[3])) $((o + row[4])) $x"
       [[ " ${order[*]-} " == *" $key "* ]] || order+=("$key")
     else
