@@ -57,7 +57,6 @@ std::vector<Chosen> RunFitter::beam_chain(uint32_t a, uint32_t limit, GreedyWalk
     c.insert(c.begin(), prefix.begin(), prefix.end());
     return c;
   };
-  const double bin_rad = deg_to_rad(std::min(o_.g1_angle_deg, 2 * kFinestJointTurnDeg)) / 8;
   const size_t width = o_.beam_width;
   // Candidates are scored first and checked exactly only when the beam keeps them.
   std::vector<Made>& made = s_.made;
@@ -187,7 +186,6 @@ std::vector<Chosen> RunFitter::beam_chain(uint32_t a, uint32_t limit, GreedyWalk
     // A layer keeps few of its candidates, so most are never put in order: each ranking
     // packs its keys into integers and takes them best first from a heap, ties in the order
     // made. A tangent's bin is worked out only when another kept chain ends at its vertex.
-    auto bin_of = [&](const Vec2& t) { return std::lround(std::atan2(t.y(), t.x()) / bin_rad); };
     // Keeps made[k] when it passes the exact check and no kept chain ends at its vertex
     // with a tangent in the same bin.
     auto take = [&](uint32_t k) {
@@ -196,8 +194,8 @@ std::vector<Chosen> RunFitter::beam_chain(uint32_t a, uint32_t limit, GreedyWalk
       std::optional<long> bin;
       for (SeenEnd& s : seen) {
         if (s.v != e) continue;
-        if (!bin) bin = bin_of(m.c.end_tangent);
-        if (!s.bin) s.bin = bin_of(s.T);
+        if (!bin) bin = tangent_bin(m.c.end_tangent, kEndBinShare);
+        if (!s.bin) s.bin = tangent_bin(s.T, kEndBinShare);
         if (*s.bin == *bin) return;
       }
       auto c = made_from(nodes[m.from], m.T, m.cand);

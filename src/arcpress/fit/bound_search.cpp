@@ -54,7 +54,6 @@ std::vector<Chosen> RunFitter::bound_chain(uint32_t a, uint32_t limit) const {
   // through the input's own directions.)
   const size_t target = bound_start(a, limit);
   if (target < 2 || target > kBoundMaxPrimitives) return chain;
-  const double bin_rad = deg_to_rad(std::min(o_.g1_angle_deg, 2 * kFinestJointTurnDeg)) / 8;
   std::unordered_map<uint64_t, uint32_t>& failed = s_.bound_failed;  // state -> shallowest depth it failed at
   failed.clear();
   std::vector<std::vector<BoundTry>>& tries = s_.bound_tries;
@@ -111,7 +110,7 @@ std::vector<Chosen> RunFitter::bound_chain(uint32_t a, uint32_t limit) const {
         return true;
       }
       // A state (end, tangent bin) that failed as deep or deeper is not tried again.
-      const long bin = std::lround(std::atan2(c->end_tangent.y(), c->end_tangent.x()) / bin_rad);
+      const long bin = tangent_bin(c->end_tangent, kEndBinShare);
       const uint64_t key = uint64_t(t.c.e) << 32 | uint32_t(bin);
       if (auto it = failed.find(key); it != failed.end() && it->second <= depth + 1) continue;
       chain.push_back(*c);

@@ -35,7 +35,6 @@ std::vector<Chosen> RunFitter::layered_chain(uint32_t a, uint32_t limit) const {
     states.push_back({{}, -1, a, T});
     layer.push_back(static_cast<int>(states.size()) - 1);
   }
-  const double bin_rad = kTangentBinShare * deg_to_rad(std::min(o_.g1_angle_deg, 2 * kFinestJointTurnDeg));
   const size_t max_states = kMaxStatesPerVertex * (limit - a) + states.size();
   std::unordered_set<uint64_t> seen;
   std::vector<Candidate> cand;
@@ -59,7 +58,7 @@ std::vector<Chosen> RunFitter::layered_chain(uint32_t a, uint32_t limit) const {
           const Candidate& c = cand[k];
           const uint32_t group = std::max<uint32_t>(1, std::max(advance, next_front - front) / kLayerGroups);
           const Vec2 end = unchecked(v, T, c).end_tangent;
-          const long bin = std::lround(std::atan2(end.y(), end.x()) / bin_rad);
+          const long bin = tangent_bin(end, kTangentBinShare);
           const uint64_t key = (uint64_t(c.e - c.e % group) << 32) | uint32_t(bin);  // group's first vertex
           if (c.e < limit && seen.count(key)) continue;
           auto made = made_from(states[i], T, c);

@@ -544,6 +544,11 @@ class RunFitter : private FitAngles {
   /// beam leaves a joint along (beam_chain()). Stops at the first that returns true.
   template <class Try>
   bool any_joint_turn(uint32_t v, const Vec2& T, uint32_t limit, Try&& try_along) const;
+  /// The bin of direction `t` among bins `share` of the G1 angle wide (of twice
+  /// kFinestJointTurnDeg at most): where the searches take two tangents at a vertex as one.
+  long tangent_bin(const Vec2& t, double share) const {
+    return std::lround(std::atan2(t.y(), t.x()) / (share * deg_to_rad(std::min(o_.g1_angle_deg, 2 * kFinestJointTurnDeg))));
+  }
   /// Whether the scan lets one primitive from vertex v reach `limit` along any of the
   /// any_joint_turn() tangents of T (not yet checked exactly).
   bool finishes(uint32_t v, const Vec2& T, uint32_t limit) const;

@@ -56,6 +56,9 @@ constexpr uint32_t kLineShiftMoves = 32;
 /// Layered search: a layer keeps one state per tangent bin (this share of the G1 angle wide)
 /// in each of about kLayerGroups groups of vertices over the stretch the last layer advanced.
 constexpr double kTangentBinShare = 0.5;
+/// The beam and the first search: two chains whose end tangents at one vertex fall in one
+/// bin this share of the G1 angle wide are one state (tangent_bin()).
+constexpr double kEndBinShare = 0.125;
 constexpr uint32_t kLayerGroups = 4;
 /// Layered search: it gives up (and the beam's chain stands) past this many states per vertex.
 constexpr size_t kMaxStatesPerVertex = 64;
