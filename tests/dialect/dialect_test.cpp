@@ -863,6 +863,46 @@ TEST_CASE("G10 and G11 are a printer firmware's retraction that leaves the progr
   CHECK_FALSE(qi.moves.back().known);
 }
 
+TEST_CASE("E words are relative as each firmware reads G90 and G91 with M82 and M83", "[dialect][printer]") {
+  // Marlin 2 and Smoothieware: G90/G91 set E's mode with the axes', M82/M83 then E's alone.
+  // Klipper: E is relative under G91 or after M83, each kept. RepRapFirmware: M82/M83 only.
+  CHECK(shipped("marlin").extrusion_distance == ExtrusionDistance::WithAxes);
+  CHECK(shipped("prusa").extrusion_distance == ExtrusionDistance::WithAxes);
+  CHECK(shipped("smoothieware").extrusion_distance == ExtrusionDistance::WithAxes);
+  CHECK(shipped("klipper").extrusion_distance == ExtrusionDistance::G91OrM83);
+  CHECK(shipped("reprapfirmware").extrusion_distance == ExtrusionDistance::M82M83Only);
+  CHECK(shipped("rs274").extrusion_distance == ExtrusionDistance::WithAxes);
+  // E after each extruding move, read by Marlin / Klipper / RepRapFirmware:
+  const std::string text =
+      "G21 G90 M83\nG0 X0 Y0 Z0.2\nG1 X1 E1 F600\n"  // M83: 1 / 1 / 1
+      "G91\nG1 Z0.2\nG90\nG1 X2 E1\n"                 // a layer change in G91, then G90: 1 / 2 / 2
+      "M82\nG91\nG1 X1 E1\n"                          // M82, then G91: 2 / 3 / 1
+      "M83\nG1 X1 E1\n"                                // M83 under G91: 3 / 4 / 2
+      "G90\nM82\nG1 X5 E7\n";                         // absolute again: 7 / 7 / 7
+  struct Expected {
+    const char* dialect;
+    std::vector<double> e;
+  };
+  for (const Expected& x : {Expected{"marlin", {1, 1, 2, 3, 7}}, Expected{"smoothieware", {1, 1, 2, 3, 7}},
+                            Expected{"klipper", {1, 2, 3, 4, 7}}, Expected{"reprapfirmware", {1, 2, 1, 2, 7}}}) {
+    INFO(x.dialect);
+    DiagnosticSink sink("t.gcode");
+    const Program p = lex("t.gcode", text, sink);
+    const Interpretation in = interpret(p, sink, shipped(x.dialect));
+    REQUIRE(in.moves.size() == 7);
+    std::vector<double> e;
+    for (size_t k : {1, 3, 4, 5, 6}) e.push_back(in.moves[k].to[kE]);
+    CHECK(e == x.e);
+  }
+  // RepRapFirmware keeps E absolute under G91 after M82: the G91 line's E is a position.
+  DiagnosticSink sink("t.gcode");
+  const Program p = lex("t.gcode", "G21 G90 M82\nG0 X0 Y0 Z0.2\nG1 X1 E3 F600\nG91\nG1 X1 E2\n", sink);
+  CHECK(interpret(p, sink, shipped("reprapfirmware")).moves.back().to[kE] == 2.0);
+  CHECK(interpret(p, sink, shipped("marlin")).moves.back().to[kE] == 5.0);
+  CHECK(error_of("name = \"x\"\n[printer]\nextrusion_distance = \"g91\"\n").find("extrusion_distance") !=
+        std::string::npos);
+}
+
 TEST_CASE("the extended commands a dialect names as moving nothing leave the position known and others forget it",
           "[dialect][printer]") {
   const Dialect klipper = shipped("klipper");

@@ -29,6 +29,21 @@ enum class ArcFormat : uint8_t {
   Radius,  ///< R, negative for sweeps over 180 degrees
 };
 
+/// How a printer firmware reads E words after G90/G91 and M82/M83 ([printer] extrusion_distance).
+enum class ExtrusionDistance : uint8_t {
+  WithAxes,    ///< G90/G91 set E's mode with the axes', M82/M83 then E's alone (Marlin 2, Smoothieware)
+  G91OrM83,    ///< E is relative under G91 or after M83, each kept apart (Klipper, Marlin 1)
+  M82M83Only,  ///< only M82/M83 set it; G90/G91 are the axes' alone (RepRapFirmware 3)
+};
+
+/// E's relative mode after G90 or G91 (`distance`) or after M82 or M83 (not `distance`), which
+/// sets relative mode or not (`relative`): `m83` (E's own flag) is updated, and the result says
+/// whether E words are relative, the axes being absolute or not (`axes_absolute`).
+inline bool extrusion_after(ExtrusionDistance rule, bool distance, bool relative, bool axes_absolute, bool& m83) {
+  if (!distance || rule == ExtrusionDistance::WithAxes) m83 = relative;
+  return m83 || (rule == ExtrusionDistance::G91OrM83 && !axes_absolute);
+}
+
 /// The units a program is read in until its first G20 or G21.
 enum class StartUnits : uint8_t {
   Mm,       ///< the controller always starts in millimetres (printer firmwares)
@@ -156,6 +171,8 @@ struct Dialect {
   /// recovers it; neither moves the programmed position (a Z hop is undone on recovery).
   /// Elsewhere G10 sets offsets or tables and G11 is not read.
   bool firmware_retraction = false;
+  /// How E words read after G90/G91 and M82/M83 ([printer] extrusion_distance).
+  ExtrusionDistance extrusion_distance = ExtrusionDistance::WithAxes;
   /// A line's leading blanks open and close blocks ([lines] indented_blocks): RepRapFirmware
   /// 3 runs the lines indented below an `if`, `else` or `while` as its block (BlockNesting).
   bool indented_blocks = false;

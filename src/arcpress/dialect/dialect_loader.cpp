@@ -279,6 +279,8 @@ Dialect parse_dialect(const std::string& text, const std::string& path) {
   if (const toml::table* t = top.table("printer")) {
     TableReader r(*t, path, "printer.");
     r.boolean("firmware_retraction", d.firmware_retraction);
+    if (int c = r.choice("extrusion_distance", {"g90-g91", "g91-or-m83", "m82-m83"}); c >= 0)
+      d.extrusion_distance = ExtrusionDistance(c);
     // A name as the lexer reads an extended command's.
     auto command_name = [](std::string_view v) -> const char* {
       auto alpha = [](char c) { return std::isalpha(static_cast<unsigned char>(c)) != 0; };

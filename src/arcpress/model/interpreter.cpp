@@ -42,8 +42,7 @@ class Interpreter {
   }
 
   void begin(const Program& p, Interpretation& out) {
-    p_ = &p;
-    o_ = &out;
+    p_ = &p, o_ = &out;
     out.frames.assign(1, s_.frame);
     out.start = s_.pos;
     out.start_known = (s_.known & kXyzMask) == kXyzMask;
@@ -187,17 +186,12 @@ class Interpreter {
     double value[kAxisCount] = {};
     double ijk[3] = {0, 0, 0};
     bool ijk_seen[3] = {};
-    bool r_seen = false;
-    double r_value = 0;
+    bool r_seen = false, feed_set = false;
+    double r_value = 0, feed = 0;
     int turns = 1;
     // Most blocks change no modal setting: copy the frame only when one is touched.
     std::optional<Frame> fedit;
-    auto F = [&]() -> Frame& {
-      if (!fedit) fedit = s_.frame;
-      return *fedit;
-    };
-    double feed = 0;
-    bool feed_set = false;
+    auto F = [&]() -> Frame& { return fedit ? *fedit : fedit.emplace(s_.frame); };
     // What the codes the dialect reads its own way ([codes]) did in this block (own_code()).
     uint32_t own = 0;
 
@@ -262,10 +256,13 @@ class Interpreter {
             case 70: F().diameter_mode = true; break;
             case 80: F().diameter_mode = false; break;
             case 900:
-              F().absolute = true, F().e_relative = false, s_.distance_unknown = false, entry_stated(kStatesDistance);
+              F().absolute = true, s_.distance_unknown = false, entry_stated(kStatesDistance);
+              F().e_relative = extrusion_after(d_.extrusion_distance, true, false, true, F().m83);
               if (s_.floating) forget(s_.floating, Unfit::UnknownAtEntry, bi);
               break;
-            case 910: F().absolute = false, F().e_relative = true, s_.distance_unknown = false, entry_stated(kStatesDistance); break;
+            case 910:
+              F().absolute = false, s_.distance_unknown = false, entry_stated(kStatesDistance);
+              F().e_relative = extrusion_after(d_.extrusion_distance, true, true, false, F().m83); break;
             case 901: F().arc_absolute = true, s_.centre_told = true; break;
             case 911: F().arc_absolute = false, s_.centre_told = true; break;
             case 920: g92 = true; axis_consumer = true; break;
@@ -330,7 +327,8 @@ class Interpreter {
             own |= own_setting(own_code(*own_m, b, bi, *w, own));
             break;
           }
-          if (m == 820 || m == 830) F().e_relative = m == 830;
+          if (m == 820 || m == 830)  // (E's mode, as the dialect's firmware reads it with G90/G91)
+            F().e_relative = extrusion_after(d_.extrusion_distance, false, m == 830, F().absolute, F().m83);
           if (m == 20 || m == 300) end_read_ = true;
           if (m == 20 || m == 300 || m == 990) s_.ended = true;
           if (m == 990 && p_->jumps) read_jump(s_, p_->raw(b), b.line, sink_);  // (M99 Pn: a jump)

@@ -52,7 +52,8 @@ struct Frame {
   AxisValues offset{};       ///< G92 offset: absolute = programmed * unit + offset (mm or deg)
   bool absolute = true;      ///< G90 (true) / G91 (false) for X..W
   bool arc_absolute = false; ///< G90.1 (true) / G91.1 (false, default) for I/J/K
-  bool e_relative = false;   ///< M83 (true) / M82 (false)
+  bool e_relative = false;   ///< E words are relative: M83, or G91 where the dialect reads E so
+  bool m83 = false;          ///< E's own mode: M83 (true) / M82 (false), and G91/G90 where they set it
   bool diameter_mode = false;///< lathe G7: X words are diameters
   bool inverse_time = false; ///< G93: F is 1/minutes per block
   int work_offset = 54;      ///< G54..G59 as 540..593 / 10; tracked, values unknown
@@ -66,7 +67,7 @@ struct Frame {
   }
   bool same_as(const Frame& o) const {
     return unit_mm == o.unit_mm && offset == o.offset && absolute == o.absolute &&
-           arc_absolute == o.arc_absolute && e_relative == o.e_relative &&
+           arc_absolute == o.arc_absolute && e_relative == o.e_relative && m83 == o.m83 &&
            diameter_mode == o.diameter_mode && inverse_time == o.inverse_time &&
            work_offset == o.work_offset && polar == o.polar;
   }
