@@ -14,10 +14,11 @@
 # --instructions under valgrind, a few minutes), and printers-vs-arcwelder in
 # docs/printers.md (bench_vs_arcwelder --printers, about a minute): with ARCWELDER set to
 # the path of ArcWelder's console program, built from its source in a folder of your own;
-# grbl and klipper in docs/dialects.md (tests/integration/grbl_accepts.sh and
-# klipper_executed.sh, a minute each): with GRBL_VALIDATOR set to grbl-sim's validator,
-# built likewise (and GRBL_TRACE to it linked with tests/integration/grbl_trace.c, for the
-# paths Grbl plans), and KLIPPER_SOURCE to a clone of Klipper. None is among the defaults.
+# grbl, klipper and marlin in docs/dialects.md (tests/integration/grbl_accepts.sh,
+# klipper_executed.sh and marlin_executed.sh, a minute each): with GRBL_VALIDATOR set to
+# grbl-sim's validator, built likewise (and GRBL_TRACE to it linked with
+# tests/integration/grbl_trace.c, for the paths Grbl plans), KLIPPER_SOURCE to a clone of
+# Klipper and MARLIN_SOURCE to one of Marlin. None is among the defaults.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 [ -x build/bench/bench_throughput ] || { echo "docs_figures: build with 'bash scripts/build.sh --test' first" >&2; exit 2; }
@@ -71,9 +72,12 @@ for name in "${wanted[@]}"; do
     klipper)
       [ -f "${KLIPPER_SOURCE:-}/klippy/extras/gcode_arcs.py" ] || { echo "docs_figures: set KLIPPER_SOURCE to a clone of Klipper3d/klipper" >&2; exit 2; }
       bash tests/integration/klipper_executed.sh ./build/arcpress "$KLIPPER_SOURCE" ../shared/corpus | as_text | replace docs/dialects.md klipper ;;
+    marlin)
+      [ -f "${MARLIN_SOURCE:-}/Marlin/src/gcode/motion/G2_G3.cpp" ] || { echo "docs_figures: set MARLIN_SOURCE to a clone of MarlinFirmware/Marlin" >&2; exit 2; }
+      bash tests/integration/marlin_executed.sh ./build/arcpress "$MARLIN_SOURCE" ../shared/corpus | as_text | replace docs/dialects.md marlin ;;
     printers-vs-arcwelder)
       [ -x "${ARCWELDER:-}" ] || { echo "docs_figures: set ARCWELDER to ArcWelder's console program" >&2; exit 2; }
       ./build/bench/bench_vs_arcwelder "$ARCWELDER" --printers | replace docs/printers.md printers-vs-arcwelder ;;
-    *) echo "docs_figures: no table '$name' (corpus, throughput, stages, memory, curves, diff, pathological, printers, printer-causes, band-side, vs-arcwelder, vs-arcwelder-instructions, printers-vs-arcwelder, grbl, klipper)" >&2; exit 2 ;;
+    *) echo "docs_figures: no table '$name' (corpus, throughput, stages, memory, curves, diff, pathological, printers, printer-causes, band-side, vs-arcwelder, vs-arcwelder-instructions, printers-vs-arcwelder, grbl, klipper, marlin)" >&2; exit 2 ;;
   esac
 done
