@@ -62,6 +62,19 @@ TEST_CASE("RepRapFirmware sizes segments for 0.005 mm deviation within 0.02 .. 1
   CHECK(executed_segments(rrf, 0.01, deg(90)) == 1);    // 0.02 mm segments: 0.785 + 0.8
 }
 
+TEST_CASE("Prusa's Buddy firmware counts as RepRapFirmware does with 0.02 mm deviation within 0.1 .. 2 mm",
+          "[segmentation]") {
+  const auto buddy = rule(Rule::PrusaBuddy, 2.0, 0.1, 0, 0.02);
+  CHECK(executed_segments(buddy, 10, deg(90)) == 13);   // sqrt(1.6) = 1.265 mm: 12.42 + 0.8
+  CHECK(executed_segments(buddy, 100, deg(90)) == 79);  // sqrt(16) = 4, clamped to 2 mm: 78.54 + 0.8
+  CHECK(executed_segments(buddy, 0.05, deg(90)) == 1);  // 0.1 mm segments: 0.785 + 0.8
+  // r 30, 2.38 mm of arc: 1.19 segments of 2 mm, rounded down to one chord 0.0236 mm off the
+  // circle, where Marlin's rule at 2 mm would cut two (0.0059 mm off).
+  CHECK(executed_segments(buddy, 30, 2.38 / 30) == 1);
+  CHECK(executed_sagitta_mm(buddy, 30, 2.38 / 30) == Approx(0.0236).margin(1e-4));
+  CHECK(executed_segments(rule(Rule::Marlin, 2.0, 0.1, 0, 0), 30, 2.38 / 30) == 2);
+}
+
 TEST_CASE("Grbl's mc_arc() makes floor(half the length / sqrt($12 (2r - $12))) segments, 0 meaning one chord",
           "[segmentation]") {
   const auto grbl = rule(Rule::Grbl, 0, 0, 0, 0.002);
@@ -101,6 +114,8 @@ TEST_CASE("the shipped printer and Grbl dialects name their firmware's rule, and
   CHECK(find_dialect("reprapfirmware", path).executed.rule == Rule::RepRapFirmware);
   CHECK(find_dialect("grbl", path).executed.rule == Rule::Grbl);
   CHECK(find_dialect("grblhal", path).executed.rule == Rule::GrblHAL);
+  CHECK(find_dialect("prusa", path).executed.rule == Rule::PrusaBuddy);
+  CHECK(find_dialect("prusa", path).executed.max_deviation_mm == 0.02);
   // Each names its correction period, as its firmware sets it.
   CHECK(find_dialect("marlin", path).executed.correction_period_or_default() == 25);
   CHECK(find_dialect("grbl", path).executed.correction_period == 12);
@@ -259,6 +274,35 @@ std::vector<Point> smoothie_append_arc(float px, float py, float i, float j, flo
   return out;
 }
 
+// Prusa-Firmware-Buddy lib/Marlin/Marlin/src/gcode/motion/G2_G3.cpp, plan_arc().
+std::vector<Point> buddy_plan_arc(float px, float py, float i, float j, float tx, float ty, bool clockwise, int segments) {
+  std::vector<Point> out;
+  float rvec_a = -i, rvec_b = -j;
+  const float center_P = px - rvec_a, center_Q = py - rvec_b, rt_X = tx - center_P, rt_Y = ty - center_Q;
+  float angular_travel = atan2f(rvec_a * rt_Y - rvec_b * rt_X, rvec_a * rt_X + rvec_b * rt_Y);
+  switch (((angular_travel < 0) << 1) | clockwise) {
+    case 1: angular_travel -= float(2 * M_PI); break;
+    case 2: angular_travel += float(2 * M_PI); break;
+  }
+  const float theta_per_segment = angular_travel / segments, cos_T = cosf(theta_per_segment),
+              sin_T = sinf(theta_per_segment);
+  int arc_recalc_count = 25;
+  for (int k = 1; k < segments; k++) {
+    if (--arc_recalc_count) {
+      const float r_new_Y = rvec_a * sin_T + rvec_b * cos_T;
+      rvec_a = rvec_a * cos_T - rvec_b * sin_T;
+      rvec_b = r_new_Y;
+    } else {
+      arc_recalc_count = 25;
+      const float Ti = k * theta_per_segment, cos_Ti = cosf(Ti), sin_Ti = sinf(Ti);
+      rvec_a = -i * cos_Ti + j * sin_Ti;
+      rvec_b = -i * sin_Ti - j * cos_Ti;
+    }
+    out.push_back({center_P + rvec_a, center_Q + rvec_b});
+  }
+  return out;
+}
+
 // RepRapFirmware 3 src/GCodes/GCodes.cpp, DoArcMove() and ReadMove().
 std::vector<Point> rrf_read_move(float px, float py, float iParam, float jParam, float tx, float ty, bool clockwise,
                                  int totalSegments, int segmentsPerFullArcCalculation) {
@@ -342,12 +386,76 @@ TEST_CASE("golden: every rule's chord ends are the ones its firmware computes, d
     CHECK(farthest(ends(Rule::GrblHAL, 0), grblhal_mc_arc(px, py, fi, fj, tx, ty, cw, c.segments)) < 1e-6);
     CHECK(farthest(ends(Rule::Smoothieware, 0), smoothie_append_arc(px, py, fi, fj, tx, ty, cw, c.segments, 5)) < 1e-6);
     CHECK(farthest(ends(Rule::RepRapFirmware, 0), rrf_read_move(px, py, fi, fj, tx, ty, cw, c.segments, 8)) < 1e-6);
+    CHECK(farthest(ends(Rule::PrusaBuddy, 0), buddy_plan_arc(px, py, fi, fj, tx, ty, cw, c.segments)) < 1e-6);
     CHECK(farthest(ends(Rule::Klipper, 0), on_circle) < 1e-9);
     // The small-angle rotations do pull the ends off the circle: a model that put them on it
     // would miss what these firmwares move along.
     if (c.segments == 14) {
       CHECK(farthest(ends(Rule::Marlin, 0), on_circle) > 1e-4);
       CHECK(farthest(ends(Rule::Smoothieware, 0), on_circle) > 1e-3);
+    }
+  }
+}
+
+TEST_CASE("the count is the firmware's own where floats and doubles round it apart", "[segmentation]") {
+  // A Buddy arc from a PrusaSlicer benchy at 0.01 mm: 0.4134 mm of arc over 0.3445 mm segments
+  // is 1.1999974 + 0.8 in floats, one chord 0.0285 mm off the circle; 1.2000020 + 0.8 in doubles.
+  ArcSegmentation buddy;
+  buddy.rule = Rule::PrusaBuddy;
+  buddy.max_segment_mm = 2.0;
+  buddy.min_segment_mm = 0.1;
+  buddy.max_deviation_mm = 0.02;
+  const Vec2 start(31.005, 57.632), centre(31.005 - 0.3563, 57.632 - 0.6505), end(30.607, 57.722);
+  const double sweep = std::remainder(std::atan2(end.y() - centre.y(), end.x() - centre.x()) -
+                                          std::atan2(start.y() - centre.y(), start.x() - centre.x()),
+                                      2 * std::numbers::pi);
+  REQUIRE(sweep > 0);
+  CHECK(executed_segments(buddy, (start - centre).norm(), sweep) == 2);
+  CHECK(executed_segments_read(buddy, start, centre, end, sweep) == 1);
+}
+
+TEST_CASE("where the firmware may cut more chords at a low feed, the ring holds every count from its own up",
+          "[segmentation]") {
+  // Polylines near arcs of 0.5 to 300 mm radius; for each, the chords of every count from the
+  // firmware's to 40 more, their ends as the firmware computes them, lie no farther from the
+  // polyline than ring_deviation() says.
+  uint64_t seed = 12345;
+  auto uniform = [&](double lo, double hi) {
+    seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+    return lo + (hi - lo) * double(seed >> 11) / double(1ULL << 53);
+  };
+  for (const Rule r : {Rule::PrusaBuddy, Rule::RepRapFirmware}) {
+    ArcSegmentation s;
+    s.rule = r;
+    s.max_segment_mm = r == Rule::PrusaBuddy ? 2.0 : 1.0;
+    s.min_segment_mm = r == Rule::PrusaBuddy ? 0.1 : 0.02;
+    s.max_deviation_mm = r == Rule::PrusaBuddy ? 0.02 : 0.005;
+    for (int trial = 0; trial < 200; ++trial) {
+      const double radius = std::exp(uniform(std::log(0.5), std::log(300.0))), sweep = uniform(0.05, 3.0) * (trial % 2 ? 1 : -1);
+      const Vec2 centre(uniform(-100, 200), uniform(-100, 200));
+      const double a0 = uniform(-3.1, 3.1);
+      // The polyline: points along the arc, each off it radially by up to 0.01 mm.
+      const int points = 3 + trial % 12;
+      std::vector<Vec3> pts;
+      for (int k = 0; k < points; ++k) {
+        const double a = a0 + sweep * k / (points - 1), rr = radius + (k == 0 || k == points - 1 ? 0 : uniform(-0.01, 0.01));
+        pts.emplace_back(centre.x() + rr * std::cos(a), centre.y() + rr * std::sin(a), 0);
+      }
+      const ArcGeom arc = ArcGeom::through(pts.front(), pts.back(), centre, sweep > 0);
+      const Vec2 start(pts.front().x(), pts.front().y()), end(pts.back().x(), pts.back().y());
+      const uint32_t n = executed_segments(s, radius, sweep);
+      std::vector<Vec2> ends;
+      executed_chord_ends(s, start, centre, end, sweep, n, ends);
+      const Deviation ring = ring_deviation(s, pts, arc, ends);
+      REQUIRE(ring.ordered);
+      for (uint32_t more = n; more <= n + 40; ++more) {
+        INFO(rule_name(r) << " radius " << radius << " sweep " << sweep << " chords " << more << " of " << n);
+        std::vector<Vec2> other;
+        executed_chord_ends(s, start, centre, end, sweep, more, other);
+        const auto on_chords = chords_deviation_bound(pts, arc, other);
+        REQUIRE(on_chords);
+        CHECK(*on_chords <= ring.max_mm + 1e-12);
+      }
     }
   }
 }

@@ -14,12 +14,12 @@ using Rule = ArcSegmentation::Rule;
 /// A count the firmware would compute in an unsigned integer, clamped to kMaxArcSegments.
 uint32_t count_of(double x) { return static_cast<uint32_t>(std::clamp(x, 0.0, double(kMaxArcSegments))); }
 
-}  // namespace
-
-uint32_t executed_segments(const ArcSegmentation& s, double radius_mm, double sweep_rad, double normal_travel_mm) {
-  const double sweep = std::abs(sweep_rad), r = std::abs(radius_mm);
-  const double flat_mm = r * sweep;
-  const double travel_mm = std::hypot(flat_mm, normal_travel_mm);
+/// The count of each rule in `Real`, the number type the firmware counts in, from the radius
+/// and the turn's size it works out (`sweep`, radians, >= 0).
+template <class Real>
+uint32_t segments_in(const ArcSegmentation& s, Real r, Real sweep, Real normal_travel_mm) {
+  const Real flat_mm = r * sweep;
+  const Real max_mm = Real(s.max_segment_mm), min_mm = Real(s.min_segment_mm), deviation = Real(s.max_deviation_mm);
   switch (s.rule) {
     case Rule::None:
       return 0;
@@ -27,51 +27,56 @@ uint32_t executed_segments(const ArcSegmentation& s, double radius_mm, double sw
       // plan_arc(): whole segments of the longest length, at least MIN_CIRCLE_SEGMENTS per
       // circle; then, where that makes them too long or too short, the count that honours
       // MAX_ARC_SEGMENT_MM or MIN_ARC_SEGMENT_MM (the flat length, not the helix's).
-      const double min_segments = std::ceil(s.min_circle_segments * sweep / (2 * std::numbers::pi));
-      const double nominal = std::max(std::floor(flat_mm / s.max_segment_mm), min_segments);
+      const Real min_segments = std::ceil(Real(s.min_circle_segments) * (sweep / Real(2 * std::numbers::pi)));
+      const Real nominal = std::max(std::floor(flat_mm / max_mm), min_segments);
       if (nominal <= 0) return 1;
-      const double nominal_mm = flat_mm / nominal;
-      double n = nominal;
-      if (nominal_mm > s.max_segment_mm)
-        n = std::ceil(flat_mm / s.max_segment_mm);
-      else if (nominal_mm < s.min_segment_mm)
-        n = std::max(1.0, std::floor(flat_mm / s.min_segment_mm));
-      return std::max<uint32_t>(1, count_of(n));
+      const Real nominal_mm = flat_mm / nominal;
+      Real n = nominal;
+      if (nominal_mm > max_mm)
+        n = std::ceil(flat_mm / max_mm);
+      else if (nominal_mm < min_mm)
+        n = std::max(Real(1), std::floor(flat_mm / min_mm));
+      return std::max<uint32_t>(1, count_of(double(n)));
     }
     case Rule::Klipper:
-      return std::max<uint32_t>(1, count_of(std::floor(travel_mm / s.max_segment_mm)));
-    case Rule::RepRapFirmware: {
-      // (The firmware also shortens segments at low feed rates; a shorter segment only
-      // brings the chords closer to the circle, so the longest is the one to hold the band on.)
-      const double seg =
-          std::clamp(std::sqrt(8 * r * s.max_deviation_mm), s.min_segment_mm, std::max(s.min_segment_mm, s.max_segment_mm));
-      return std::max<uint32_t>(1, count_of(flat_mm / seg + 0.8));
+      return std::max<uint32_t>(1, count_of(double(std::floor(std::hypot(flat_mm, normal_travel_mm) / max_mm))));
+    case Rule::RepRapFirmware:
+    case Rule::PrusaBuddy: {
+      // (Each firmware cuts shorter segments at low feed rates too: count_may_grow().)
+      const Real seg = std::clamp(std::sqrt(8 * r * deviation), min_mm, std::max(min_mm, max_mm));
+      return std::max<uint32_t>(1, count_of(double(flat_mm / seg + Real(0.8))));
     }
     case Rule::Grbl:
     case Rule::GrblHAL: {
-      const double tol = s.max_deviation_mm;
-      const double w = tol * (2 * r - tol);
+      const Real w = deviation * (2 * r - deviation);
       if (w <= 0) return 1;
-      return std::max<uint32_t>(1, count_of(std::floor(0.5 * sweep * r / std::sqrt(w))));
+      return std::max<uint32_t>(1, count_of(double(std::floor(Real(0.5) * sweep * r / std::sqrt(w)))));
     }
     case Rule::Smoothieware: {
-      double seg = s.max_segment_mm;
-      if (s.max_deviation_mm > 0 && 2 * r > s.max_deviation_mm) {
-        const double err_seg = 2 * std::sqrt(s.max_deviation_mm * (2 * r - s.max_deviation_mm));
+      Real seg = max_mm;
+      if (deviation > 0 && 2 * r > deviation) {
+        const Real err_seg = 2 * std::sqrt(deviation * (2 * r - deviation));
         if (seg < err_seg) seg = err_seg;
       }
-      if (seg < 0.0001) seg = 0.5;
-      const double n = std::floor(travel_mm / seg);
-      return n > 1 ? count_of(n) : 1;
+      if (seg < Real(0.0001)) seg = Real(0.5);
+      const Real n = std::floor(std::hypot(flat_mm, normal_travel_mm) / seg);
+      return n > 1 ? count_of(double(n)) : 1;
     }
   }
   return 0;
 }
 
+}  // namespace
+
+uint32_t executed_segments(const ArcSegmentation& s, double radius_mm, double sweep_rad, double normal_travel_mm) {
+  return segments_in<double>(s, std::abs(radius_mm), std::abs(sweep_rad), normal_travel_mm);
+}
+
 int ArcSegmentation::correction_period_or_default() const {
   if (correction_period > 0) return correction_period;
   switch (rule) {
-    case Rule::Marlin: return 25;         // Configuration_adv.h N_ARC_CORRECTION
+    case Rule::Marlin:
+    case Rule::PrusaBuddy: return 25;     // Configuration_adv.h N_ARC_CORRECTION
     case Rule::Grbl:
     case Rule::GrblHAL: return 12;        // config.h N_ARC_CORRECTION
     case Rule::Smoothieware: return 5;    // arc_correction
@@ -136,6 +141,35 @@ float firmware_travel(const Vec2& start, const Vec2& centre, const Vec2& end, do
 
 }  // namespace
 
+uint32_t executed_segments_read(const ArcSegmentation& s, const Vec2& start, const Vec2& centre, const Vec2& end,
+                                double sweep_rad, double normal_travel_mm) {
+  switch (s.rule) {
+    case Rule::None:
+      return 0;
+    case Rule::Klipper:  // (Python's doubles)
+      return executed_segments(s, (start - centre).norm(), sweep_rad, normal_travel_mm);
+    case Rule::RepRapFirmware: {
+      // DoArcMove(): the radius from the offsets, the turn from the start's and end's angles.
+      const float ox = float(centre.x() - start.x()), oy = float(centre.y() - start.y());
+      const float cx = float(start.x()) + ox, cy = float(start.y()) + oy;
+      const float current = std::atan2(-oy, -ox), final_angle = std::atan2(float(end.y()) - cy, float(end.x()) - cx);
+      float total = sweep_rad >= 0 ? final_angle - current : current - final_angle;
+      constexpr float kTurn = float(2 * std::numbers::pi), kHalf = float(std::numbers::pi);
+      while (double(total) - std::abs(sweep_rad) > kHalf) total -= kTurn;
+      while (std::abs(sweep_rad) - double(total) > kHalf) total += kTurn;
+      return segments_in<float>(s, std::sqrt(ox * ox + oy * oy), total, float(normal_travel_mm));
+    }
+    default: {
+      // plan_arc(), mc_arc(), append_arc(): the radius from the offsets, the turn by atan2,
+      // in floats (grblHAL's turn from doubles).
+      const float ox = float(centre.x() - start.x()), oy = float(centre.y() - start.y());
+      const float travel = s.rule == Rule::GrblHAL ? firmware_travel<double>(start, centre, end, sweep_rad)
+                                                   : firmware_travel<float>(start, centre, end, sweep_rad);
+      return segments_in<float>(s, std::sqrt(ox * ox + oy * oy), std::abs(travel), float(normal_travel_mm));
+    }
+  }
+}
+
 void executed_chord_ends(const ArcSegmentation& s, const Vec2& start, const Vec2& centre, const Vec2& end,
                          double sweep_rad, uint32_t segments, std::vector<Vec2>& out) {
   if (segments < 2) return;
@@ -159,6 +193,14 @@ void executed_chord_ends(const ArcSegmentation& s, const Vec2& start, const Vec2
       const float sq = theta * theta;
       const float sin_t = theta - sq * theta / 6, cos_t = 1 - 0.5f * sq;
       rotated_ends<float>(start, centre, segments, sin_t, cos_t, theta,
+                          [&](uint32_t i) { return i % uint32_t(period) == 0; }, false, out);
+      return;
+    }
+    case Rule::PrusaBuddy: {
+      // Buddy's plan_arc(): Marlin's loop, the radius vector turned by cosf(θ) and sinf(θ)
+      // themselves, every period-th end exact.
+      const float theta = firmware_travel<float>(start, centre, end, sweep_rad) / float(segments);
+      rotated_ends<float>(start, centre, segments, std::sin(theta), std::cos(theta), theta,
                           [&](uint32_t i) { return i % uint32_t(period) == 0; }, false, out);
       return;
     }
@@ -229,6 +271,35 @@ double chords_sagitta_mm(double radius_mm, double sweep_rad, uint32_t segments) 
   if (segments == 0) return 0;
   const double half = std::min(std::abs(sweep_rad) / (2.0 * segments), std::numbers::pi);
   return std::abs(radius_mm) * (1 - std::cos(half));
+}
+
+double chords_drift_mm(const Vec2& start, const Vec2& centre, double sweep_rad, const std::vector<Vec2>& ends) {
+  // The circle's own points at the chord ends, turned one chord at a time from the start.
+  const double step = sweep_rad / double(ends.size() + 1), c = std::cos(step), s = std::sin(step);
+  Vec2 radius = start - centre;
+  double drift = 0;
+  for (const Vec2& end : ends) {
+    radius = Vec2(radius.x() * c - radius.y() * s, radius.x() * s + radius.y() * c);
+    drift = std::max(drift, (end - (centre + radius)).norm());
+  }
+  return drift;
+}
+
+Deviation ring_deviation(const ArcSegmentation& s, std::span<const Vec3> pts, const ArcGeom& arc,
+                         const std::vector<Vec2>& ends, double stop_above_mm) {
+  const uint32_t chords = uint32_t(ends.size()) + 1;
+  const double drift_mm = chords_drift_mm(Vec2(pts.front().x(), pts.front().y()), arc.center, arc.sweep, ends);
+  // Single precision's unit in the last place, relative; the turns between exact ends; the
+  // end's own coordinates rounded.
+  constexpr double kFloatUnit = 0x1p-24, kPerTurn = 4.8;
+  const double turns = s.rule == Rule::RepRapFirmware ? s.correction_period_or_default() + 1 : s.correction_period_or_default();
+  const double rounding = arc.radius_mm * kFloatUnit * kPerTurn * turns + kFloatUnit * (arc.center.norm() + arc.radius_mm);
+  const double sagitta = chords_sagitta_mm(arc.radius_mm, arc.sweep, chords), half = sagitta / 2 + drift_mm + rounding;
+  ArcGeom middle = arc;
+  middle.radius_mm -= sagitta / 2;
+  Deviation d = arc_deviation(pts, middle, stop_above_mm - half);
+  d.max_mm += half;
+  return d;
 }
 
 double executed_sagitta_mm(const ArcSegmentation& s, double radius_mm, double sweep_rad, double normal_travel_mm) {

@@ -601,20 +601,24 @@ class Emitter {
 
   /// Where the band is held on the firmware's chords, whether the chords of the printed arc,
   /// cut from the printed numbers as the firmware cuts them, stay within `band_mm` of the
-  /// input points in the plane. The fitter measured the fitted arc's chords; rounding the
-  /// centre moves them, and can change their number (two chords where the fit had three lie
-  /// twice as far off the circle), and the firmware's small-angle steps pull them off the
-  /// circle by more than the sagitta says, so they are measured, not bounded.
+  /// input points in the plane (all counts from it up where it may cut more: ring_deviation()).
+  /// Rounding the centre moves the fitted arc's chords and can change their number (two
+  /// chords where the fit had three lie twice as far off the circle), and small-angle steps
+  /// pull them off the circle by more than the sagitta says: they are measured again.
   bool chords_kept(const Vec3& s, const Vec3& e, const Vec2& c, const ArcGeom& g, double band_mm,
                    ArcScratch& scratch) const {
     if (!opt_.executed.moves_on_chords()) return true;
-    const uint32_t chords = executed_segments(opt_.executed, g.radius_mm, g.sweep, g.h1 - g.h0);
+    const uint32_t chords = executed_segments_read(opt_.executed, s.head<2>(), c, e.head<2>(), g.sweep, g.h1 - g.h0);
     scratch.chord_ends.clear();
     executed_chord_ends(opt_.executed, s.head<2>(), c, e.head<2>(), g.sweep, chords, scratch.chord_ends);
     scratch.flat_pts.assign(scratch.pts.begin(), scratch.pts.end());
     for (Vec3& p : scratch.flat_pts) p.z() = g.h0;
     ArcGeom flat = g;
     flat.h1 = g.h0;
+    if (opt_.executed.count_may_grow()) {  // (every count from this one up: the ring about the circle)
+      const Deviation d = ring_deviation(opt_.executed, scratch.flat_pts, flat, scratch.chord_ends, band_mm);
+      return d.ordered && d.max_mm <= band_mm;
+    }
     const std::optional<double> bound = chords_deviation_bound(scratch.flat_pts, flat, scratch.chord_ends, band_mm);
     return bound && *bound <= band_mm;
   }

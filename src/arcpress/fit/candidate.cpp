@@ -76,25 +76,22 @@ std::optional<Chosen> RunFitter::make_arc(uint32_t a, uint32_t e, const Vec2& ce
   if (chords >= kMaxArcSegments) return std::nullopt;  // more than the firmware counts
   double sagitta = chords_sagitta_mm(g.radius_mm, g.sweep, chords);
   // The firmware's chord ends, which its small-angle steps may pull off the circle: the
-  // chords lie within their sagitta and that drift of the circle.
+  // chords lie within their sagitta and that drift of the circle. (Klipper's lie on it.)
   std::vector<Vec2>& ends = s_.chord_ends;
   ends.clear();
-  if (chords > 1) {
+  if (chords > 1)
     executed_chord_ends(o_.executed, Vec2(pts.front().x(), pts.front().y()), g.center,
                         Vec2(pts.back().x(), pts.back().y()), g.sweep, chords, ends);
-    if (o_.executed.rule != ArcSegmentation::Rule::Klipper) {
-      // The circle's own points at the chord ends, turned one chord at a time from the start.
-      double drift = 0;
-      const Turn step(g.sweep / chords);
-      Vec2 radius = Vec2(pts.front().x(), pts.front().y()) - g.center;
-      for (uint32_t k = 1; k < chords; ++k) {
-        radius = step(radius);
-        drift = std::max(drift, (ends[k - 1] - (g.center + radius)).norm());
-      }
-      sagitta += drift;
-    }
-  }
-  if (sagitta > 0) {
+  const double drift = chords > 1 && o_.executed.rule != ArcSegmentation::Rule::Klipper
+                           ? chords_drift_mm(Vec2(pts.front().x(), pts.front().y()), g.center, g.sweep, ends)
+                           : 0.0;
+  sagitta += drift;
+  if (sagitta > 0 && o_.executed.count_may_grow()) {
+    // The firmware may cut more chords at a low feed: none of them is the path, the ring
+    // about the circle that holds them all is.
+    const Deviation d = ring_deviation(o_.executed, pts, g, ends, band);
+    if (!d.ordered || d.max_mm > band) return std::nullopt;
+  } else if (sagitta > 0) {
     Deviation near = arc_deviation(pts, g, band - sagitta);
     if (!near.ordered) return std::nullopt;
     if (near.max_mm > band - sagitta) {

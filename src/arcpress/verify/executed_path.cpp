@@ -34,9 +34,12 @@ Interpretation executed_path(const Interpretation& in, const ArcSegmentation& ru
     if (placed_arc(m)) {
       const ArcGeom g = arc_of_move(in, i);
       // (A flat arc, which no chord end can be told from its chord: the chord.)
-      const uint32_t n = flat_arc_sagitta_mm(g) <= kFlatArcMm ? 1 : executed_segments(rule, g.radius_mm, g.sweep, g.h1 - g.h0);
       const AxisValues& from = in.from(i);
       const auto ax = axes_of(m.plane);
+      const uint32_t n = flat_arc_sagitta_mm(g) <= kFlatArcMm
+                             ? 1
+                             : executed_segments_read(rule, Vec2(from[ax.first], from[ax.second]), g.center,
+                                                      Vec2(m.to[ax.first], m.to[ax.second]), g.sweep, g.h1 - g.h0);
       // The chord ends as the firmware computes them, in the plane's coordinates; the other
       // axes (the normal axis, E) advance evenly.
       ends.clear();

@@ -48,10 +48,16 @@ std::optional<double> executed_arc_bound_mm(const Interpretation& ib, size_t j, 
     return d.ordered ? std::optional<double>(d.max_mm) : std::nullopt;
   }
   const Move& m = ib.moves[j];
-  const uint32_t n = executed_segments(rule, arc.radius_mm, arc.sweep, arc.h1 - arc.h0);
   const Vec3 from = in_plane(ib.from(j), m.plane), to = in_plane(m.to, m.plane);
+  const uint32_t n = executed_segments_read(rule, Vec2(from.x(), from.y()), arc.center, Vec2(to.x(), to.y()), arc.sweep,
+                                            arc.h1 - arc.h0);
   ends.clear();
   executed_chord_ends(rule, Vec2(from.x(), from.y()), arc.center, Vec2(to.x(), to.y()), arc.sweep, n, ends);
+  if (rule.count_may_grow()) {
+    // Any count from n up may run: the ring about the circle that holds them all.
+    const Deviation d = ring_deviation(rule, pts, arc, ends);
+    return d.ordered ? std::optional<double>(d.max_mm + kSamePointMm) : std::nullopt;
+  }
   const auto bound = chords_deviation_bound(pts, arc, ends);
   // The chords run from the output's own ends, the polyline from the input's: the same
   // points as read, up to the noise of unit conversion.
