@@ -26,6 +26,7 @@ xyze_pos_t current_position, destination;
 feedRate_t feedrate_mm_s = 25;
 uint8_t active_extruder = 0;
 Planner planner;
+GcodeSuite gcode;
 Temperature thermalManager;
 GCodeParser parser;
 
@@ -87,7 +88,12 @@ void marlin_error(const char* message) {
   refused = true;
 }
 millis_t millis() { return 0; }
-void idle() {}
+void idle(bool) {}
+/// GcodeSuite::G0_G1() as plan_arc() calls it (Buddy): a straight move to the destination.
+void GcodeSuite::G0_G1() {
+  planned_line(destination);
+  current_position = destination;
+}
 void planned_line(const xyze_pos_t& p) { planned.push_back(p); }
 
 /// GcodeSuite::get_destination_from_command(): each axis given goes to its value, or by it

@@ -1,55 +1,77 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
-# Marlin's own arc code as a judge of the marlin dialect: Marlin's G2_G3.cpp (plan_arc() and
-# GcodeSuite::G2_G3(), from a Marlin source tree, not copied) is built on this machine with
-# marlin_shim.hpp (its default configuration: segments of 0.1 to 1 mm, at least 72 a circle,
-# an exact end every 25th) and marlin_executed.cpp, which replaces each G2/G3 block of a
-# program by the G1 moves plan_arc() hands the planner. Every corpus file is compressed at
-# 0.05, 0.025 and 0.01 mm, input and output are cut so, and `arcpress diff` must find the two
-# paths the printer moves along within the band, with the same extrusion and the same
-# non-motion blocks. Left out: a program Marlin does not run as written (a block without a
-# command, or inches) and one `arcpress diff` cannot compare with itself (NURBS). Prints the
-# arcs written, the moves Marlin makes of them and the largest distance per file and band
-# (scripts/docs_figures.sh marlin puts the table in docs/dialects.md); exit 1 where a path
-# leaves the band or anything else differs.
-#   marlin_executed.sh ARCPRESS MARLIN_SOURCE_DIR CORPUS_DIR
-# MARLIN_SOURCE_DIR: a clone of https://github.com/MarlinFirmware/Marlin (2.0.9 to 2.1.0,
-# whose G2_G3.cpp names LINEAR_AXES) in a folder of your own.
+# Marlin's own arc code as a judge of the marlin dialect, and Prusa's Buddy firmware's of the
+# prusa dialect: the firmware's G2_G3.cpp (plan_arc() and GcodeSuite::G2_G3(), from its source
+# tree, not copied) is built on this machine with marlin_shim.hpp and marlin_executed.cpp,
+# which replaces each G2/G3 block of a program by the G1 moves plan_arc() hands the planner.
+# Marlin runs in its default configuration (segments of 0.1 to 1 mm, at least 72 a circle, an
+# exact end every 25th); Buddy in the arc settings of its MK4 configuration
+# (include/marlin/Configuration_MK4_adv.h: segments for 0.02 mm within 0.1 to 2 mm, shorter
+# below 50 a second at the program's own feed). Every corpus file is compressed at 0.05, 0.025
+# and 0.01 mm, input and output are cut so, and `arcpress diff` must find the two paths the
+# printer moves along within the band, with the same extrusion and the same non-motion
+# blocks. Left out: a program the firmware does not run as written (a block without a command,
+# or inches) and one `arcpress diff` cannot compare with itself (NURBS). Prints the arcs
+# written, the moves the firmware makes of them and the largest distance per file and band
+# (scripts/docs_figures.sh marlin and prusa put the tables in docs/dialects.md); exit 1 where
+# a path leaves the band or anything else differs.
+#   marlin_executed.sh ARCPRESS SOURCE_DIR CORPUS_DIR
+# SOURCE_DIR: a clone of https://github.com/MarlinFirmware/Marlin (2.0.9 to 2.1.0, whose
+# G2_G3.cpp names LINEAR_AXES: the marlin dialect) or of
+# https://github.com/prusa3d/Prusa-Firmware-Buddy (the prusa dialect), in a folder of your own.
 set -euo pipefail
-arcpress=$1 marlin=$2 corpus=$3
-source_file="$marlin/Marlin/src/gcode/motion/G2_G3.cpp"
-[ -f "$source_file" ] || { echo "marlin_executed: no Marlin source at '$marlin'" >&2; exit 2; }
+arcpress=$1 source=$2 corpus=$3
 here=$(cd "$(dirname "$0")" && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
+if [ -f "$source/lib/Marlin/Marlin/src/gcode/motion/G2_G3.cpp" ]; then
+  dialect=prusa firmware=Buddy
+  source_file="$source/lib/Marlin/Marlin/src/gcode/motion/G2_G3.cpp"
+  config="$source/include/marlin/Configuration_MK4_adv.h"
+  defines=()
+  for name in MIN_ARC_SEGMENT_MM MAX_ARC_SEGMENT_MM MIN_ARC_SEGMENTS_PER_SEC MAX_ARC_DEVIATION N_ARC_CORRECTION; do
+    value=$(sed -n "s/^ *#define $name  *\([0-9.][0-9.]*\).*/\1/p" "$config" | head -1)
+    [ -n "$value" ] || { echo "marlin_executed: no $name in $config" >&2; exit 2; }
+    defines+=("-D$name=$value")
+  done
+elif [ -f "$source/Marlin/src/gcode/motion/G2_G3.cpp" ]; then
+  dialect=marlin firmware=Marlin
+  source_file="$source/Marlin/src/gcode/motion/G2_G3.cpp"
+  defines=()
+else
+  echo "marlin_executed: no Marlin or Buddy source at '$source'" >&2
+  exit 2
+fi
 # The file in a tree of its own, where the headers it includes are empty: the shim stands in
 # for them.
 tree="$work/Marlin/src"
-mkdir -p "$tree/gcode/motion" "$tree/inc" "$tree/module"
+mkdir -p "$tree/gcode/motion" "$tree/inc" "$tree/module" "$tree/feature/precise_stepping"
 cp "$source_file" "$tree/gcode/motion/G2_G3.cpp"
 touch "$tree/inc/MarlinConfig.h" "$tree/gcode/gcode.h" "$tree/module/motion.h" "$tree/module/planner.h" \
-  "$tree/module/temperature.h"
-g++ -std=c++17 -O2 -include "$here/marlin_shim.hpp" "$tree/gcode/motion/G2_G3.cpp" "$here/marlin_executed.cpp" \
-  -o "$work/marlin_executed"
+  "$tree/module/temperature.h" "$tree/feature/precise_stepping/internal.hpp"
+g++ -std=c++17 -O2 -c -include "$here/marlin_shim.hpp" -DMARLIN_FIRMWARE_FILE "${defines[@]}" -I"$tree" \
+  "$tree/gcode/motion/G2_G3.cpp" -o "$work/G2_G3.o"
+g++ -std=c++17 -O2 -c -include "$here/marlin_shim.hpp" "$here/marlin_executed.cpp" -o "$work/driver.o"
+g++ "$work/G2_G3.o" "$work/driver.o" -o "$work/marlin_executed"
 status=0
-printf '%-46s %6s %6s %13s %13s  %s\n' program band arcs "Marlin's G1" "deviation mm" verdict
+printf '%-46s %6s %6s %13s %13s  %s\n' program band arcs "$firmware's G1" "deviation mm" verdict
 for f in "$corpus"/*/*; do
   case $f in *.md) continue ;; esac
   name=$(basename "$f")
-  # The input's own arcs are cut by Marlin too: the two paths the printer moves along are
-  # compared. A program Marlin does not run as written is for another controller.
+  # The input's own arcs are cut by the firmware too: the two paths the printer moves along
+  # are compared. A program it does not run as written is for another controller.
   "$work/marlin_executed" "$f" > "$work/input.gcode" 2> /dev/null || continue
   # (and one arcpress diff cannot compare with itself: NURBS blocks, G5.2)
-  "$arcpress" diff "$work/input.gcode" "$work/input.gcode" --dialect marlin > /dev/null 2>&1 || continue
+  "$arcpress" diff "$work/input.gcode" "$work/input.gcode" --dialect "$dialect" > /dev/null 2>&1 || continue
   for band in 0.05 0.025 0.01; do
-    "$arcpress" "$f" -o "$work/out.gcode" --dialect marlin --tolerance "$band" --stats 2> "$work/stats.txt" ||
+    "$arcpress" "$f" -o "$work/out.gcode" --dialect "$dialect" --tolerance "$band" --stats 2> "$work/stats.txt" ||
       { echo "FAIL: $name at $band: arcpress exit $?: $(tail -2 "$work/stats.txt")"; status=1; continue; }
     arcs=$(sed -n 's/^  written *[0-9]* G1 + \([0-9]*\) G2\/G3.*/\1/p' "$work/stats.txt")
     "$work/marlin_executed" "$work/out.gcode" > "$work/executed.gcode" ||
-      { echo "FAIL: $name at $band: Marlin refused an arc ($(tail -1 "$work/executed.gcode"))"; status=1; continue; }
+      { echo "FAIL: $name at $band: $firmware refused an arc ($(tail -1 "$work/executed.gcode"))"; status=1; continue; }
     moves=$(($(grep -c . "$work/executed.gcode") - $(grep -c . "$work/out.gcode") + arcs))
     verdict=SAME
-    "$arcpress" diff "$work/input.gcode" "$work/executed.gcode" --tolerance "$band" --dialect marlin > "$work/diff.txt" 2>&1 ||
+    "$arcpress" diff "$work/input.gcode" "$work/executed.gcode" --tolerance "$band" --dialect "$dialect" > "$work/diff.txt" 2>&1 ||
       { verdict=$(grep -E '^(DIFFERENT|INCOMPLETE)' "$work/diff.txt" || echo "exit $?"); status=1; }
     deviation=$(sed -n 's/^max deviation \([0-9.]*\) mm.*/\1/p' "$work/diff.txt")
     printf '%-46s %6s %6s %13s %13s  %s\n' "$name" "$band" "$arcs" "$moves" "${deviation:--}" "$verdict"

@@ -1,14 +1,18 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // What Marlin's Marlin/src/gcode/motion/G2_G3.cpp needs of the rest of the firmware, so that
 // its own plan_arc() and GcodeSuite::G2_G3() build on a PC (marlin_executed.sh puts this
-// header before the file with -include; the headers it includes are left empty). The
-// configuration is Marlin 2.1's default (Configuration_adv.h: ARC_SUPPORT with
-// MIN_ARC_SEGMENT_MM 0.1, MAX_ARC_SEGMENT_MM 1.0, MIN_CIRCLE_SEGMENTS 72, N_ARC_CORRECTION
-// 25; no ARC_SEGMENTS_PER_SEC, ARC_P_CIRCLES, CNC_WORKSPACE_PLANES or leveling), each
-// number settable with -D. The macros and types below do what Marlin's core/macros.h and
-// core/types.h do for the words the file uses, in single precision as the firmware computes.
+// header before the file with -include; the headers it includes are left empty). Prusa's
+// Buddy firmware's copy of the file (lib/Marlin/Marlin/src/gcode/motion/G2_G3.cpp) builds
+// with it too. The configuration is Marlin 2.1's default (Configuration_adv.h: ARC_SUPPORT
+// with MIN_ARC_SEGMENT_MM 0.1, MAX_ARC_SEGMENT_MM 1.0, MIN_CIRCLE_SEGMENTS 72,
+// N_ARC_CORRECTION 25; no ARC_SEGMENTS_PER_SEC, ARC_P_CIRCLES, CNC_WORKSPACE_PLANES or
+// leveling), each number settable with -D (Buddy's MAX_ARC_DEVIATION and
+// MIN_ARC_SEGMENTS_PER_SEC too). The macros and types below do what Marlin's core/macros.h
+// and core/types.h do for the words the file uses, in single precision as the firmware
+// computes.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -35,6 +39,8 @@
 #define SCARA_FEEDRATE_SCALING 0
 #define AUTO_BED_LEVELING_UBL 0
 #define FULL_REPORT_TO_HOST_FEATURE 0
+#define CANCEL_OBJECTS 0
+#define FEEDRATE_SCALING 0
 #define HAS_LEVELING 0
 #define PLANNER_LEVELING 0
 #define HAS_Z_AXIS 1
@@ -86,7 +92,12 @@ template <class T> constexpr T ABS(const T v) { return v >= 0 ? v : -v; }
 template <class L, class R> constexpr auto _MAX(const L lhs, const R rhs) -> decltype(lhs + rhs) {
   return lhs > rhs ? lhs : rhs;
 }
+template <class L, class R> constexpr auto _MIN(const L lhs, const R rhs) -> decltype(lhs + rhs) {
+  return lhs < rhs ? lhs : rhs;
+}
 template <class V, class L, class H> constexpr V constrain(V v, L lo, H hi) { return v < lo ? lo : v > hi ? hi : v; }
+// Buddy's feature/precise_stepping/internal.hpp: the FPU's square root (vsqrt.f32), as sqrtf.
+inline float fast_sqrt(float in) { return sqrtf(in); }
 using std::cos;
 using std::sin;
 
@@ -132,15 +143,19 @@ void marlin_error(const char* message);
 #define SERIAL_ERROR_MSG(S) marlin_error(S)
 millis_t millis();
 #define ELAPSED(NOW, SOON) (int32_t((NOW) - (SOON)) >= 0)
-void idle();
+void idle(bool = false);
 inline void apply_motion_limits(xyze_pos_t&) {}
 void planned_line(const xyze_pos_t& p);
 struct Planner {
   template <class... Rest> bool buffer_line(const xyze_pos_t& p, Rest...) { planned_line(p); return true; }
 };
+struct PlannerHints {  // (Buddy: what the planner may know of the move)
+  float inv_duration = 0, curve_radius = 0, safe_exit_speed_sqr = 0;
+};
 extern Planner planner;
 struct Temperature {
   void manage_heater() {}
+  void task() {}
 };
 extern Temperature thermalManager;
 struct GCodeParser {
@@ -162,5 +177,15 @@ void get_destination_from_command();
 inline void reset_stepper_timeout() {}
 struct GcodeSuite {
   static void G2_G3(const bool clockwise);
+  static void G0_G1();  // (Buddy: an arc of no length that extrudes is moved as G1)
 };
+extern GcodeSuite gcode;
 void plan_arc(const xyze_pos_t& cart, const ab_float_t& offset, const bool clockwise, const uint8_t circles);
+
+// The firmware's ARM compiler has uint32_t as unsigned long, which Buddy's
+// std::max(uint32_t(...), 1ul) relies on: the same in the firmware's file (built with
+// MARLIN_FIRMWARE_FILE), after the system's headers.
+#ifdef MARLIN_FIRMWARE_FILE
+typedef unsigned long marlin_uint32;
+#define uint32_t marlin_uint32
+#endif
