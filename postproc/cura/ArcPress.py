@@ -25,7 +25,7 @@ from ..Script import Script
 DIALECTS = {
     "auto": "From the G-code's FLAVOR line",
     "marlin": "Marlin",
-    "prusa": "Prusa (Marlin 2)",
+    "prusa": "Prusa Buddy (MK4, MK3.5, MINI, XL, CORE One)",
     "klipper": "Klipper",
     "reprapfirmware": "RepRapFirmware",
     "smoothieware": "Smoothieware",
