@@ -53,28 +53,5 @@ g++ -std=c++17 -O2 -c -include "$here/marlin_shim.hpp" -DMARLIN_FIRMWARE_FILE "$
   "$tree/gcode/motion/G2_G3.cpp" -o "$work/G2_G3.o"
 g++ -std=c++17 -O2 -c -include "$here/marlin_shim.hpp" "$here/marlin_executed.cpp" -o "$work/driver.o"
 g++ "$work/G2_G3.o" "$work/driver.o" -o "$work/marlin_executed"
-status=0
-printf '%-46s %6s %6s %13s %13s  %s\n' program band arcs "$firmware's G1" "deviation mm" verdict
-for f in "$corpus"/*/*; do
-  case $f in *.md) continue ;; esac
-  name=$(basename "$f")
-  # The input's own arcs are cut by the firmware too: the two paths the printer moves along
-  # are compared. A program it does not run as written is for another controller.
-  "$work/marlin_executed" "$f" > "$work/input.gcode" 2> /dev/null || continue
-  # (and one arcpress diff cannot compare with itself: NURBS blocks, G5.2)
-  "$arcpress" diff "$work/input.gcode" "$work/input.gcode" --dialect "$dialect" > /dev/null 2>&1 || continue
-  for band in 0.05 0.025 0.01; do
-    "$arcpress" "$f" -o "$work/out.gcode" --dialect "$dialect" --tolerance "$band" --stats 2> "$work/stats.txt" ||
-      { echo "FAIL: $name at $band: arcpress exit $?: $(tail -2 "$work/stats.txt")"; status=1; continue; }
-    arcs=$(sed -n 's/^  written *[0-9]* G1 + \([0-9]*\) G2\/G3.*/\1/p' "$work/stats.txt")
-    "$work/marlin_executed" "$work/out.gcode" > "$work/executed.gcode" ||
-      { echo "FAIL: $name at $band: $firmware refused an arc ($(tail -1 "$work/executed.gcode"))"; status=1; continue; }
-    moves=$(($(grep -c . "$work/executed.gcode") - $(grep -c . "$work/out.gcode") + arcs))
-    verdict=SAME
-    "$arcpress" diff "$work/input.gcode" "$work/executed.gcode" --tolerance "$band" --dialect "$dialect" > "$work/diff.txt" 2>&1 ||
-      { verdict=$(grep -E '^(DIFFERENT|INCOMPLETE)' "$work/diff.txt" || echo "exit $?"); status=1; }
-    deviation=$(sed -n 's/^max deviation \([0-9.]*\) mm.*/\1/p' "$work/diff.txt")
-    printf '%-46s %6s %6s %13s %13s  %s\n' "$name" "$band" "$arcs" "$moves" "${deviation:--}" "$verdict"
-  done
-done
-exit $status
+. "$here/executed_runs.sh"
+executed_runs "$arcpress" "$corpus" "$dialect" "$firmware" "$work/marlin_executed"
