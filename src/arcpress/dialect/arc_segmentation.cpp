@@ -30,12 +30,13 @@ uint32_t segments_in(const ArcSegmentation& s, Real r, Real sweep, Real normal_t
       const Real min_segments = std::ceil(Real(s.min_circle_segments) * (sweep / Real(2 * std::numbers::pi)));
       const Real nominal = std::max(std::floor(flat_mm / max_mm), min_segments);
       if (nominal <= 0) return 1;
+      // (The limits are double constants there: compared and divided by in double.)
       const Real nominal_mm = flat_mm / nominal;
       Real n = nominal;
-      if (nominal_mm > max_mm)
-        n = std::ceil(flat_mm / max_mm);
-      else if (nominal_mm < min_mm)
-        n = std::max(Real(1), std::floor(flat_mm / min_mm));
+      if (double(nominal_mm) > s.max_segment_mm)
+        n = std::ceil(Real(double(flat_mm) / s.max_segment_mm));
+      else if (double(nominal_mm) < s.min_segment_mm)
+        n = std::max(Real(1), std::floor(Real(double(flat_mm) / s.min_segment_mm)));
       return std::max<uint32_t>(1, count_of(double(n)));
     }
     case Rule::Klipper:
@@ -43,8 +44,10 @@ uint32_t segments_in(const ArcSegmentation& s, Real r, Real sweep, Real normal_t
     case Rule::RepRapFirmware:
     case Rule::PrusaBuddy: {
       // (Each firmware cuts shorter segments at low feed rates too: count_may_grow().)
+      // (RRF adds a double 0.8 to its float quotient, Buddy a float 0.8f.)
       const Real seg = std::clamp(std::sqrt(8 * r * deviation), min_mm, std::max(min_mm, max_mm));
-      return std::max<uint32_t>(1, count_of(double(flat_mm / seg + Real(0.8))));
+      const double count = s.rule == Rule::RepRapFirmware ? double(flat_mm / seg) + 0.8 : double(flat_mm / seg + Real(0.8));
+      return std::max<uint32_t>(1, count_of(count));
     }
     case Rule::Grbl:
     case Rule::GrblHAL: {
