@@ -75,6 +75,24 @@ TEST_CASE("Prusa's Buddy firmware counts as RepRapFirmware does with 0.02 mm dev
   CHECK(executed_segments(rule(Rule::Marlin, 2.0, 0.1, 0, 0), 30, 2.38 / 30) == 2);
 }
 
+TEST_CASE("the MK3's firmware cuts segments of a 20th of the circle within 0.5 .. 1 mm and rounds their count up",
+          "[segmentation]") {
+  const auto mk3 = rule(Rule::PrusaMk3, 1.0, 0.5, 20, 0);
+  CHECK(executed_segments(mk3, 10, deg(90)) == 16);   // 3.14 mm, held to 1 mm: 15.7 rounded up
+  CHECK(executed_segments(mk3, 3, deg(100)) == 6);    // 0.942 mm: 5.56 rounded up
+  CHECK(executed_segments(mk3, 1, deg(90)) == 4);     // 0.314 mm, held to 0.5 mm: 3.14 rounded up
+  CHECK(executed_segments(mk3, 0.5, deg(90)) == 2);   // 0.785 mm of arc in 0.5 mm segments
+  CHECK(executed_segments(mk3, 10, deg(90), 10) == 19);  // a helix: hypot(15.708, 10) = 18.62 mm
+  // Without MIN_ARC_SEGMENTS, the longest segment.
+  CHECK(executed_segments(rule(Rule::PrusaMk3, 1.0, 0.5, 0, 0), 1, deg(90)) == 2);
+  // A user's dialect names it (dialects/README.md: no MK3 dialect ships yet).
+  const Dialect file = parse_dialect("name = \"mk3\"\n[arcs.executed]\nrule = \"prusa-mk3\"\nmax_segment_mm = 1.0\n"
+                                    "min_segment_mm = 0.5\nmin_circle_segments = 20\n",
+                                    "mk3.toml");
+  CHECK(file.executed.rule == Rule::PrusaMk3);
+  CHECK(executed_segments(file.executed, 3, deg(100)) == 6);
+}
+
 TEST_CASE("Grbl's mc_arc() makes floor(half the length / sqrt($12 (2r - $12))) segments, 0 meaning one chord",
           "[segmentation]") {
   const auto grbl = rule(Rule::Grbl, 0, 0, 0, 0.002);
@@ -303,6 +321,35 @@ std::vector<Point> buddy_plan_arc(float px, float py, float i, float j, float tx
   return out;
 }
 
+// Prusa-Firmware Firmware/motion_control.cpp, mc_arc() (floats, as on the AVR).
+std::vector<Point> mk3_mc_arc(float px, float py, float i, float j, float tx, float ty, bool isclockwise, int segments) {
+  std::vector<Point> out;
+  float r_axis_x = -i, r_axis_y = -j;
+  const float center_axis_x = px - r_axis_x, center_axis_y = py - r_axis_y, rt_x = tx - center_axis_x,
+              rt_y = ty - center_axis_y;
+  float angular_travel_total = atan2f(r_axis_x * rt_y - r_axis_y * rt_x, r_axis_x * rt_x + r_axis_y * rt_y);
+  if (angular_travel_total < 0) angular_travel_total += float(2 * M_PI);
+  if (isclockwise) angular_travel_total -= float(2 * M_PI);
+  const float theta_per_segment = angular_travel_total / segments, sq_theta_per_segment = theta_per_segment * theta_per_segment,
+              sin_T = theta_per_segment - sq_theta_per_segment * theta_per_segment / 6,
+              cos_T = 1 - 0.5f * sq_theta_per_segment;
+  unsigned char n_arc_correction = 25;
+  for (int k = 1; k < segments; k++) {
+    if (n_arc_correction-- == 0) {
+      const float cos_Ti = cosf(k * theta_per_segment), sin_Ti = sinf(k * theta_per_segment);
+      r_axis_x = -i * cos_Ti + j * sin_Ti;
+      r_axis_y = -i * sin_Ti - j * cos_Ti;
+      n_arc_correction = 25;
+    } else {
+      const float r_axisi = r_axis_x * sin_T + r_axis_y * cos_T;
+      r_axis_x = r_axis_x * cos_T - r_axis_y * sin_T;
+      r_axis_y = r_axisi;
+    }
+    out.push_back({center_axis_x + r_axis_x, center_axis_y + r_axis_y});
+  }
+  return out;
+}
+
 // RepRapFirmware 3 src/GCodes/GCodes.cpp, DoArcMove() and ReadMove().
 std::vector<Point> rrf_read_move(float px, float py, float iParam, float jParam, float tx, float ty, bool clockwise,
                                  int totalSegments, int segmentsPerFullArcCalculation) {
@@ -387,6 +434,7 @@ TEST_CASE("golden: every rule's chord ends are the ones its firmware computes, d
     CHECK(farthest(ends(Rule::Smoothieware, 0), smoothie_append_arc(px, py, fi, fj, tx, ty, cw, c.segments, 5)) < 1e-6);
     CHECK(farthest(ends(Rule::RepRapFirmware, 0), rrf_read_move(px, py, fi, fj, tx, ty, cw, c.segments, 8)) < 1e-6);
     CHECK(farthest(ends(Rule::PrusaBuddy, 0), buddy_plan_arc(px, py, fi, fj, tx, ty, cw, c.segments)) < 1e-6);
+    CHECK(farthest(ends(Rule::PrusaMk3, 0), mk3_mc_arc(px, py, fi, fj, tx, ty, cw, c.segments)) < 1e-6);
     CHECK(farthest(ends(Rule::Klipper, 0), on_circle) < 1e-9);
     // The small-angle rotations do pull the ends off the circle: a model that put them on it
     // would miss what these firmwares move along.

@@ -49,6 +49,17 @@ uint32_t segments_in(const ArcSegmentation& s, Real r, Real sweep, Real normal_t
       const double count = s.rule == Rule::RepRapFirmware ? double(flat_mm / seg) + 0.8 : double(flat_mm / seg + Real(0.8));
       return std::max<uint32_t>(1, count_of(count));
     }
+    case Rule::PrusaMk3: {
+      // mc_arc(): the segment of MIN_ARC_SEGMENTS a circle (r 2π / N, in double), else the
+      // longest, within MIN_MM_PER_ARC_SEGMENT .. MM_PER_ARC_SEGMENT; the length along the
+      // helix over it, rounded up.
+      Real seg = s.min_circle_segments > 0 ? Real(double(r) * (2 * std::numbers::pi / s.min_circle_segments)) : max_mm;
+      if (seg < min_mm)
+        seg = min_mm;
+      else if (seg > max_mm)
+        seg = max_mm;
+      return std::max<uint32_t>(1, count_of(double(std::ceil(std::hypot(flat_mm, normal_travel_mm) / seg))));
+    }
     case Rule::Grbl:
     case Rule::GrblHAL: {
       const Real w = deviation * (2 * r - deviation);
@@ -79,7 +90,8 @@ int ArcSegmentation::correction_period_or_default() const {
   if (correction_period > 0) return correction_period;
   switch (rule) {
     case Rule::Marlin:
-    case Rule::PrusaBuddy: return 25;     // Configuration_adv.h N_ARC_CORRECTION
+    case Rule::PrusaBuddy:
+    case Rule::PrusaMk3: return 25;       // Configuration_adv.h N_ARC_CORRECTION (the MK3's variants/*.h)
     case Rule::Grbl:
     case Rule::GrblHAL: return 12;        // config.h N_ARC_CORRECTION
     case Rule::Smoothieware: return 5;    // arc_correction
@@ -197,6 +209,15 @@ void executed_chord_ends(const ArcSegmentation& s, const Vec2& start, const Vec2
       const float sin_t = theta - sq * theta / 6, cos_t = 1 - 0.5f * sq;
       rotated_ends<float>(start, centre, segments, sin_t, cos_t, theta,
                           [&](uint32_t i) { return i % uint32_t(period) == 0; }, false, out);
+      return;
+    }
+    case Rule::PrusaMk3: {
+      // The MK3's mc_arc(): Marlin's small-angle steps, and `if (n_arc_correction-- == 0)`
+      // makes every (period + 1)-th end exact.
+      const float theta = firmware_travel<float>(start, centre, end, sweep_rad) / float(segments);
+      const float sq = theta * theta;
+      rotated_ends<float>(start, centre, segments, theta - sq * theta / 6, 1 - 0.5f * sq, theta,
+                          [&](uint32_t i) { return i % uint32_t(period + 1) == 0; }, false, out);
       return;
     }
     case Rule::PrusaBuddy: {

@@ -28,6 +28,7 @@ struct ArcSegmentation {
     Smoothieware,    ///< Smoothieware append_arc(): segment from mm_max_arc_error (or mm_per_arc_segment), floor
     GrblHAL,         ///< grblHAL mc_arc(): Grbl's count; its radius vector is rotated in double precision
     PrusaBuddy,      ///< Prusa's Buddy firmware plan_arc(): RRF's count, Marlin's loop turned by the exact sine and cosine
+    PrusaMk3,        ///< Prusa-Firmware (MK3) mc_arc(): r 2π / MIN_ARC_SEGMENTS within its limits, rounded up
   };
   Rule rule = Rule::None;
   /// Longest segment, mm: Marlin MAX_ARC_SEGMENT_MM, Klipper `resolution`, RRF
@@ -55,15 +56,15 @@ struct ArcSegmentation {
   /// the ring about the circle that the first's does, but not on its chords, so the band is
   /// held on that ring (ring_deviation()) rather than on one set of chords.
   bool count_may_grow() const { return rule == Rule::RepRapFirmware || rule == Rule::PrusaBuddy; }
-  /// correction_period, or the firmware's default where it is 0: Marlin and Buddy 25, Grbl and
-  /// grblHAL 12, Smoothieware 5, RepRapFirmware 8 (Klipper computes every end: 1).
+  /// correction_period, or the firmware's default where it is 0: Marlin, Buddy and the MK3's
+  /// 25, Grbl and grblHAL 12, Smoothieware 5, RepRapFirmware 8 (Klipper computes every end: 1).
   int correction_period_or_default() const;
   bool operator==(const ArcSegmentation&) const = default;
 };
 
 /// The rules' names as dialect files write them, in the order of ArcSegmentation::Rule.
-inline constexpr std::array<std::string_view, 8> kRuleNames{"none",         "marlin",  "klipper",    "reprapfirmware",
-                                                            "grbl",         "smoothieware", "grblhal", "prusa-buddy"};
+inline constexpr std::array<std::string_view, 9> kRuleNames{
+    "none", "marlin", "klipper", "reprapfirmware", "grbl", "smoothieware", "grblhal", "prusa-buddy", "prusa-mk3"};
 inline std::string_view rule_name(ArcSegmentation::Rule rule) { return kRuleNames[static_cast<size_t>(rule)]; }
 /// The rule of that name, if any.
 inline std::optional<ArcSegmentation::Rule> rule_named(std::string_view name) {
