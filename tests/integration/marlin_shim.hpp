@@ -83,10 +83,6 @@
 #define FLOOR(x) floorf(x)
 #define HYPOT2(x, y) (sq(x) + sq(y))
 #define HYPOT(x, y) SQRT(HYPOT2(x, y))
-#define NOLESS(v, n) \
-  do { \
-    if ((v) < (n)) (v) = (n); \
-  } while (0)
 template <class T> constexpr T sq(T x) { return x * x; }
 template <class T> constexpr T ABS(const T v) { return v >= 0 ? v : -v; }
 template <class L, class R> constexpr auto _MAX(const L lhs, const R rhs) -> decltype(lhs + rhs) {

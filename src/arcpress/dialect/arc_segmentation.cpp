@@ -154,6 +154,21 @@ float firmware_travel(const Vec2& start, const Vec2& centre, const Vec2& end, do
   return travel;
 }
 
+/// RepRapFirmware's DoArcMove(): the turn's size (totalArc) from the start's angle about the
+/// centre to the end's, the way the arc turns, whole turns as `sweep_rad` has them, in floats;
+/// and the start's angle (`start_angle`).
+float rrf_total_arc(const Vec2& start, const Vec2& centre, const Vec2& end, double sweep_rad, float& start_angle) {
+  const float ox = float(centre.x() - start.x()), oy = float(centre.y() - start.y());
+  const float cx = float(start.x()) + ox, cy = float(start.y()) + oy;
+  start_angle = std::atan2(-oy, -ox);
+  const float final_angle = std::atan2(float(end.y()) - cy, float(end.x()) - cx);
+  float total = sweep_rad >= 0 ? final_angle - start_angle : start_angle - final_angle;
+  constexpr float kTurn = float(2 * std::numbers::pi), kHalf = float(std::numbers::pi);
+  while (double(total) - std::abs(sweep_rad) > kHalf) total -= kTurn;
+  while (std::abs(sweep_rad) - double(total) > kHalf) total += kTurn;
+  return total;
+}
+
 }  // namespace
 
 uint32_t executed_segments_read(const ArcSegmentation& s, const Vec2& start, const Vec2& centre, const Vec2& end,
@@ -166,12 +181,8 @@ uint32_t executed_segments_read(const ArcSegmentation& s, const Vec2& start, con
     case Rule::RepRapFirmware: {
       // DoArcMove(): the radius from the offsets, the turn from the start's and end's angles.
       const float ox = float(centre.x() - start.x()), oy = float(centre.y() - start.y());
-      const float cx = float(start.x()) + ox, cy = float(start.y()) + oy;
-      const float current = std::atan2(-oy, -ox), final_angle = std::atan2(float(end.y()) - cy, float(end.x()) - cx);
-      float total = sweep_rad >= 0 ? final_angle - current : current - final_angle;
-      constexpr float kTurn = float(2 * std::numbers::pi), kHalf = float(std::numbers::pi);
-      while (double(total) - std::abs(sweep_rad) > kHalf) total -= kTurn;
-      while (std::abs(sweep_rad) - double(total) > kHalf) total += kTurn;
+      float start_angle = 0;
+      const float total = rrf_total_arc(start, centre, end, sweep_rad, start_angle);
       return segments_in<float>(s, std::sqrt(ox * ox + oy * oy), total, float(normal_travel_mm));
     }
     default: {
@@ -259,14 +270,8 @@ void executed_chord_ends(const ArcSegmentation& s, const Vec2& start, const Vec2
       const float ox = float(centre.x() - start.x()), oy = float(centre.y() - start.y());
       const float cx = float(start.x()) + ox, cy = float(start.y()) + oy;
       const float radius = std::sqrt(ox * ox + oy * oy);
-      float angle = std::atan2(-oy, -ox);
-      // totalArc: from the start's angle to the end's, the way the arc turns, whole turns
-      // as the sweep has them.
-      const float final_angle = std::atan2(float(end.y()) - cy, float(end.x()) - cx);
-      float total = sweep_rad >= 0 ? final_angle - angle : angle - final_angle;
-      constexpr float kTurn = float(2 * std::numbers::pi), kHalf = float(std::numbers::pi);
-      while (double(total) - std::abs(sweep_rad) > kHalf) total -= kTurn;
-      while (std::abs(sweep_rad) - double(total) > kHalf) total += kTurn;
+      float angle = 0;
+      const float total = rrf_total_arc(start, centre, end, sweep_rad, angle);
       const float increment = (sweep_rad >= 0 ? total : -total) / float(segments);
       const float inc_sin = std::sin(increment), inc_cos = std::cos(increment);
       float cur_cos = 0, cur_sin = 0;

@@ -82,11 +82,10 @@ std::optional<Chosen> RunFitter::make_arc(uint32_t a, uint32_t e, const Vec2& ce
   if (chords > 1)
     executed_chord_ends(o_.executed, Vec2(pts.front().x(), pts.front().y()), g.center,
                         Vec2(pts.back().x(), pts.back().y()), g.sweep, chords, ends);
-  const double drift = chords > 1 && o_.executed.rule != ArcSegmentation::Rule::Klipper
-                           ? chords_drift_mm(Vec2(pts.front().x(), pts.front().y()), g.center, g.sweep, ends)
-                           : 0.0;
-  sagitta += drift;
-  if (sagitta > 0 && o_.executed.count_may_grow()) {
+  const bool ring = o_.executed.count_may_grow();  // (ring_deviation() takes the drift itself)
+  if (chords > 1 && !ring && o_.executed.rule != ArcSegmentation::Rule::Klipper)
+    sagitta += chords_drift_mm(Vec2(pts.front().x(), pts.front().y()), g.center, g.sweep, ends);
+  if (sagitta > 0 && ring) {
     // The firmware may cut more chords at a low feed: none of them is the path, the ring
     // about the circle that holds them all is.
     const Deviation d = ring_deviation(o_.executed, pts, g, ends, band);
