@@ -197,6 +197,51 @@ TEST_CASE("a LinuxCNC subroutine's body runs in its caller's modes, and its call
   CHECK(std::any_of(sink.all().begin(), sink.all().end(), [](const Diagnostic& d) { return d.code == "E-FLOW-SUB-MODES"; }));
 }
 
+TEST_CASE("a LinuxCNC subroutine's plane and units hold for its calls, and a G18 .. G17 around a run in it leaves them so",
+          "[jumps][subroutines][plane]") {
+  // Half a circle in XZ, Y fixed: under G17 its Z climbs, so it is fitted in XZ between G18
+  // and G17. In a body with two ways out, only one after the pass, that G17 must not count
+  // as the body leaving G17 stated (its calls are all made in G17): else, read back, the
+  // plane after the call would be unknown where the input's is G17, and the check would
+  // refuse the fit.
+  std::string pass;
+  for (int i = 0; i <= 40; ++i) {
+    const double a = M_PI * i / 40;
+    pass += fmt::format("G1 X{:.4f} Z{:.4f}\n", 10 - 10 * std::cos(a), 10 * std::sin(a));
+  }
+  const std::string head = "G21 G17 G90\nG0 X0 Y0 Z0\nG1 F500\n";
+  const std::string body = "o100 sub\nG90\no101 if [#1 GT 0]\no100 return\no101 endif\nG1 X0 Y0 Z0\n" + pass + "o100 endsub\n";
+  const std::string after = "G0 X0 Y0 Z0\no100 call [1]\nG1 X0 Y0\n" + quarter() + "M2\n";
+  const CompressResult r = compress_as("linuxcnc", head + body + after);
+  REQUIRE(r.ok);
+  CHECK(r.runs_kept_as_input == 0);
+  CHECK(r.within_band());
+  CHECK(r.stats.plane_words_added == 2);
+  CHECK(count_of(r.output, "G3") == 2);  // the pass in XZ, the quarter circle after the call
+
+  // A definition runs nothing: a call of a subroutine not read inside it leaves the plane
+  // unknown in the body only, and the moves after `endsub` are fitted.
+  const CompressResult unread_inside =
+      compress_as("linuxcnc", head + "o100 sub\no<probe> call\no100 endsub\nG1 X0 Y0\n" + quarter() + "M2\n");
+  REQUIRE(unread_inside.ok);
+  CHECK(count_of(unread_inside.output, "G3") == 1);
+
+  // A body read in G17 may hold arcs fitted in G17: a call where the plane is not known (after
+  // a subroutine not read) fails. Defined where the plane is not known, its moves are fitted
+  // only once it states one, and any call may run it.
+  DiagnosticSink sink;
+  CompressOptions opt;
+  opt.dialect = shipped_dialect("linuxcnc");
+  const std::string known_body = "o100 sub\nG90\nG1 X0 Y0\n" + quarter() + "o100 endsub\n";
+  const CompressResult refused = compress("part.ngc", head + known_body + "o<probe> call\no100 call\nM2\n", opt, sink);
+  CHECK_FALSE(refused.ok);
+  CHECK(std::any_of(sink.all().begin(), sink.all().end(), [](const Diagnostic& d) { return d.code == "E-FLOW-SUB-MODES"; }));
+  const CompressResult unknown_body = compress_as("linuxcnc", head + "o<probe> call\n" + known_body + "o100 call\nM2\n");
+  REQUIRE(unknown_body.ok);
+  CHECK(count_of(unknown_body.output, "G3") == 0);
+  CHECK(count_of(compress_as("linuxcnc", head + "o<probe> call\n" + known_body + "G18\no100 call\nM2\n").output, "G3") == 0);
+}
+
 TEST_CASE("Marlin's repeat marker is a loop, and the moves after M808 L are entered from its end", "[jumps]") {
   // The loop goes back from M808 to the block after M808 L: where the tool is there, and
   // whether G90 or G91 is in force, the loop's end decides.

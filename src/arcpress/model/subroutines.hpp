@@ -28,6 +28,7 @@ struct Subroutines {
     bool distance_unknown = false;
     bool feed_known = false;
     double feed_mm = 0;
+    uint8_t unstated = 0;  ///< kStatesPlane/kStatesUnits not known where it began (ModalState::unstated)
   };
   Before before;
 
@@ -43,6 +44,9 @@ struct Subroutines {
     double unit_mm = 1;
     bool absolute = true;
     int motion = 0;
+    /// The plane or units (kStatesPlane, kStatesUnits) not known where it is defined: its
+    /// moves are placed only once it states them, so a call in any does not change them.
+    uint8_t read_unstated = 0;
     bool operator==(const Body&) const = default;
   };
   static constexpr uint32_t kMostBodies = 32;
@@ -66,7 +70,8 @@ struct Subroutines {
         return;
       }
       b = &bodies[count++];
-      *b = Body{before.label, before.plane, before.frame.unit_mm, states, unknown, plane, unit_mm, absolute, motion};
+      *b = Body{before.label, before.plane, before.frame.unit_mm, states, unknown, plane, unit_mm, absolute, motion,
+                before.unstated};
       return;
     }
     const uint8_t both = b->states & states;
