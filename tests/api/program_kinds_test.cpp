@@ -316,7 +316,7 @@ TEST_CASE("a program that gives lengths before G20 or G21 is read in the units i
     }
   }
   SECTION("printer firmwares start in millimetres: their dialects say so, and nothing is warned of") {
-    for (const char* name : {"marlin", "klipper", "prusa", "reprapfirmware", "smoothieware"}) {
+    for (const char* name : {"marlin", "klipper", "prusa", "prusa-mk3", "reprapfirmware", "smoothieware"}) {
       INFO(name);
       DiagnosticSink sink("t.nc");
       CHECK(load_dialect_file(ARCPRESS_SOURCE_DIR "/dialects/" + std::string(name) + ".toml").start_units ==

@@ -302,7 +302,7 @@ TEST_CASE("arcpress dialects lists every shipped dialect, one line each", "[cli]
   auto c = run_arcpress("dialects");
   CHECK(c.exit_code == 0);
   size_t lines = std::count(c.out.begin(), c.out.end(), '\n');
-  CHECK(lines == 18);
+  CHECK(lines == 19);
   CHECK(c.out.find("heidenhain-iso  Heidenhain TNC DIN/ISO") != std::string::npos);
 }
 

@@ -49,7 +49,7 @@ TEST_CASE("with --band executed the chords the firmware cuts each arc into stay 
 TEST_CASE("every firmware rule's dialect holds the band on its executed path by default, at any radius",
           "[cli][executed]") {
   auto dir = temp_dir("executed_rules");
-  for (const char* dialect : {"marlin", "klipper", "reprapfirmware", "grbl", "smoothieware", "prusa"}) {
+  for (const char* dialect : {"marlin", "klipper", "reprapfirmware", "grbl", "smoothieware", "prusa", "prusa-mk3"}) {
     for (double r : {0.8, 3.0, 40.0}) {
       INFO(dialect << " r " << r);
       const auto in = dir / "in.gcode", out = dir / "out.gcode";
@@ -156,7 +156,8 @@ TEST_CASE("no corpus output leaves the band on the chord ends its firmware compu
   for (const auto& f : corpus_files()) {
     const std::string kind = f.parent_path().filename().string();
     if (kind != "printer" && kind != "cnc") continue;
-    const auto dialects = kind == "printer" ? std::vector<std::string>{"marlin", "klipper", "reprapfirmware", "smoothieware", "prusa"}
+    const auto dialects = kind == "printer" ? std::vector<std::string>{"marlin", "klipper", "reprapfirmware", "smoothieware", "prusa",
+                                                                                "prusa-mk3"}
                                             : std::vector<std::string>{"grbl", "grblhal"};
     for (const std::string& dialect : dialects) {
       INFO(f.filename().string() << " as " << dialect);

@@ -85,7 +85,7 @@ TEST_CASE("the MK3's firmware cuts segments of a 20th of the circle within 0.5 .
   CHECK(executed_segments(mk3, 10, deg(90), 10) == 19);  // a helix: hypot(15.708, 10) = 18.62 mm
   // Without MIN_ARC_SEGMENTS, the longest segment.
   CHECK(executed_segments(rule(Rule::PrusaMk3, 1.0, 0.5, 0, 0), 1, deg(90)) == 2);
-  // A user's dialect names it (dialects/README.md: no MK3 dialect ships yet).
+  // A dialect file names it (prusa-mk3.toml ships: its rule is checked below).
   const Dialect file = parse_dialect("name = \"mk3\"\n[arcs.executed]\nrule = \"prusa-mk3\"\nmax_segment_mm = 1.0\n"
                                     "min_segment_mm = 0.5\nmin_circle_segments = 20\n",
                                     "mk3.toml");
@@ -132,6 +132,8 @@ TEST_CASE("the shipped printer and Grbl dialects name their firmware's rule, and
   CHECK(find_dialect("reprapfirmware", path).executed.rule == Rule::RepRapFirmware);
   CHECK(find_dialect("grbl", path).executed.rule == Rule::Grbl);
   CHECK(find_dialect("grblhal", path).executed.rule == Rule::GrblHAL);
+  CHECK(find_dialect("prusa-mk3", path).executed.rule == Rule::PrusaMk3);
+  CHECK(executed_segments(find_dialect("prusa-mk3", path).executed, 3, deg(100)) == 6);  // its variants' 1 / 0.5 mm, 20
   CHECK(find_dialect("prusa", path).executed.rule == Rule::PrusaBuddy);
   CHECK(find_dialect("prusa", path).executed.max_deviation_mm == 0.02);
   // Each names its correction period, as its firmware sets it.

@@ -28,7 +28,7 @@ namespace {
 const std::vector<std::string> kShipped = {"rs274",   "linuxcnc", "fanuc",  "haas",  "haas-lathe", "mach3",
                                            "mach4",   "grbl",     "grblhal", "siemens", "heidenhain-iso",
                                            "okuma",   "marlin",   "klipper", "reprapfirmware",
-                                           "smoothieware", "prusa", "sinumerik"};
+                                           "smoothieware", "prusa", "prusa-mk3", "sinumerik"};
 
 std::vector<std::string> source_dialect_path() { return {ARCPRESS_SOURCE_DIR "/dialects"}; }
 
@@ -822,7 +822,8 @@ TEST_CASE("a lathe dialect reads X words as diameters from the start, and G8 as 
 
 TEST_CASE("G10 and G11 are a printer firmware's retraction that leaves the programmed position where it is",
           "[dialect][printer]") {
-  const std::vector<std::string> retracting = {"marlin", "prusa", "klipper", "reprapfirmware", "smoothieware"};
+  const std::vector<std::string> retracting = {"marlin", "prusa", "prusa-mk3", "klipper", "reprapfirmware",
+                                                "smoothieware"};
   for (const std::string& name : kShipped) {
     INFO(name);
     CHECK(shipped(name).firmware_retraction ==
@@ -871,6 +872,7 @@ TEST_CASE("E words are relative as each firmware reads G90 and G91 with M82 and 
   CHECK(shipped("smoothieware").extrusion_distance == ExtrusionDistance::WithAxes);
   CHECK(shipped("klipper").extrusion_distance == ExtrusionDistance::G91OrM83);
   CHECK(shipped("reprapfirmware").extrusion_distance == ExtrusionDistance::M82M83Only);
+  CHECK(shipped("prusa-mk3").extrusion_distance == ExtrusionDistance::M82M83Only);  // "E axis is left intact"
   CHECK(shipped("rs274").extrusion_distance == ExtrusionDistance::WithAxes);
   // E after each extruding move, read by Marlin / Klipper / RepRapFirmware:
   const std::string text =

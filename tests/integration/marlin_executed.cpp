@@ -5,7 +5,9 @@
 // marlin_shim.hpp) hands its planner, in the order and at the positions it computes them:
 // the path the printer moves along, which `arcpress diff` then measures
 // (marlin_executed.sh). Positions and modes follow the firmware: G90/G91 set E's mode with
-// the axes', M82/M83 E's alone, G92 sets positions. E is kept in double precision here and
+// the axes' (built with E_BY_M82_M83, as the MK3's firmware, they leave it), M82/M83 E's
+// alone, G92 sets positions. (Built with prusa_mk3_arc.cpp in place of G2_G3.cpp, the arcs
+// are the MK3's.) E is kept in double precision here and
 // each arc is handed to plan_arc() from E 0: the firmware's single-precision E counter, which
 // rounds the input's moves as much as the output's (at E 2 000 mm a float's step is 0.000122
 // mm), is not what is compared; the division of the arc's E into its segments is. Exit 1 where Marlin reports an arc's
@@ -39,6 +41,11 @@ std::vector<xyze_pos_t> planned;
 bool refused = false;
 
 const char kAxes[] = "XYZE";
+#ifdef E_BY_M82_M83
+constexpr bool kEWithAxes = false;
+#else
+constexpr bool kEWithAxes = true;
+#endif
 
 std::string number(double v) {
   char text[64];
@@ -176,8 +183,8 @@ int main(int argc, char** argv) {
       continue;
     }
     // Any other block: its modes and where it leaves the position.
-    if (g == 900) relative_axes = relative_e = false;
-    if (g == 910) relative_axes = relative_e = true;
+    if (g == 900) relative_axes = false, relative_e = kEWithAxes ? false : relative_e;
+    if (g == 910) relative_axes = true, relative_e = kEWithAxes ? true : relative_e;
     if (m == 820) relative_e = false;
     if (m == 830) relative_e = true;
     if (g == 920) {

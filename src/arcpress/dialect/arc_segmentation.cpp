@@ -50,10 +50,11 @@ uint32_t segments_in(const ArcSegmentation& s, Real r, Real sweep, Real normal_t
       return std::max<uint32_t>(1, count_of(count));
     }
     case Rule::PrusaMk3: {
-      // mc_arc(): the segment of MIN_ARC_SEGMENTS a circle (r 2π / N, in double), else the
-      // longest, within MIN_MM_PER_ARC_SEGMENT .. MM_PER_ARC_SEGMENT; the length along the
-      // helix over it, rounded up.
-      Real seg = s.min_circle_segments > 0 ? Real(double(r) * (2 * std::numbers::pi / s.min_circle_segments)) : max_mm;
+      // mc_arc(): the segment of MIN_ARC_SEGMENTS a circle (r (2π / N), in floats: the AVR's
+      // double is a float, M_PI too), else the longest, within MIN_MM_PER_ARC_SEGMENT ..
+      // MM_PER_ARC_SEGMENT; the length along the helix over it, rounded up.
+      const Real turn = Real(2) * Real(float(std::numbers::pi));
+      Real seg = s.min_circle_segments > 0 ? r * (turn / Real(s.min_circle_segments)) : max_mm;
       if (seg < min_mm)
         seg = min_mm;
       else if (seg > max_mm)
