@@ -58,7 +58,11 @@ Dialect dialect_for(const std::string& name, bool name_given, const std::string&
     const size_t nl = tail.find('\n');
     const std::string_view tail_lines = nl == std::string_view::npos ? std::string_view() : tail.substr(nl + 1);
     std::optional<ProgramFlavor> flavor = program_flavor(program);
-    const bool at_end = !flavor && (flavor = program_flavor(tail_lines));
+    bool at_end = false;
+    if (!flavor || flavor->model_only) {  // (a flavor near the end that is not Marlin's outranks a model)
+      std::optional<ProgramFlavor> end = program_flavor(tail_lines);
+      if (end && (!flavor || (!end->model_only && end->dialect != "marlin"))) flavor = std::move(end), at_end = true;
+    }
     if (flavor) {
       slicer_program = flavor->slicer;
       const std::string where = at_end ? fmt::format("the program's '{}' near its end", flavor->evidence)

@@ -393,6 +393,32 @@ TEST_CASE("without --dialect a slicer's program is written for the firmware it n
   CHECK(unnamed.err.find("dialect        rs274") != std::string::npos);
   CHECK(unnamed.err.find(", by the default: the program's '; gcode_flavor = reprap' at line 97 names no single "
                          "firmware (pass --dialect marlin, klipper, reprapfirmware, smoothieware)\n") != std::string::npos);
+  // A Prusa printer's model names which of Prusa's firmwares runs it, where the flavor says
+  // Marlin: its start G-code's model check, or its config block's printer_model.
+  std::string mk3 = t;
+  mk3.replace(mk3.find("= klipper"), 9, "= marlin2\n; printer_model = MK3S");
+  mk3.insert(mk3.find('\n') + 1, "M862.3 P \"MK3S\" ; printer model check\n");
+  auto by_model = run_arcpress("--stats", mk3);
+  CHECK(by_model.exit_code == 0);
+  CHECK(by_model.err.find("dialect        prusa-mk3") != std::string::npos);
+  CHECK(by_model.err.find("by the program's 'M862.3 P \"MK3S\" ; printer model check' at line 2") != std::string::npos);
+  // Past the first MiB, a flavor near the end that names another firmware outranks the model
+  // at the start (a Prusa profile moved to Klipper).
+  const auto dir = arcpress::test::temp_dir("flavor-model");
+  const auto big = dir / "big.gcode";
+  std::string padding;
+  while (padding.size() < (size_t(1) << 20) + 4096) padding += "; a comment to pad the program past its first MiB\n";
+  std::string klipper_mk3 = mk3;
+  klipper_mk3.replace(klipper_mk3.find("= marlin2"), 9, "= klipper");
+  arcpress::test::write_file(big, klipper_mk3.substr(0, klipper_mk3.find("; prusaslicer_config")) + padding +
+                                      klipper_mk3.substr(klipper_mk3.find("; prusaslicer_config")));
+  auto outranked = run_arcpress("'" + big.string() + "' -o /dev/null --stats");
+  CHECK(outranked.err.find("dialect        klipper") != std::string::npos);
+  CHECK(outranked.err.find("by the program's '; gcode_flavor = klipper' near its end") != std::string::npos);
+  arcpress::test::write_file(big, mk3.substr(0, mk3.find("; prusaslicer_config")) + padding +
+                                      mk3.substr(mk3.find("; prusaslicer_config")));
+  CHECK(run_arcpress("'" + big.string() + "' -o /dev/null --stats").err.find("dialect        prusa-mk3") !=
+        std::string::npos);
   // A dialect named on the command line wins.
   auto named = run_arcpress("--stats --dialect marlin", t);
   CHECK(named.err.find("dialect        marlin") != std::string::npos);

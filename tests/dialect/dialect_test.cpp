@@ -988,6 +988,30 @@ TEST_CASE("a program names its own dialect by its slicer's flavor, where the fla
   CHECK(flavor("; gcode_flavor = klipper\n")->dialect == "klipper");
   CHECK(flavor("; gcode_flavor = reprapfirmware\n")->dialect == "reprapfirmware");
   CHECK(flavor("; gcode_flavor = smoothie\n")->dialect == "smoothieware");
+  // Where the flavor says Marlin, or there is none, a Prusa printer's model says which of
+  // Prusa's firmwares runs it: Prusa-Firmware (prusa-mk3) or Buddy (prusa).
+  const auto mk3s = flavor("M862.3 P \"MK3S\" ; printer model check\nG28\n; gcode_flavor = marlin2\n; printer_model = MK3S\n");
+  REQUIRE(mk3s);
+  CHECK(mk3s->dialect == "prusa-mk3");
+  CHECK(mk3s->evidence == "M862.3 P \"MK3S\" ; printer model check");
+  CHECK(mk3s->line == 1);
+  CHECK_FALSE(mk3s->model_only);
+  for (const auto& [model, dialect] : std::vector<std::pair<std::string, std::string>>{
+           {"MK3", "prusa-mk3"}, {"MK3SMMU3", "prusa-mk3"}, {"MK2.5S", "prusa-mk3"}, {"MK3.5", "prusa"},
+           {"MK3.9", "prusa"}, {"MK4IS", "prusa"}, {"MINI", "prusa"}, {"XL", "prusa"}, {"COREONE", "prusa"}}) {
+    INFO(model);
+    const auto named = flavor(";FLAVOR:Marlin\n; printer_model = " + model + "\n");
+    REQUIRE(named);
+    CHECK(named->dialect == dialect);
+    CHECK(named->line == 2);
+  }
+  CHECK(flavor("; gcode_flavor = marlin2\n; printer_model = \n")->dialect == "marlin");  // no model named
+  CHECK(flavor("; gcode_flavor = marlin2\n; printer_model = ENDER3\n")->dialect == "marlin");
+  CHECK(flavor("M862.3 P \"MK4\"\n; gcode_flavor = klipper\n")->dialect == "klipper");  // another firmware
+  const auto alone = flavor("M862.3 P \"MK4\"\nG28\n");
+  REQUIRE(alone);
+  CHECK(alone->dialect == "prusa");
+  CHECK(alone->model_only);
   // RepRap/Sprinter is several firmwares: the line is seen, and names no dialect. A program
   // without a flavor line names none.
   const auto reprap = flavor("G28\n; gcode_flavor = reprap\n");

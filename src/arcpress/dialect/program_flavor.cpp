@@ -29,6 +29,31 @@ constexpr std::pair<const char*, const char*> kFlavors[] = {
 };
 
 /// The shipped dialect a slicer's flavor name maps to without doubt, or empty.
+/// The dialect of the firmware a Prusa printer model runs (`model` lower case): Buddy on the
+/// MK3.5, MK3.9, MK4, MINI, XL and CORE One; Prusa-Firmware on the MK3, MK3S and MK2.5 (and
+/// their MMU variants, "MK3SMMU2S"); empty for any other.
+std::string dialect_of_model(std::string_view model) {
+  auto starts = [&](std::string_view prefix) { return model.substr(0, prefix.size()) == prefix; };
+  for (std::string_view buddy : {"mk3.5", "mk3.9", "mk4", "mini", "xl", "coreone"})
+    if (starts(buddy)) return "prusa";
+  return starts("mk3") || starts("mk2.5") ? "prusa-mk3" : "";
+}
+
+/// The printer model `l` (a line in lower case) names: PrusaSlicer's `; printer_model = MK3S`
+/// in its config block, or the model check its Prusa profiles' start G-code makes,
+/// `M862.3 P "MK3S"`; empty where it names none.
+std::string_view model_named(std::string_view l) {
+  if (l.substr(0, 6) == "m862.3") {
+    const size_t open = l.find('"'), close = open == std::string_view::npos ? open : l.find('"', open + 1);
+    return close == std::string_view::npos ? std::string_view() : l.substr(open + 1, close - open - 1);
+  }
+  if (l.empty() || l.front() != ';') return {};
+  std::string_view rest = trimmed(l.substr(1));
+  if (rest.substr(0, 13) != "printer_model") return {};
+  rest = trimmed(rest.substr(13));
+  return rest.empty() || rest.front() != '=' ? std::string_view() : trimmed(rest.substr(1));
+}
+
 std::string dialect_of_flavor(const std::string& flavor) {
   for (const auto& [name, dialect] : kFlavors)
     if (flavor == name) return dialect;
@@ -64,6 +89,7 @@ std::optional<ProgramFlavor> program_flavor(std::string_view program) {
   uint32_t line = 0;
   size_t at = 0;
   bool first = true;  // (no line with text read yet)
+  std::optional<ProgramFlavor> flavor_line, model;  // the first of each read
   while (at < program.size()) {
     const size_t end = std::min(program.find('\n', at), program.size());
     std::string_view text = trimmed(program.substr(at, end - at));
@@ -75,8 +101,17 @@ std::optional<ProgramFlavor> program_flavor(std::string_view program) {
       if (tnc_begin_block(text)) return ProgramFlavor{"heidenhain-iso", std::string(text), line, false};
       if (sinumerik_file_header(text)) return ProgramFlavor{"sinumerik", std::string(text), line, false};
     }
-    if (text.empty() || text.front() != ';') continue;
+    if (text.empty() || (text.front() != ';' && lower(text.substr(0, 6)) != "m862.3")) continue;
     const std::string l = lower(text);
+    // A Prusa printer's model says which of Prusa's firmwares runs it, where the flavor says
+    // only Marlin (or nothing): the first line that names one is kept.
+    if (!model)
+      if (const std::string d = dialect_of_model(model_named(l)); !d.empty()) {
+        model = ProgramFlavor{d, std::string(text), line};
+        if (flavor_line) return model;
+        model->model_only = true;
+      }
+    if (text.front() != ';') continue;
     if (l.rfind(";$path=/_n_", 0) == 0) return ProgramFlavor{"sinumerik", std::string(text), line, false};
     std::string flavor;
     if (l.rfind(";flavor:", 0) == 0) {  // Cura
@@ -89,9 +124,12 @@ std::optional<ProgramFlavor> program_flavor(std::string_view program) {
       flavor = std::string(trimmed(rest.substr(1)));
     }
     // (An empty dialect: a flavor, but not one that says which firmware.)
-    return ProgramFlavor{dialect_of_flavor(flavor), std::string(text), line};
+    if (flavor_line) continue;  // (the first one counts)
+    flavor_line = ProgramFlavor{dialect_of_flavor(flavor), std::string(text), line};
+    if (flavor_line->dialect != "marlin") return flavor_line;
+    if (model) return model->model_only = false, model;
   }
-  return std::nullopt;
+  return model ? model : flavor_line;
 }
 
 std::string dialect_of_extension(std::string_view path) {

@@ -21,10 +21,16 @@ struct ProgramFlavor {
   std::string evidence;  ///< the program's own words, e.g. "; gcode_flavor = marlin2"
   uint32_t line = 0;     ///< 1-based line of the evidence
   bool slicer = true;    ///< a slicer's flavor line: a printer's program, which starts in millimetres
+  /// Named by a Prusa printer's model alone (`M862.3 P "MK3S"`), no flavor line read with it:
+  /// one further on that names another firmware than Marlin outranks it.
+  bool model_only = false;
 };
 
 /// The first flavor line of `program`: the shipped dialect it maps to without doubt, or an
 /// empty dialect where the flavor is one that several firmwares answer to (RepRap/Sprinter);
+/// where it says Marlin, or there is none, the first line naming a Prusa printer model
+/// (`; printer_model = MK3S`, `M862.3 P "MK4"`) outranks it: prusa-mk3 for Prusa-Firmware's
+/// models (MK3, MK3S, MK2.5), prusa for Buddy's (MK3.5, MK3.9, MK4, MINI, XL, CORE One);
 /// heidenhain-iso where the program's first line is a TNC program's begin block (`%NAME G71 *`
 /// or `G70`); sinumerik where it is a Sinumerik program file's (`%_N_PART1_MPF`), or where a
 /// line gives its folder on the control (`;$PATH=/_N_MPF_DIR`); nothing where the program has
