@@ -13,6 +13,7 @@
 #include "arcpress/dialect/dialect_loader.hpp"
 #include "arcpress/model/block_nesting.hpp"
 #include "arcpress/model/subroutines.hpp"
+#include "arcpress/model/unread_line.hpp"
 #include "support.hpp"
 
 using namespace arcpress;
@@ -356,6 +357,42 @@ TEST_CASE("a loop nested deeper than the blocks arcpress follows reads its first
   const std::string followed = head.substr(0, head.find("o8 if")) + "o20 do\nX0 Y0\n" + bare_quarter() + "G18\n" +
                                "#1=[#1+1]\no20 while [#1 LT 3]\n" + closes.substr(closes.find("o7 endif")) + "M2\n";
   expect_loop(run_loop("linuxcnc", followed), true, 0);
+}
+
+TEST_CASE("E's mode is one a loop runs its first moves again in, and one a block's ways out may leave differently",
+          "[nesting][jumps][printer]") {
+  // RepRapFirmware: M82 at the loop's end makes the E words of its first moves places the
+  // second time round, where they were read as increments: an arc carrying their sum would
+  // extrude to that place instead. Written as they are; M83 stated at the loop's start (or
+  // M83 again at its end) reads them the same each time.
+  const std::string loop = kHead + "while iterations < 3\n" + quarter(0, 30, "  ") + "  M82\n  G92 E0\nM400\n";
+  expect_loop(run_loop("reprapfirmware", loop), true, 0);
+  std::string stated = loop;
+  stated.insert(stated.find("while iterations < 3\n") + 21, "  M83\n");
+  std::string restored = loop;
+  restored.insert(restored.find("M400"), "  M83\n");
+  for (const std::string& text : {stated, restored}) expect_loop(run_loop("reprapfirmware", text), false, 1);
+  // Marlin reads E's mode with G90: its loops' G90 at the start states it.
+  const std::string marlin = "G21\nM83\nG1 X0 Y0 F1200\nM808 L3\nG90\n" + quarter(0, 30, "") + "M82\nG92 E0\nM808\n";
+  expect_loop(run_loop("marlin", marlin), false, 1);
+  // An `if` that may set M83: after it, moves that extrude are not fitted until the program
+  // states E's mode; those that do not are.
+  const std::string branch = "G90\nM82\nG92 E0\nG1 X0 Y0 F1200\nif {global.relative}\n  M83\n";
+  DiagnosticSink sink;
+  CompressOptions opt;
+  opt.dialect = shipped_dialect("reprapfirmware");
+  const CompressResult unknown = compress("t.gcode", branch + quarter(0, 30, ""), opt, sink);
+  REQUIRE(unknown.ok);
+  CHECK(count_of(unknown.output, "G3") == 0);
+  REQUIRE_FALSE(unknown.not_fitted.empty());
+  CHECK(unknown.not_fitted.back().why == Unfit::ExtrusionModeUnknown);
+  CHECK(count_of(compress_as("reprapfirmware", branch + "M83\n" + quarter(0, 30, "")).output, "G3") == 1);
+  CHECK(count_of(compress_as("reprapfirmware", branch + bare_quarter()).output, "G3") == 1);
+  // A line arcpress does not read that says M83 leaves E's mode not known after it.
+  CHECK(modes_named("M83 {var.flow}", shipped_dialect("reprapfirmware")) == kStatesExtrusion);
+  CHECK(modes_named("G91 {var.z}", shipped_dialect("marlin")) == (kStatesDistance | kStatesExtrusion));
+  CHECK(modes_named("G91 {var.z}", shipped_dialect("reprapfirmware")) == kStatesDistance);
+  CHECK(modes_named("M117 {depth}", shipped_dialect("marlin")) == 0);
 }
 
 TEST_CASE("after a block the modes that differ on its ways out are not known", "[nesting]") {

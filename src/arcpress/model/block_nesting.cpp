@@ -32,6 +32,7 @@ bool is_keyword(std::string_view line, std::string_view word) {
 uint8_t BlockNesting::differing(const Modes& a, const Modes& b) {
   return uint8_t((a.plane != b.plane ? kStatesPlane : 0) | (a.units != b.units ? kStatesUnits : 0) |
                  (a.distance != b.distance ? kStatesDistance : 0) | (a.motion != b.motion ? kStatesMotion : 0) |
+                 (a.extrusion != b.extrusion ? kStatesExtrusion : 0) |
                  ((a.unstated ^ b.unstated) & (kStatesPlane | kStatesUnits)));
 }
 

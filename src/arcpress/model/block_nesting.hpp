@@ -31,6 +31,7 @@ struct BlockNesting {
     uint8_t distance = 0;  ///< 1: G90; 2: G91; 3: not known
     uint8_t unstated = 0;  ///< kStatesPlane, kStatesUnits not known (ModalState::unstated)
     int16_t motion = 0;    ///< ModalState::motion
+    uint8_t extrusion = 0;  ///< 1: E words are places (M82); 2: increments (M83); 3: not known
     bool operator==(const Modes&) const = default;
   };
   /// kStates* (model/subroutines.hpp) of the modes that differ between `a` and `b`.
@@ -40,7 +41,7 @@ struct BlockNesting {
   struct Join {
     bool position = false;  ///< a move, or a change of the known axes, frame or offsets
     /// kStates* (model/subroutines.hpp) of the modes a line in the blocks changed: G90 or G91
-    /// (or whether it is known), the plane, the units, the modal motion.
+    /// (or whether it is known), the plane, the units, the modal motion, E's mode.
     uint8_t modes = 0;
     /// The loops that jump back from here to their start, by their numbers: those that end,
     /// innermost first, or the one a `continue` runs again.

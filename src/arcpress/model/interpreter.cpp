@@ -255,14 +255,10 @@ class Interpreter {
             case 210: F().unit_mm = 1.0, s_.units_told = true, stated(kStatesUnits); break;
             case 70: F().diameter_mode = true; break;
             case 80: F().diameter_mode = false; break;
-            case 900:
-              F().absolute = true, s_.distance_unknown = false, entry_stated(kStatesDistance);
-              F().e_relative = extrusion_after(d_.extrusion_distance, true, false, true, F().m83);
-              if (s_.floating) forget(s_.floating, Unfit::UnknownAtEntry, bi);
+            case 900: case 910:
+              F().absolute = g == 900, s_.distance_unknown = false, entry_stated(kStatesDistance), extrusion(F(), true, g == 910);
+              if (g == 900 && s_.floating) forget(s_.floating, Unfit::UnknownAtEntry, bi);
               break;
-            case 910:
-              F().absolute = false, s_.distance_unknown = false, entry_stated(kStatesDistance);
-              F().e_relative = extrusion_after(d_.extrusion_distance, true, true, false, F().m83); break;
             case 901: F().arc_absolute = true, s_.centre_told = true; break;
             case 911: F().arc_absolute = false, s_.centre_told = true; break;
             case 920: g92 = true; axis_consumer = true; break;
@@ -327,8 +323,7 @@ class Interpreter {
             own |= own_setting(own_code(*own_m, b, bi, *w, own));
             break;
           }
-          if (m == 820 || m == 830)  // (E's mode, as the dialect's firmware reads it with G90/G91)
-            F().e_relative = extrusion_after(d_.extrusion_distance, false, m == 830, F().absolute, F().m83);
+          if (m == 820 || m == 830) extrusion(F(), false, m == 830);
           if (m == 20 || m == 300) end_read_ = true;
           if (m == 20 || m == 300 || m == 990) s_.ended = true;
           if (m == 990 && p_->jumps) read_jump(s_, p_->raw(b), b.line, sink_);  // (M99 Pn: a jump)
@@ -609,11 +604,13 @@ class Interpreter {
               : fr.inverse_time               ? Unfit::InverseTime
               : fr.diameter_mode              ? Unfit::DiameterMode
               : !s_.feed_known                  ? Unfit::FeedUnknown
+              : s_.extrusion_unknown && (words_seen >> kE & 1) ? Unfit::ExtrusionModeUnknown
               : !(moved_xyz || target == s_.pos) ? Unfit::NoPathAxis
                                               : Unfit::None;
     if (cycle_here && m.unfit == Unfit::None) m.unfit = Unfit::CycleCall;
     if (s_.entry_pending && any_axis && m.end_known) [[unlikely]]  // (a rapid places the moves after it)
-      note_entry_use(s_, m.known && is_feed(kind) ? kStatesAll : kStatesUnits | kStatesDistance);
+      note_entry_use(s_, !m.known || !is_feed(kind) ? kStatesUnits | kStatesDistance  // (E's mode where it has E)
+                                                    : kStatesAll ^ (words_seen >> kE & 1 ? 0 : kStatesExtrusion));
     if (!m.known && is_feed(kind)) o_->unplaced.push_back({uint32_t(o_->moves.size() - 1), s_.cause_line});
     s_.pos = target;
     const bool known_changed = known_after != s_.known;
@@ -674,6 +671,11 @@ class Interpreter {
   }
 
   void stated(uint8_t mode) { s_.stated |= mode, s_.unstated &= uint8_t(~mode), entry_stated(mode); }
+  /// E's mode after G90/G91 (`distance`) or M82/M83 as the firmware reads it; stated where they set it.
+  void extrusion(Frame& f, bool distance, bool relative) {
+    f.e_relative = extrusion_after(d_.extrusion_distance, distance, relative, distance ? !relative : f.absolute, f.m83);
+    if (!distance || d_.extrusion_distance == ExtrusionDistance::WithAxes) s_.extrusion_unknown = false, entry_stated(kStatesExtrusion);
+  }
   void entry_stated(uint8_t mode) { s_.entry_pending & mode ? note_entry_stated(s_, mode) : void(); }
 
   /// LinuxCNC's O-word line `b` (block `bi`), followed as model/o_word_flow.hpp says.

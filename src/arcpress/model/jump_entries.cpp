@@ -22,6 +22,7 @@ JumpEntries::Modes modes_of(const ModalState& s, const Frame& frame) {
   m.units = (s.unstated & kStatesUnits) ? 4 : frame.unit_mm == 1.0 ? 1 : 2;
   m.distance = s.distance_unknown ? 4 : frame.absolute ? 1 : 2;
   m.motion = int16_t(s.motion);
+  m.extrusion = s.extrusion_unknown ? 4 : frame.e_relative ? 2 : 1;
   return m;
 }
 
@@ -61,12 +62,15 @@ std::string motion_name(int16_t motion) {
 
 const char* distance_name(uint8_t distance) { return distance == 1 ? "G90" : distance == 2 ? "G91" : "G90 or G91 not known"; }
 
+const char* extrusion_name(uint8_t e) { return e == 1 ? "E absolute" : e == 2 ? "E relative" : "E's mode not known"; }
+
 /// Joins modes `m` into `into`, those of `bits` (kStates*).
 void join(JumpEntries::Modes& into, const JumpEntries::Modes& m, uint8_t bits) {
   if (bits & kStatesPlane) into.planes |= m.planes;
   if (bits & kStatesUnits) into.units |= m.units;
   if (bits & kStatesDistance) into.distance |= m.distance;
   if (bits & kStatesMotion) into.motion = into.motion == -3 || into.motion == m.motion ? m.motion : int16_t(-1);
+  if (bits & kStatesExtrusion) into.extrusion |= m.extrusion;
 }
 
 bool is_loop_of_blocks(uint64_t number) { return (number & JumpEntries::kLoopOfBlocks) != 0; }
@@ -100,6 +104,8 @@ std::string refusal(JumpEntries::Entry& e, const JumpEntries::Modes& here, uint3
     differ(fmt::format("{} there, {} here", motion_name(e.modes.motion), motion_name(here.motion)));
   if ((e.used & kStatesDistance) && e.modes.distance != here.distance)
     differ(fmt::format("{} there, {} here", distance_name(e.modes.distance), distance_name(here.distance)));
+  if ((e.used & kStatesExtrusion) && e.modes.extrusion != here.extrusion)
+    differ(fmt::format("{} there, {} here", extrusion_name(e.modes.extrusion), extrusion_name(here.extrusion)));
   if (!what.empty() && e.refused.empty()) e.refused = what, e.refused_line = line;
   return what;
 }
@@ -110,7 +116,7 @@ std::string jump_to(ModalState& s, uint64_t number, uint32_t line) {
   const JumpEntries::Modes here = modes_of(s, s.frame);
   JumpEntries::Entry& e = entry_of(s, number);
   if (!e.read) {  // ahead: the target is read in these modes too
-    join(e.modes, here, kStatesPlane | kStatesUnits | kStatesMotion);
+    join(e.modes, here, kStatesPlane | kStatesUnits | kStatesMotion | kStatesExtrusion);
     return {};
   }
   return refusal(e, here, line);
@@ -123,12 +129,13 @@ std::string jump_to(ModalState& s, uint64_t number, uint32_t line) {
 std::pair<uint64_t, std::string> computed_jump(ModalState& s, uint32_t line) {
   const JumpEntries::Modes here = modes_of(s, s.frame);
   JumpEntries& all = own_entries(s);
-  join(all.computed, here, kStatesPlane | kStatesUnits | kStatesMotion);
+  join(all.computed, here, kStatesPlane | kStatesUnits | kStatesMotion | kStatesExtrusion);
   all.computed_jumps = true;
   const JumpEntries::Modes& used = all.used;
   auto differs = [](uint8_t set, uint8_t one) { return set != 0 && set != one; };
   if (!differs(used.planes, here.planes) && !differs(used.units, here.units) &&
-      !differs(used.distance, here.distance) && (used.motion == -3 || used.motion == here.motion))
+      !differs(used.distance, here.distance) && !differs(used.extrusion, here.extrusion) &&
+      (used.motion == -3 || used.motion == here.motion))
     return {};
   std::pair<uint64_t, std::string> first;
   for (JumpEntries::Entry& e : all.entries)
@@ -183,8 +190,9 @@ void enter_jumped(ModalState& s, Frame& frame, uint64_t key, uint32_t line) {
     if ((in.planes | here.planes) != here.planes) s.unstated |= kStatesPlane;
     if ((in.units | here.units) != here.units) s.unstated |= kStatesUnits;
     if (in.motion != -3 && in.motion != here.motion) s.motion = -1;
+    if ((in.extrusion | here.extrusion) != here.extrusion) s.extrusion_unknown = true;
   }
-  if (e.loop) s.unstated |= kStatesPlane | kStatesUnits, s.motion = -1;
+  if (e.loop) s.unstated |= kStatesPlane | kStatesUnits, s.motion = -1, s.extrusion_unknown = true;
   entered(s, frame, e);
 }
 

@@ -35,6 +35,7 @@ struct JumpEntries {
     uint8_t units = 0;      ///< 1: mm; 2: inch; 4: not known
     uint8_t distance = 0;   ///< 1: G90; 2: G91; 4: not known
     int16_t motion = -3;    ///< modal motion x10; -1: not known or differing; -3: none yet
+    uint8_t extrusion = 0;  ///< 1: E words are places (M82); 2: increments (M83); 4: not known
     bool operator==(const Modes&) const = default;
   };
   /// The number of a loop of blocks' entry: this bit and the loop's (BlockNesting::loops).
@@ -56,7 +57,7 @@ struct JumpEntries {
   /// Per mode (the bits of kStates*, lowest first): the numbers of the entries still waiting
   /// for it. The first block after an entry that states a mode, or move that uses it, settles
   /// it for every entry waiting (each is settled once: the cost stays linear).
-  std::array<std::vector<uint64_t>, 4> waiting;
+  std::array<std::vector<uint64_t>, 5> waiting;
   /// The modes of the computed jumps (`GOTO #1`) read so far, joined: a numbered block read
   /// after them may be entered in any (`computed_jumps`: there were some).
   Modes computed;

@@ -42,6 +42,10 @@ struct ModalState {
   /// Whether G90 or G91 is in force is not known: the blocks from here on may be entered from
   /// elsewhere (after M2, M30 or M99, at a jump's target), until the program states one.
   bool distance_unknown = false;
+  /// Whether E's words are places or increments (M82 or M83, and G90/G91 where the dialect's
+  /// firmware reads E's mode with them) is not known: the blocks from here on may be entered
+  /// with another (a loop's start its end runs again), until the program states it.
+  bool extrusion_unknown = false;
   /// A program's end (M2, M30, M99) has been read: a program number after it (`O2000`) begins
   /// a program that runs when a call enters it (Mach3's and Fanuc's subprograms in one file).
   bool ended = false;
@@ -99,12 +103,13 @@ struct ModalState {
   /// The modes BlockNesting compares on a block's ways out.
   BlockNesting::Modes modes() const {
     return {uint8_t(plane), uint8_t(frame.unit_mm == 1.0 ? 1 : 2), uint8_t(distance_unknown ? 3 : frame.absolute ? 1 : 2),
-            unstated, int16_t(motion)};
+            unstated, int16_t(motion), uint8_t(extrusion_unknown ? 3 : frame.e_relative ? 2 : 1)};
   }
   /// Modes `modes` (kStates*) are no longer known: a line entered on ways they differ on.
   void forget_modes(uint8_t modes) {
     if (modes & kStatesDistance) distance_unknown = true;
     if (modes & kStatesMotion) motion = -1;
+    if (modes & kStatesExtrusion) extrusion_unknown = true;
     unstated |= modes & (kStatesPlane | kStatesUnits);
   }
   /// Whether the jump entries of this and `o` agree (model/jump_entries.cpp).
@@ -121,7 +126,7 @@ struct ModalState {
       f.offset[ax] = o.frame.offset[ax];
     }
     return f.same_as(o.frame) && plane == o.plane && known == o.known && spindle == o.spindle && cycle_calls == o.cycle_calls &&
-           distance_unknown == o.distance_unknown && ended == o.ended &&
+           distance_unknown == o.distance_unknown && extrusion_unknown == o.extrusion_unknown && ended == o.ended &&
            calls == o.calls && called == o.called && same_entries(o) &&
            floating == o.floating && nesting == o.nesting &&
            stated == o.stated && unstated == o.unstated && (subs == o.subs || (subs && o.subs && *subs == *o.subs)) &&

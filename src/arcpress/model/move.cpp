@@ -37,6 +37,9 @@ const char* describe(Unfit why) {
     case Unfit::InverseTime: return "inverse-time feed (G93)";
     case Unfit::DiameterMode: return "lathe diameter mode (G7): left as it is";
     case Unfit::FeedUnknown: return "no feed rate in force";
+    case Unfit::ExtrusionModeUnknown:
+      return "E words where E's mode (M82 or M83) is not known: the ways in may leave either (a jump, a loop, the end of "
+             "an if block, a line not read), until the program states it";
     case Unfit::NoPathAxis: return "moves only E or extra axes";
     case Unfit::FarFromOrigin: return "too far from the origin for the check to measure a fit of it within the band";
     case Unfit::CycleCall: return "it calls a cycle at its end (a modal cycle call: M89)";

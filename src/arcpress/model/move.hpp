@@ -118,6 +118,7 @@ enum class Unfit : uint8_t {
   InverseTime,      ///< G93 inverse-time feed: F belongs to the block
   DiameterMode,     ///< lathe G7: X words are diameters
   FeedUnknown,      ///< no F in force yet
+  ExtrusionModeUnknown,  ///< an E word where M82 or M83 is not known (after the ways in that may leave either, until stated)
   NoPathAxis,       ///< it moves only E or the extra axes (a retraction, a rotary index)
   FarFromOrigin,    ///< so far from the origin that the check could not measure a fit of it (farthest_measurable_mm())
   CycleCall,        ///< it calls a cycle at its end (the dialect's modal cycle call, Heidenhain's M89)

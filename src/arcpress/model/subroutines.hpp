@@ -14,8 +14,10 @@
 
 namespace arcpress {
 
-/// Modes a body may state, as bits.
-inline constexpr uint8_t kStatesPlane = 1, kStatesUnits = 2, kStatesDistance = 4, kStatesMotion = 8, kStatesAll = 15;
+/// Modes a body may state, as bits. (E's mode, kStatesExtrusion, is followed across jumps and
+/// loops only: a subroutine's body is taken to leave it as it was.)
+inline constexpr uint8_t kStatesPlane = 1, kStatesUnits = 2, kStatesDistance = 4, kStatesMotion = 8,
+                         kStatesExtrusion = 16, kStatesAll = 31;
 
 struct Subroutines {
   /// The modes before the definition being read, which hold again after it.
