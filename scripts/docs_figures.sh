@@ -14,12 +14,12 @@
 # --instructions under valgrind, a few minutes), and printers-vs-arcwelder in
 # docs/printers.md (bench_vs_arcwelder --printers, about a minute): with ARCWELDER set to
 # the path of ArcWelder's console program, built from its source in a folder of your own;
-# grbl, klipper, marlin, prusa and prusa-mk3 in docs/dialects.md (tests/integration/grbl_accepts.sh,
+# grbl, klipper, marlin, prusa, prusa-mk3 and smoothieware in docs/dialects.md (tests/integration/grbl_accepts.sh,
 # klipper_executed.sh and marlin_executed.sh, a minute each): with GRBL_VALIDATOR set to
 # grbl-sim's validator, built likewise (and GRBL_TRACE to it linked with
 # tests/integration/grbl_trace.c, for the paths Grbl plans), KLIPPER_SOURCE to a clone of
-# Klipper, MARLIN_SOURCE to one of Marlin, BUDDY_SOURCE to one of Prusa-Firmware-Buddy and
-# MK3_SOURCE to one of Prusa-Firmware.
+# Klipper, MARLIN_SOURCE to one of Marlin, BUDDY_SOURCE to one of Prusa-Firmware-Buddy,
+# MK3_SOURCE to one of Prusa-Firmware and SMOOTHIEWARE_SOURCE to one of Smoothieware.
 # None is among the defaults.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -83,9 +83,12 @@ for name in "${wanted[@]}"; do
     prusa-mk3)
       [ -f "${MK3_SOURCE:-}/Firmware/motion_control.cpp" ] || { echo "docs_figures: set MK3_SOURCE to a clone of prusa3d/Prusa-Firmware" >&2; exit 2; }
       bash tests/integration/marlin_executed.sh ./build/arcpress "$MK3_SOURCE" ../shared/corpus | as_text | replace docs/dialects.md prusa-mk3 ;;
+    smoothieware)
+      [ -f "${SMOOTHIEWARE_SOURCE:-}/src/modules/robot/Robot.cpp" ] || { echo "docs_figures: set SMOOTHIEWARE_SOURCE to a clone of Smoothieware/Smoothieware" >&2; exit 2; }
+      bash tests/integration/marlin_executed.sh ./build/arcpress "$SMOOTHIEWARE_SOURCE" ../shared/corpus | as_text | replace docs/dialects.md smoothieware ;;
     printers-vs-arcwelder)
       [ -x "${ARCWELDER:-}" ] || { echo "docs_figures: set ARCWELDER to ArcWelder's console program" >&2; exit 2; }
       ./build/bench/bench_vs_arcwelder "$ARCWELDER" --printers | replace docs/printers.md printers-vs-arcwelder ;;
-    *) echo "docs_figures: no table '$name' (corpus, throughput, stages, memory, curves, diff, pathological, printers, printer-causes, band-side, vs-arcwelder, vs-arcwelder-instructions, printers-vs-arcwelder, grbl, klipper, marlin, prusa, prusa-mk3)" >&2; exit 2 ;;
+    *) echo "docs_figures: no table '$name' (corpus, throughput, stages, memory, curves, diff, pathological, printers, printer-causes, band-side, vs-arcwelder, vs-arcwelder-instructions, printers-vs-arcwelder, grbl, klipper, marlin, prusa, prusa-mk3, smoothieware)" >&2; exit 2 ;;
   esac
 done
