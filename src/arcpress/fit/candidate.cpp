@@ -75,6 +75,10 @@ std::optional<Chosen> RunFitter::make_arc(uint32_t a, uint32_t e, const Vec2& ce
   const uint32_t chords = executed_segments(o_.executed, g.radius_mm, g.sweep, g.h1 - g.h0);
   if (chords >= kMaxArcSegments) return std::nullopt;  // more than the firmware counts
   double sagitta = chords_sagitta_mm(g.radius_mm, g.sweep, chords);
+  const bool ring = o_.executed.count_may_grow();  // (ring_deviation() takes the drift itself)
+  // (The ring is half its width off its middle circle at least: wider than twice the band, no
+  // point lies within the band of it.)
+  if (ring && sagitta / 2 > band) return std::nullopt;
   // The firmware's chord ends, which its small-angle steps may pull off the circle: the
   // chords lie within their sagitta and that drift of the circle. (Klipper's lie on it.)
   std::vector<Vec2>& ends = s_.chord_ends;
@@ -82,7 +86,6 @@ std::optional<Chosen> RunFitter::make_arc(uint32_t a, uint32_t e, const Vec2& ce
   if (chords > 1)
     executed_chord_ends(o_.executed, Vec2(pts.front().x(), pts.front().y()), g.center,
                         Vec2(pts.back().x(), pts.back().y()), g.sweep, chords, ends);
-  const bool ring = o_.executed.count_may_grow();  // (ring_deviation() takes the drift itself)
   if (chords > 1 && !ring && o_.executed.rule != ArcSegmentation::Rule::Klipper)
     sagitta += chords_drift_mm(Vec2(pts.front().x(), pts.front().y()), g.center, g.sweep, ends);
   if (sagitta > 0 && ring) {
