@@ -42,6 +42,17 @@ std::string quarter(int numbered = -1) {
 
 }  // namespace
 
+TEST_CASE("a jump read late is told at its own line, where a line holds two jumps too", "[jumps]") {
+  // GOTO's place is noted first, M99's at the line's start: both are line 3.
+  PassedNumbers passed;
+  passed.pass(20);
+  JumpTargets j;
+  j.read("N20 G1 X1\nG1 X2\nIF [#1 LT 2] GOTO 10 M99 P20\nG1 X3\n", 1, &passed);
+  REQUIRE(j.late());
+  CHECK(j.late()->line == 3);
+  CHECK(j.late()->number == 20);
+}
+
 TEST_CASE("the blocks a program's jumps name are read from its text, comments and quoted text left out", "[jumps]") {
   const JumpTargets j = jumps_of(
       "GOTO 100\nIF [#1 LT 3] GOTO200\nM99 P300\nP400 M99\nM97 P500 L2\nM099 P600\nGOTOB N700\nGOTOF 800.\n"

@@ -211,9 +211,11 @@ size_t JumpTargets::read(std::string_view text, uint32_t first_line, const Passe
   // The line of a jump, counted only where one is found (most programs have none).
   size_t counted = 0;
   uint32_t counted_line = first_line;
+  // (A line's jumps come in any order, `GOTO 10 .. M99 P20` noting M99's at the line's start:
+  // a place before the one counted to is in the same line.)
   auto line_at = [&](size_t pos) {
-    counted_line += uint32_t(std::count(text.begin() + long(counted), text.begin() + long(pos), '\n'));
-    counted = pos;
+    if (pos > counted) counted_line += uint32_t(std::count(text.begin() + long(counted), text.begin() + long(pos), '\n'));
+    counted = std::max(counted, pos);
     return counted_line;
   };
   const size_t jumped_before = jumped_.size();
