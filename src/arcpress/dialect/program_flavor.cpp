@@ -101,7 +101,8 @@ std::optional<ProgramFlavor> program_flavor(std::string_view program) {
       if (tnc_begin_block(text)) return ProgramFlavor{"heidenhain-iso", std::string(text), line, false};
       if (sinumerik_file_header(text)) return ProgramFlavor{"sinumerik", std::string(text), line, false};
     }
-    if (text.empty() || (text.front() != ';' && lower(text.substr(0, 6)) != "m862.3")) continue;
+    if (text.empty() || (text.front() != ';' && ((text.front() != 'M' && text.front() != 'm') || lower(text.substr(0, 6)) != "m862.3")))
+      continue;
     const std::string l = lower(text);
     // A Prusa printer's model says which of Prusa's firmwares runs it, where the flavor says
     // only Marlin (or nothing): the first line that names one is kept.
