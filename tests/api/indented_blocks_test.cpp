@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "arcpress/arcpress.hpp"
@@ -269,6 +270,15 @@ void expect_loop(const LoopRun& r, bool as_is, size_t arcs) {
   CHECK(r.refused_as_it_comes == as_is);
 }
 
+/// `loop` (a `while` whose end leaves another mode than its start) with `statement` at its
+/// start, and with it again before `end`: either way its moves read the same every time.
+std::array<std::string, 2> restated(const std::string& loop, const std::string& statement, const std::string& end) {
+  std::string stated = loop, restored = loop;
+  stated.insert(stated.find("while iterations < 3\n") + 21, "  " + statement + "\n");
+  restored.insert(restored.find(end), "  " + statement + "\n");
+  return {stated, restored};
+}
+
 /// The quarter circle of quarter() with no motion word (and no E): read in the motion in force.
 std::string bare_quarter() {
   std::string bare;
@@ -288,10 +298,7 @@ TEST_CASE("a loop whose end runs its first moves again in other modes writes the
   const std::string loop = kHead + "while iterations < 3\n" + quarter(0, 30, "  ") + "  G91\n  G1 Z0.2\nG90\nM400\n";
   expect_loop(run_loop("reprapfirmware", loop), true, 0);
   // Restated at the loop's start, or back in G90 at its end, the moves read the same each time.
-  std::string stated = loop;
-  stated.insert(stated.find("while iterations < 3\n") + 21, "  G90\n");
-  std::string restored = loop;
-  restored.insert(restored.find("G90\nM400"), "  G90\n");
+  const auto [stated, restored] = restated(loop, "G90", "G90\nM400");
   // An `if` runs once: its lines are read in order.
   std::string branch = loop;
   branch.replace(branch.find("while iterations < 3"), 20, "if iterations < 3");
@@ -367,11 +374,7 @@ TEST_CASE("E's mode is one a loop runs its first moves again in, and one a block
   // M83 again at its end) reads them the same each time.
   const std::string loop = kHead + "while iterations < 3\n" + quarter(0, 30, "  ") + "  M82\n  G92 E0\nM400\n";
   expect_loop(run_loop("reprapfirmware", loop), true, 0);
-  std::string stated = loop;
-  stated.insert(stated.find("while iterations < 3\n") + 21, "  M83\n");
-  std::string restored = loop;
-  restored.insert(restored.find("M400"), "  M83\n");
-  for (const std::string& text : {stated, restored}) expect_loop(run_loop("reprapfirmware", text), false, 1);
+  for (const std::string& text : restated(loop, "M83", "M400")) expect_loop(run_loop("reprapfirmware", text), false, 1);
   // Marlin reads E's mode with G90: its loops' G90 at the start states it.
   const std::string marlin = "G21\nM83\nG1 X0 Y0 F1200\nM808 L3\nG90\n" + quarter(0, 30, "") + "M82\nG92 E0\nM808\n";
   expect_loop(run_loop("marlin", marlin), false, 1);
