@@ -317,14 +317,20 @@ double chords_drift_mm(const Vec2& start, const Vec2& centre, double sweep_rad, 
 
 Deviation ring_deviation(const ArcSegmentation& s, std::span<const Vec3> pts, const ArcGeom& arc,
                          const std::vector<Vec2>& ends, double stop_above_mm) {
-  const uint32_t chords = uint32_t(ends.size()) + 1;
   const double drift_mm = chords_drift_mm(Vec2(pts.front().x(), pts.front().y()), arc.center, arc.sweep, ends);
+  Deviation d = ring_deviation_before_drift(s, pts, arc, uint32_t(ends.size()) + 1, stop_above_mm - drift_mm);
+  d.max_mm += drift_mm;
+  return d;
+}
+
+Deviation ring_deviation_before_drift(const ArcSegmentation& s, std::span<const Vec3> pts, const ArcGeom& arc,
+                                      uint32_t chords, double stop_above_mm) {
   // Single precision's unit in the last place, relative; the turns between exact ends; the
   // end's own coordinates rounded.
   constexpr double kFloatUnit = 0x1p-24, kPerTurn = 4.8;
   const double turns = s.rule == Rule::RepRapFirmware ? s.correction_period_or_default() + 1 : s.correction_period_or_default();
   const double rounding = arc.radius_mm * kFloatUnit * kPerTurn * turns + kFloatUnit * (arc.center.norm() + arc.radius_mm);
-  const double sagitta = chords_sagitta_mm(arc.radius_mm, arc.sweep, chords), half = sagitta / 2 + drift_mm + rounding;
+  const double sagitta = chords_sagitta_mm(arc.radius_mm, arc.sweep, chords), half = sagitta / 2 + rounding;
   ArcGeom middle = arc;
   middle.radius_mm -= sagitta / 2;
   Deviation d = arc_deviation(pts, middle, stop_above_mm - half);

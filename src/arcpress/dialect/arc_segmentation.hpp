@@ -127,6 +127,10 @@ double chords_drift_mm(const Vec2& start, const Vec2& centre, double sweep_rad, 
 /// farther apart than the polyline lies from the ring's middle circle and half its width.
 Deviation ring_deviation(const ArcSegmentation& s, std::span<const Vec3> pts, const ArcGeom& arc,
                          const std::vector<Vec2>& ends, double stop_above_mm = HUGE_VAL);
+/// ring_deviation() of `chords` chords before their ends' drift, which it adds to this: a
+/// figure above the band here is above it there, and the ends need not be worked out.
+Deviation ring_deviation_before_drift(const ArcSegmentation& s, std::span<const Vec3> pts, const ArcGeom& arc,
+                                      uint32_t chords, double stop_above_mm = HUGE_VAL);
 
 /// The same for the chords the firmware cuts that arc into (executed_segments()).
 double executed_sagitta_mm(const ArcSegmentation& s, double radius_mm, double sweep_rad, double normal_travel_mm = 0);

@@ -81,18 +81,22 @@ std::optional<Chosen> RunFitter::make_arc(uint32_t a, uint32_t e, const Vec2& ce
   if (ring && sagitta / 2 > band) return std::nullopt;
   // The firmware's chord ends, which its small-angle steps may pull off the circle: the
   // chords lie within their sagitta and that drift of the circle. (Klipper's lie on it.)
+  const Vec2 start(pts.front().x(), pts.front().y());
   std::vector<Vec2>& ends = s_.chord_ends;
   ends.clear();
-  if (chords > 1)
-    executed_chord_ends(o_.executed, Vec2(pts.front().x(), pts.front().y()), g.center,
-                        Vec2(pts.back().x(), pts.back().y()), g.sweep, chords, ends);
+  if (chords > 1 && !(ring && sagitta > 0))  // (the ring's: below, where it needs them)
+    executed_chord_ends(o_.executed, start, g.center, Vec2(pts.back().x(), pts.back().y()), g.sweep, chords, ends);
   if (chords > 1 && !ring && o_.executed.rule != ArcSegmentation::Rule::Klipper)
-    sagitta += chords_drift_mm(Vec2(pts.front().x(), pts.front().y()), g.center, g.sweep, ends);
+    sagitta += chords_drift_mm(start, g.center, g.sweep, ends);
   if (sagitta > 0 && ring) {
     // The firmware may cut more chords at a low feed: none of them is the path, the ring
-    // about the circle that holds them all is.
-    const Deviation d = ring_deviation(o_.executed, pts, g, ends, band);
+    // about the circle that holds them all is (ring_deviation(): its ends' drift added last,
+    // so that they are worked out only where the ring keeps the band without it).
+    const Deviation d = ring_deviation_before_drift(o_.executed, pts, g, chords, band);
     if (!d.ordered || d.max_mm > band) return std::nullopt;
+    if (chords > 1)
+      executed_chord_ends(o_.executed, start, g.center, Vec2(pts.back().x(), pts.back().y()), g.sweep, chords, ends);
+    if (d.max_mm + chords_drift_mm(start, g.center, g.sweep, ends) > band) return std::nullopt;
   } else if (sagitta > 0) {
     Deviation near = arc_deviation(pts, g, band - sagitta);
     if (!near.ordered) return std::nullopt;
