@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <initializer_list>
 #include <vector>
 #include <numbers>
 
@@ -25,6 +26,19 @@ ArcSegmentation rule(Rule r, double max_mm, double min_mm, int per_circle, doubl
   s.min_circle_segments = per_circle;
   s.max_deviation_mm = deviation_mm;
   return s;
+}
+
+/// An arc of `radius_mm` turning by `sweep_deg`, and the segments the firmware cuts it into.
+struct Count {
+  double radius_mm, sweep_deg;
+  uint32_t segments;
+};
+
+void check_counts(const ArcSegmentation& s, std::initializer_list<Count> counts) {
+  for (const Count& c : counts) {
+    INFO("r " << c.radius_mm << " mm, " << c.sweep_deg << " deg");
+    CHECK(executed_segments(s, c.radius_mm, deg(c.sweep_deg)) == c.segments);
+  }
 }
 
 }  // namespace
@@ -57,17 +71,17 @@ TEST_CASE("Klipper cuts an arc into floor(length / resolution) segments, one cho
 TEST_CASE("RepRapFirmware sizes segments for 0.005 mm deviation within 0.02 .. 1 mm and rounds up from 0.2",
           "[segmentation]") {
   const auto rrf = rule(Rule::RepRapFirmware, 1.0, 0.02, 0, 0.005);
-  CHECK(executed_segments(rrf, 10, deg(90)) == 25);     // sqrt(0.4) = 0.632 mm: 24.84 + 0.8
-  CHECK(executed_segments(rrf, 100, deg(90)) == 157);   // sqrt(4) = 2, clamped to 1 mm: 157.08 + 0.8
-  CHECK(executed_segments(rrf, 0.01, deg(90)) == 1);    // 0.02 mm segments: 0.785 + 0.8
+  check_counts(rrf, {{10, 90, 25},     // sqrt(0.4) = 0.632 mm: 24.84 + 0.8
+                     {100, 90, 157},   // sqrt(4) = 2, clamped to 1 mm: 157.08 + 0.8
+                     {0.01, 90, 1}});  // 0.02 mm segments: 0.785 + 0.8
 }
 
 TEST_CASE("Prusa's Buddy firmware counts as RepRapFirmware does with 0.02 mm deviation within 0.1 .. 2 mm",
           "[segmentation]") {
   const auto buddy = rule(Rule::PrusaBuddy, 2.0, 0.1, 0, 0.02);
-  CHECK(executed_segments(buddy, 10, deg(90)) == 13);   // sqrt(1.6) = 1.265 mm: 12.42 + 0.8
-  CHECK(executed_segments(buddy, 100, deg(90)) == 79);  // sqrt(16) = 4, clamped to 2 mm: 78.54 + 0.8
-  CHECK(executed_segments(buddy, 0.05, deg(90)) == 1);  // 0.1 mm segments: 0.785 + 0.8
+  check_counts(buddy, {{10, 90, 13},     // sqrt(1.6) = 1.265 mm: 12.42 + 0.8
+                       {100, 90, 79},    // sqrt(16) = 4, clamped to 2 mm: 78.54 + 0.8
+                       {0.05, 90, 1}});  // 0.1 mm segments: 0.785 + 0.8
   // r 30, 2.38 mm of arc: 1.19 segments of 2 mm, rounded down to one chord 0.0236 mm off the
   // circle, where Marlin's rule at 2 mm would cut two (0.0059 mm off).
   CHECK(executed_segments(buddy, 30, 2.38 / 30) == 1);

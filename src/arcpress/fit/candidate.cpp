@@ -75,7 +75,7 @@ std::optional<Chosen> RunFitter::make_arc(uint32_t a, uint32_t e, const Vec2& ce
   const uint32_t chords = executed_segments(o_.executed, g.radius_mm, g.sweep, g.h1 - g.h0);
   if (chords >= kMaxArcSegments) return std::nullopt;  // more than the firmware counts
   double sagitta = chords_sagitta_mm(g.radius_mm, g.sweep, chords);
-  const bool ring = o_.executed.count_may_grow();  // (ring_deviation() takes the drift itself)
+  const bool ring = o_.executed.count_may_grow();
   // (The ring is half its width off its middle circle at least: wider than twice the band, no
   // point lies within the band of it.)
   if (ring && sagitta / 2 > band) return std::nullopt;
@@ -84,8 +84,11 @@ std::optional<Chosen> RunFitter::make_arc(uint32_t a, uint32_t e, const Vec2& ce
   const Vec2 start(pts.front().x(), pts.front().y());
   std::vector<Vec2>& ends = s_.chord_ends;
   ends.clear();
-  if (chords > 1 && !(ring && sagitta > 0))  // (the ring's: below, where it needs them)
-    executed_chord_ends(o_.executed, start, g.center, Vec2(pts.back().x(), pts.back().y()), g.sweep, chords, ends);
+  auto work_out_ends = [&] {
+    if (chords > 1)
+      executed_chord_ends(o_.executed, start, g.center, Vec2(pts.back().x(), pts.back().y()), g.sweep, chords, ends);
+  };
+  if (!(ring && sagitta > 0)) work_out_ends();  // (the ring's: below, where it needs them)
   if (chords > 1 && !ring && o_.executed.rule != ArcSegmentation::Rule::Klipper)
     sagitta += chords_drift_mm(start, g.center, g.sweep, ends);
   if (sagitta > 0 && ring) {
@@ -94,8 +97,7 @@ std::optional<Chosen> RunFitter::make_arc(uint32_t a, uint32_t e, const Vec2& ce
     // so that they are worked out only where the ring keeps the band without it).
     const Deviation d = ring_deviation_before_drift(o_.executed, pts, g, chords, band);
     if (!d.ordered || d.max_mm > band) return std::nullopt;
-    if (chords > 1)
-      executed_chord_ends(o_.executed, start, g.center, Vec2(pts.back().x(), pts.back().y()), g.sweep, chords, ends);
+    work_out_ends();
     if (d.max_mm + chords_drift_mm(start, g.center, g.sweep, ends) > band) return std::nullopt;
   } else if (sagitta > 0) {
     Deviation near = arc_deviation(pts, g, band - sagitta);
